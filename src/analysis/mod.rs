@@ -1,0 +1,12 @@
+//! Pure mechanics: statics, the paper's domains, regimes and critical values.
+//!
+//! No I/O, no threads. Everything is normalised: lengths over the intrados radius r,
+//! thrusts over the half weight W_half.
+
+pub mod circular;
+pub mod roots;
+pub mod statics;
+pub mod symmetric;
+pub mod types;
+
+pub use types::{Face, Hinge, Interval, Mechanism, MechanismKind, Regime, Sense, SlidingJoint};

@@ -1,0 +1,150 @@
+//! Bracketing root finding and concave maximisation in one variable.
+//!
+//! Everything here is guaranteed to terminate and keeps a valid bracket: the critical
+//! values of archstudy are roots of continuous, monotone margin functions, found by Brent's
+//! method, never by fixed-step scans.
+
+/// Brent's method for a root of `f` in `[a, b]`, where `f(a)` and `f(b)` differ in sign (or one
+/// is zero). Stops when the bracket is shorter than `tol` (absolute) plus four ulps.
+///
+/// Returns the end of the final bracket on the side where `f` has the sign of `f(b)` (the
+/// "feasible" side when `f(b) ≥ 0`), so a caller can rely on which side of the root it gets.
+pub fn brent<F: FnMut(f64) -> f64>(mut f: F, a: f64, b: f64, tol: f64) -> Option<f64> {
+    let (fa, fb) = (f(a), f(b));
+    brent_with_values(&mut f, a, fa, b, fb, tol)
+}
+
+/// [`brent`] with the end values already known.
+pub fn brent_with_values<F: FnMut(f64) -> f64>(
+    f: &mut F,
+    a: f64,
+    fa: f64,
+    b: f64,
+    fb: f64,
+    tol: f64,
+) -> Option<f64> {
+    if fa.is_nan() || fb.is_nan() {
+        return None;
+    }
+    if fb == 0.0 {
+        return Some(b);
+    }
+    if fa == 0.0 {
+        return Some(a);
+    }
+    if fa.signum() == fb.signum() {
+        return None;
+    }
+    let target_sign = fb.signum();
+    // Classic Brent (Numerical Recipes "zbrent" structure), b is the best estimate.
+    let (mut a, mut b, mut fa, mut fb) = (a, b, fa, fb);
+    let mut c = a;
+    let mut fc = fa;
+    let mut d = b - a;
+    let mut e = d;
+    for _ in 0..400 {
+        if fb.signum() == fc.signum() {
+            c = a;
+            fc = fa;
+            d = b - a;
+            e = d;
+        }
+        if fc.abs() < fb.abs() {
+            a = b;
+            b = c;
+            c = a;
+            fa = fb;
+            fb = fc;
+            fc = fa;
+        }
+        let tol1 = 2.0 * f64::EPSILON * b.abs() + 0.5 * tol;
+        let xm = 0.5 * (c - b);
+        if xm.abs() <= tol1 || fb == 0.0 {
+            // [b, c] brackets the root; return the end with the requested sign.
+            return Some(if fb == 0.0 || fb.signum() == target_sign { b } else { c });
+        }
+        if e.abs() >= tol1 && fa.abs() > fb.abs() {
+            let s = fb / fa;
+            let (mut p, mut q);
+            if a == c {
+                p = 2.0 * xm * s;
+                q = 1.0 - s;
+            } else {
+                let qq = fa / fc;
+                let r = fb / fc;
+                p = s * (2.0 * xm * qq * (qq - r) - (b - a) * (r - 1.0));
+                q = (qq - 1.0) * (r - 1.0) * (s - 1.0);
+            }
+            if p > 0.0 {
+                q = -q;
+            }
+            p = p.abs();
+            let min1 = 3.0 * xm * q - (tol1 * q).abs();
+            let min2 = (e * q).abs();
+            if 2.0 * p < min1.min(min2) {
+                e = d;
+                d = p / q;
+            } else {
+                d = xm;
+                e = d;
+            }
+        } else {
+            d = xm;
+            e = d;
+        }
+        a = b;
+        fa = fb;
+        b += if d.abs() > tol1 { d } else { tol1.copysign(xm) };
+        fb = f(b);
+        if fb.is_nan() {
+            return None;
+        }
+    }
+    Some(if fb.signum() == target_sign { b } else { c })
+}
+
+/// Maximiser of a concave function on `[lo, hi]` given its (super)gradient `slope`, which is
+/// non-increasing. Returns `lo` when the slope is already ≤ 0 there and `hi` when it is still
+/// > 0 at `hi`. Bisection with secant steps (Brent on the slope), to `tol`.
+pub fn argmax_concave<D: FnMut(f64) -> f64>(mut slope: D, lo: f64, hi: f64, tol: f64) -> f64 {
+    let slo = slope(lo);
+    if slo <= 0.0 {
+        return lo;
+    }
+    let shi = slope(hi);
+    if shi > 0.0 {
+        return hi;
+    }
+    // The slope may jump at kinks; Brent falls back to bisection there.
+    brent_with_values(&mut slope, lo, slo, hi, shi, tol).unwrap_or(0.5 * (lo + hi))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn brent_finds_cube_root_of_two() {
+        let x = brent(|x| x * x * x - 2.0, 0.0, 2.0, 1e-15).unwrap();
+        assert!((x - 2f64.cbrt()).abs() < 1e-14);
+    }
+
+    #[test]
+    fn brent_returns_the_side_with_the_sign_of_fb() {
+        // Step function: root at 0.3, feasible side (f ≥ 0) to the right.
+        let x = brent(|x| if x >= 0.3 { 1.0 } else { -1.0 }, 0.0, 1.0, 1e-12).unwrap();
+        assert!(x >= 0.3 && x - 0.3 < 1e-11);
+    }
+
+    #[test]
+    fn brent_rejects_a_bracket_without_sign_change() {
+        assert!(brent(|x| x * x + 1.0, -1.0, 1.0, 1e-12).is_none());
+    }
+
+    #[test]
+    fn argmax_of_a_kinked_concave_function() {
+        // f = min(2x, 3 - x): maximum at x = 1.
+        let x = argmax_concave(|x| if 2.0 * x < 3.0 - x { 2.0 } else { -1.0 }, -5.0, 5.0, 1e-14);
+        assert!((x - 1.0).abs() < 1e-13);
+    }
+}

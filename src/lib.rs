@@ -1,0 +1,7 @@
+//! archstudy: limit analysis of masonry arches with finite Coulomb friction.
+//!
+//! The data flow is one-way: manifest → plan → analysis → engine → store → boundaries →
+//! plots and report. The library does everything the `archstudy` binary does.
+
+pub mod analysis;
+pub mod model;
