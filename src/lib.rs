@@ -4,4 +4,7 @@
 //! plots and report. The library does everything the `archstudy` binary does.
 
 pub mod analysis;
+pub mod app;
+pub mod cli;
 pub mod model;
+pub mod scene;

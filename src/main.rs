@@ -1,1 +1,19 @@
-fn main() {}
+//! The `archstudy` binary: a thin layer over the library.
+
+use archstudy::cli::Cli;
+use clap::Parser;
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match archstudy::app::run(cli) {
+        Ok(code) => code,
+        Err(err) => {
+            eprintln!("error: {err}");
+            for cause in err.chain().skip(1) {
+                eprintln!("  caused by: {cause}");
+            }
+            ExitCode::from(archstudy::app::exit_code(&err))
+        }
+    }
+}

@@ -181,7 +181,12 @@ impl Arch {
         if let Discretisation::Voussoirs(0) = joints {
             return Err(ModelError::Voussoirs(0));
         }
-        Ok(Arch { k, half_angle: half_angle_deg.to_radians(), weight, joints })
+        Ok(Arch {
+            k,
+            half_angle: half_angle_deg.to_radians(),
+            weight,
+            joints,
+        })
     }
 
     /// The semicircular arch of the paper: α = 90°, annular weight, continuum.

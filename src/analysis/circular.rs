@@ -30,7 +30,10 @@ pub struct CircularArch {
 impl CircularArch {
     /// Wraps an arch.
     pub fn new(arch: Arch) -> Self {
-        CircularArch { arch, rho_s: arch.weight_radius() }
+        CircularArch {
+            arch,
+            rho_s: arch.weight_radius(),
+        }
     }
 
     /// Radius at which the weight acts, over r.
@@ -51,12 +54,20 @@ impl ArchGeometry for CircularArch {
 
     fn joint(&self, theta: f64) -> Joint {
         let (s, c) = theta.sin_cos();
-        Joint { theta, intrados: [s, c], extrados: [self.arch.k * s, self.arch.k * c] }
+        Joint {
+            theta,
+            intrados: [s, c],
+            extrados: [self.arch.k * s, self.arch.k * c],
+        }
     }
 
     fn dead_load(&self, theta: f64) -> Resultant {
         let a = self.arch.half_angle;
-        Resultant { fx: 0.0, fy: -theta / a, m: -self.rho_s * (1.0 - theta.cos()) / a }
+        Resultant {
+            fx: 0.0,
+            fy: -theta / a,
+            m: -self.rho_s * (1.0 - theta.cos()) / a,
+        }
     }
 
     fn discrete_joints(&self) -> Option<Vec<f64>> {
@@ -64,7 +75,11 @@ impl ArchGeometry for CircularArch {
             Discretisation::Continuum => None,
             Discretisation::Voussoirs(n) => {
                 let a = self.arch.half_angle;
-                Some((0..=n).map(|j| -a + 2.0 * a * f64::from(j) / f64::from(n)).collect())
+                Some(
+                    (0..=n)
+                        .map(|j| -a + 2.0 * a * f64::from(j) / f64::from(n))
+                        .collect(),
+                )
             }
         }
     }
@@ -88,7 +103,11 @@ pub fn solve_theta_cot(c: f64) -> f64 {
     // q(θ) = θ cot θ − c is strictly decreasing from 1 − c > 0 to −∞ on (0, π).
     let (mut lo, mut hi) = (0.0_f64, std::f64::consts::PI);
     // Initial guess: small-angle series for c near 1, else midpoint-ish.
-    let mut t = if c > 0.9 { (3.0 * (1.0 - c)).sqrt() } else { 0.5 * (lo + hi) };
+    let mut t = if c > 0.9 {
+        (3.0 * (1.0 - c)).sqrt()
+    } else {
+        0.5 * (lo + hi)
+    };
     for _ in 0..100 {
         let q = theta_cot_theta(t) - c;
         if q > 0.0 {
@@ -100,7 +119,11 @@ pub fn solve_theta_cot(c: f64) -> f64 {
             break;
         }
         let s = t.sin();
-        let dq = if t.abs() < 1e-4 { -2.0 * t / 3.0 } else { (s * t.cos() - t) / (s * s) };
+        let dq = if t.abs() < 1e-4 {
+            -2.0 * t / 3.0
+        } else {
+            (s * t.cos() - t) / (s * s)
+        };
         let mut next = t - q / dq;
         if !(next > lo && next < hi) || dq == 0.0 {
             next = 0.5 * (lo + hi);
@@ -204,8 +227,12 @@ impl SymmetricCircular {
     /// All joints of the right half, in increasing angle (for the continuum: a sampling).
     pub fn half_joints(&self) -> Vec<f64> {
         match self.voussoirs {
-            Some(n) => (0..n / 2 + 1).map(|i| half_joint(n, self.alpha, i)).collect(),
-            None => (0..=256).map(|i| self.alpha * f64::from(i) / 256.0).collect(),
+            Some(n) => (0..n / 2 + 1)
+                .map(|i| half_joint(n, self.alpha, i))
+                .collect(),
+            None => (0..=256)
+                .map(|i| self.alpha * f64::from(i) / 256.0)
+                .collect(),
         }
     }
 
@@ -234,7 +261,11 @@ impl SymmetricCircular {
                 let p = f64::from(n % 2);
                 // θ_i = α(2i + p)/N  ⇒  i = (θN/α − p)/2.
                 let x = (t * f64::from(n) / self.alpha - p) / 2.0;
-                let i0 = if x <= 0.0 { 0 } else { (x.floor() as u32).min(last) };
+                let i0 = if x <= 0.0 {
+                    0
+                } else {
+                    (x.floor() as u32).min(last)
+                };
                 let i1 = (i0 + 1).min(last);
                 let (t0, t1) = (self.joint_angle(i0), self.joint_angle(i1));
                 let (l0, l1) = (self.intrados(t0, h), self.intrados(t1, h));
@@ -327,7 +358,11 @@ impl SymmetricCircular {
                 Some(n) => {
                     let last = n / 2;
                     let x = (p * f64::from(n) / self.alpha - f64::from(n % 2)) / 2.0;
-                    let i0 = if x <= 0.0 { 0 } else { (x.floor() as u32).min(last) };
+                    let i0 = if x <= 0.0 {
+                        0
+                    } else {
+                        (x.floor() as u32).min(last)
+                    };
                     c.push(self.joint_angle(i0));
                     c.push(self.joint_angle((i0 + 1).min(last)));
                 }

@@ -61,7 +61,11 @@ pub fn brent_with_values<F: FnMut(f64) -> f64>(
         let xm = 0.5 * (c - b);
         if xm.abs() <= tol1 || fb == 0.0 {
             // [b, c] brackets the root; return the end with the requested sign.
-            return Some(if fb == 0.0 || fb.signum() == target_sign { b } else { c });
+            return Some(if fb == 0.0 || fb.signum() == target_sign {
+                b
+            } else {
+                c
+            });
         }
         if e.abs() >= tol1 && fa.abs() > fb.abs() {
             let s = fb / fa;
@@ -144,7 +148,12 @@ mod tests {
     #[test]
     fn argmax_of_a_kinked_concave_function() {
         // f = min(2x, 3 - x): maximum at x = 1.
-        let x = argmax_concave(|x| if 2.0 * x < 3.0 - x { 2.0 } else { -1.0 }, -5.0, 5.0, 1e-14);
+        let x = argmax_concave(
+            |x| if 2.0 * x < 3.0 - x { 2.0 } else { -1.0 },
+            -5.0,
+            5.0,
+            1e-14,
+        );
         assert!((x - 1.0).abs() < 1e-13);
     }
 }

@@ -30,12 +30,20 @@ pub struct Resultant {
 impl Resultant {
     /// Sum of two resultants.
     pub fn add(self, o: Resultant) -> Resultant {
-        Resultant { fx: self.fx + o.fx, fy: self.fy + o.fy, m: self.m + o.m }
+        Resultant {
+            fx: self.fx + o.fx,
+            fy: self.fy + o.fy,
+            m: self.m + o.m,
+        }
     }
 
     /// The resultant scaled by `s`.
     pub fn scale(self, s: f64) -> Resultant {
-        Resultant { fx: s * self.fx, fy: s * self.fy, m: s * self.m }
+        Resultant {
+            fx: s * self.fx,
+            fy: s * self.fy,
+            m: s * self.m,
+        }
     }
 }
 
@@ -53,7 +61,10 @@ pub struct Joint {
 impl Joint {
     /// Unit vector along the joint, from intrados to extrados (n for radial joints).
     pub fn along(&self) -> [f64; 2] {
-        let d = [self.extrados[0] - self.intrados[0], self.extrados[1] - self.intrados[1]];
+        let d = [
+            self.extrados[0] - self.intrados[0],
+            self.extrados[1] - self.intrados[1],
+        ];
         let l = d[0].hypot(d[1]);
         [d[0] / l, d[1] / l]
     }
@@ -102,8 +113,12 @@ pub enum Condition {
 
 impl Condition {
     /// The four conditions at a joint.
-    pub const ALL: [Condition; 4] =
-        [Condition::Intrados, Condition::Extrados, Condition::SlideOutward, Condition::SlideInward];
+    pub const ALL: [Condition; 4] = [
+        Condition::Intrados,
+        Condition::Extrados,
+        Condition::SlideOutward,
+        Condition::SlideInward,
+    ];
 
     /// True for the rotational (no-tension) conditions of eq. (1).
     pub fn is_rotational(self) -> bool {
@@ -175,5 +190,10 @@ pub fn joint_rows<G: ArchGeometry + ?Sized>(geom: &G, theta: f64, phi: f64) -> [
             b: -(g[0] * d.fx + g[1] * d.fy),
         }
     };
-    [intrados, extrados, sliding(1.0, Condition::SlideOutward), sliding(-1.0, Condition::SlideInward)]
+    [
+        intrados,
+        extrados,
+        sliding(1.0, Condition::SlideOutward),
+        sliding(-1.0, Condition::SlideInward),
+    ]
 }

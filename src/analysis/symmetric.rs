@@ -78,15 +78,33 @@ pub fn rotational_domain(sym: &SymmetricCircular) -> RotationalDomain {
     if sp.abs() <= flat && sm.abs() <= flat {
         // Φ is constant (a single joint): H^r is everything or nothing.
         let g = phi(0.0);
-        let interval =
-            if g >= -MARGIN_TOL { Interval { lo: f64::NEG_INFINITY, hi: f64::INFINITY } } else { Interval::EMPTY };
-        return RotationalDomain { interval, peak_thrust: 0.0, peak_margin: g };
+        let interval = if g >= -MARGIN_TOL {
+            Interval {
+                lo: f64::NEG_INFINITY,
+                hi: f64::INFINITY,
+            }
+        } else {
+            Interval::EMPTY
+        };
+        return RotationalDomain {
+            interval,
+            peak_thrust: 0.0,
+            peak_margin: g,
+        };
     }
     let (h_peak, g) = concave_peak(phi, |h| sym.rotational_slope(h));
     if g < -MARGIN_TOL {
-        return RotationalDomain { interval: Interval::EMPTY, peak_thrust: h_peak, peak_margin: g };
+        return RotationalDomain {
+            interval: Interval::EMPTY,
+            peak_thrust: h_peak,
+            peak_margin: g,
+        };
     }
-    let start = if h_peak.is_finite() { h_peak } else { h_peak.signum() * FAR };
+    let start = if h_peak.is_finite() {
+        h_peak
+    } else {
+        h_peak.signum() * FAR
+    };
     let root_toward = |dir: f64| -> f64 {
         let mut step = 1.0;
         let mut x = start + dir * step;
@@ -102,22 +120,41 @@ pub fn rotational_domain(sym: &SymmetricCircular) -> RotationalDomain {
         }
         brent(phi, x, start, 1e-15).unwrap_or(start)
     };
-    let lo = if h_peak == f64::NEG_INFINITY { f64::NEG_INFINITY } else { root_toward(-1.0) };
-    let hi = if h_peak == f64::INFINITY { f64::INFINITY } else { root_toward(1.0) };
-    RotationalDomain { interval: Interval { lo, hi }, peak_thrust: h_peak, peak_margin: g }
+    let lo = if h_peak == f64::NEG_INFINITY {
+        f64::NEG_INFINITY
+    } else {
+        root_toward(-1.0)
+    };
+    let hi = if h_peak == f64::INFINITY {
+        f64::INFINITY
+    } else {
+        root_toward(1.0)
+    };
+    RotationalDomain {
+        interval: Interval { lo, hi },
+        peak_thrust: h_peak,
+        peak_margin: g,
+    }
 }
 
 /// H^s: the thrusts for which no joint slides (eqs. 4a, 4b), friction angle φ in radians.
 pub fn sliding_domain(sym: &SymmetricCircular, phi: f64) -> SlidingDomain {
     let mut d = SlidingDomain {
-        interval: Interval { lo: f64::NEG_INFINITY, hi: f64::INFINITY },
+        interval: Interval {
+            lo: f64::NEG_INFINITY,
+            hi: f64::INFINITY,
+        },
         lower_joint: None,
         upper_joint: None,
     };
     let mut infeasible = false;
     for theta in sym.sliding_candidates(phi) {
         for (row, bound) in sym.sliding_bounds(theta, phi).into_iter().enumerate() {
-            let sense = if row == 0 { Sense::Outward } else { Sense::Inward };
+            let sense = if row == 0 {
+                Sense::Outward
+            } else {
+                Sense::Inward
+            };
             match bound {
                 SlidingBound::Upper(v) if v < d.interval.hi => {
                     d.interval.hi = v;
@@ -149,7 +186,10 @@ pub fn sliding_domain(sym: &SymmetricCircular, phi: f64) -> SlidingDomain {
 /// Both domains at a point.
 pub fn domains(arch: &Arch, friction: Friction) -> Domains {
     let sym = SymmetricCircular::new(arch);
-    Domains { rotational: rotational_domain(&sym), sliding: sliding_domain(&sym, friction.angle()) }
+    Domains {
+        rotational: rotational_domain(&sym),
+        sliding: sliding_domain(&sym, friction.angle()),
+    }
 }
 
 /// Ψ and its maximiser: the stability margin of a symmetric arch with sliding domain `sd`.
@@ -205,7 +245,10 @@ pub struct StateReport {
 /// The `state` analysis of a symmetric self-weight scene.
 pub fn state(arch: &Arch, friction: Friction) -> StateReport {
     let domains = domains(arch, friction);
-    StateReport { regime: regime_of(&domains.rotational, &domains.sliding), domains }
+    StateReport {
+        regime: regime_of(&domains.rotational, &domains.sliding),
+        domains,
+    }
 }
 
 /// A critical state: the parameters where the arch is at the limit, with its mechanism.
@@ -286,12 +329,14 @@ fn hinges_at(sym: &SymmetricCircular, h: f64) -> (Vec<(f64, Face)>, f64, bool) {
     let mut intrados_candidates = vec![t0, t1, e0];
     intrados_candidates.dedup();
     for t in intrados_candidates {
-        if sym.intrados(t, h) >= m - tol && !out.iter().any(|&(x, f)| x == t && f == Face::Intrados) {
+        if sym.intrados(t, h) >= m - tol && !out.iter().any(|&(x, f)| x == t && f == Face::Intrados)
+        {
             out.push((t, Face::Intrados));
         }
     }
     for t in [e0, e1] {
-        if sym.extrados(t, h) <= m + tol && !out.iter().any(|&(x, f)| x == t && f == Face::Extrados) {
+        if sym.extrados(t, h) <= m + tol && !out.iter().any(|&(x, f)| x == t && f == Face::Extrados)
+        {
             out.push((t, Face::Extrados));
         }
     }
@@ -300,7 +345,13 @@ fn hinges_at(sym: &SymmetricCircular, h: f64) -> (Vec<(f64, Face)>, f64, bool) {
 
 /// The limit state of a symmetric arch at thrust h with sliding domain `sd` (both ends of
 /// H^s that are active at h slide).
-fn limit_state(sym: &SymmetricCircular, sd: &SlidingDomain, h: f64, k: f64, mu: f64) -> Option<CriticalState> {
+fn limit_state(
+    sym: &SymmetricCircular,
+    sd: &SlidingDomain,
+    h: f64,
+    k: f64,
+    mu: f64,
+) -> Option<CriticalState> {
     let (hinges, m, _) = hinges_at(sym, h);
     let tol = ACTIVE_TOL * (1.0 + h.abs());
     let mut sliding = Vec::new();
@@ -314,11 +365,22 @@ fn limit_state(sym: &SymmetricCircular, sd: &SlidingDomain, h: f64, k: f64, mu: 
     {
         sliding.push((t, s));
     }
-    let hinges = mirror(&hinges).into_iter().map(|(angle_deg, face)| Hinge { angle_deg, face }).collect();
-    let sliding =
-        mirror(&sliding).into_iter().map(|(angle_deg, sense)| SlidingJoint { angle_deg, sense }).collect();
+    let hinges = mirror(&hinges)
+        .into_iter()
+        .map(|(angle_deg, face)| Hinge { angle_deg, face })
+        .collect();
+    let sliding = mirror(&sliding)
+        .into_iter()
+        .map(|(angle_deg, sense)| SlidingJoint { angle_deg, sense })
+        .collect();
     let mechanism = Mechanism::from_parts(hinges, sliding)?;
-    Some(CriticalState { k, mu, thrust_over_half_weight: h, crown_moment: m, mechanism })
+    Some(CriticalState {
+        k,
+        mu,
+        thrust_over_half_weight: h,
+        crown_moment: m,
+        mechanism,
+    })
 }
 
 /// The collapse thickness K_c at friction μ (paper §5): the smallest K at which the arch
@@ -381,7 +443,11 @@ pub fn sliding_threshold(arch: &Arch) -> Critical {
     let sym = SymmetricCircular::new(arch);
     let width = |phi: f64| {
         let i = sliding_domain(&sym, phi).interval;
-        if i.hi.is_infinite() || i.lo.is_infinite() { 1.0 } else { i.hi - i.lo }
+        if i.hi.is_infinite() || i.lo.is_infinite() {
+            1.0
+        } else {
+            i.hi - i.lo
+        }
     };
     if width(0.0) >= 0.0 {
         return Critical::AlwaysStands;
@@ -394,9 +460,14 @@ pub fn sliding_threshold(arch: &Arch) -> Critical {
     };
     let sd = sliding_domain(&sym, phi);
     let h = sd.interval.hi;
-    let sliding = [sd.lower_joint, sd.upper_joint].into_iter().flatten().collect::<Vec<_>>();
-    let sliding =
-        mirror(&sliding).into_iter().map(|(angle_deg, sense)| SlidingJoint { angle_deg, sense }).collect();
+    let sliding = [sd.lower_joint, sd.upper_joint]
+        .into_iter()
+        .flatten()
+        .collect::<Vec<_>>();
+    let sliding = mirror(&sliding)
+        .into_iter()
+        .map(|(angle_deg, sense)| SlidingJoint { angle_deg, sense })
+        .collect();
     match Mechanism::from_parts(Vec::new(), sliding) {
         Some(mechanism) => Critical::Found(CriticalState {
             k: f64::NAN,
@@ -487,8 +558,16 @@ mod tests {
         assert!((crate::model::t_over_r_from_k(s.k) - 0.107478038107).abs() < 1e-9);
         assert!((s.thrust_over_half_weight - MU_ROT).abs() < 1e-9);
         assert_eq!(s.mechanism.kind, crate::analysis::MechanismKind::Rotational);
-        let haunch = s.mechanism.hinges.iter().find(|h| h.face == Face::Intrados).unwrap();
-        assert!((haunch.angle_deg.abs() - 54.48397403).abs() < 1e-6, "{haunch:?}");
+        let haunch = s
+            .mechanism
+            .hinges
+            .iter()
+            .find(|h| h.face == Face::Intrados)
+            .unwrap();
+        assert!(
+            (haunch.angle_deg.abs() - 54.48397403).abs() < 1e-6,
+            "{haunch:?}"
+        );
         // Crown extrados, two haunches, two springings.
         assert_eq!(s.mechanism.hinges.len(), 5, "{:?}", s.mechanism.hinges);
     }
@@ -498,7 +577,12 @@ mod tests {
         let c = sliding_threshold(&semi(1.3));
         let s = c.found().unwrap();
         assert!((s.mu - MU_MIN).abs() < 1e-9, "μ_min = {}", s.mu);
-        let angles: Vec<f64> = s.mechanism.sliding_joints.iter().map(|j| j.angle_deg).collect();
+        let angles: Vec<f64> = s
+            .mechanism
+            .sliding_joints
+            .iter()
+            .map(|j| j.angle_deg)
+            .collect();
         assert_eq!(angles.len(), 4);
         assert!((angles[2] - 28.63619468).abs() < 1e-6, "{angles:?}");
         assert!((angles[3] - 90.0).abs() < 1e-9);
@@ -522,14 +606,24 @@ mod tests {
     fn min_thrust_hinge_at_k_1_35() {
         let (lo, _) = thrust(&semi(1.35), Friction::INFINITE).unwrap();
         let haunch = lo.hinges.iter().find(|h| h.face == Face::Intrados).unwrap();
-        assert!((haunch.angle_deg.abs() - 63.2903024).abs() < 1e-6, "{:?}", lo.hinges);
+        assert!(
+            (haunch.angle_deg.abs() - 63.2903024).abs() < 1e-6,
+            "{:?}",
+            lo.hinges
+        );
     }
 
     #[test]
     fn discrete_approaches_continuum_from_below() {
         let mut prev = 1.0;
         for n in [8u32, 16, 64, 512, 4096] {
-            let a = Arch::new(1.5, 90.0, WeightModel::Annular, Discretisation::Voussoirs(n)).unwrap();
+            let a = Arch::new(
+                1.5,
+                90.0,
+                WeightModel::Annular,
+                Discretisation::Voussoirs(n),
+            )
+            .unwrap();
             let k = thickness(&a, Friction::INFINITE).found().unwrap().k;
             assert!(k <= K_C + 1e-12, "N = {n}: {k}");
             assert!(k >= prev - 1e-4, "N = {n}: {k} < {prev}");

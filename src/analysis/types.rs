@@ -118,7 +118,11 @@ impl Mechanism {
         hinges.sort_by(|a, b| a.angle_deg.total_cmp(&b.angle_deg));
         sliding.sort_by(|a, b| a.angle_deg.total_cmp(&b.angle_deg));
         let kind = MechanismKind::from_counts(hinges.len(), sliding.len())?;
-        Some(Mechanism { kind, hinges, sliding_joints: sliding })
+        Some(Mechanism {
+            kind,
+            hinges,
+            sliding_joints: sliding,
+        })
     }
 }
 
@@ -140,8 +144,13 @@ pub enum Regime {
 
 impl Regime {
     /// All regimes, in display order.
-    pub const ALL: [Regime; 5] =
-        [Regime::Stable, Regime::Rotational, Regime::Mixed, Regime::Sliding, Regime::None];
+    pub const ALL: [Regime; 5] = [
+        Regime::Stable,
+        Regime::Rotational,
+        Regime::Mixed,
+        Regime::Sliding,
+        Regime::None,
+    ];
 
     /// `stable`, `rotational`, `mixed`, `sliding` or `none`.
     pub fn as_str(self) -> &'static str {
@@ -177,7 +186,10 @@ pub struct Interval {
 
 impl Interval {
     /// The empty interval.
-    pub const EMPTY: Interval = Interval { lo: f64::INFINITY, hi: f64::NEG_INFINITY };
+    pub const EMPTY: Interval = Interval {
+        lo: f64::INFINITY,
+        hi: f64::NEG_INFINITY,
+    };
 
     /// True when no value lies in it.
     pub fn is_empty(&self) -> bool {
@@ -186,7 +198,10 @@ impl Interval {
 
     /// Intersection of two intervals.
     pub fn intersect(&self, other: &Interval) -> Interval {
-        Interval { lo: self.lo.max(other.lo), hi: self.hi.min(other.hi) }
+        Interval {
+            lo: self.lo.max(other.lo),
+            hi: self.hi.min(other.hi),
+        }
     }
 
     /// The lower end when the interval is non-empty and the end finite.

@@ -1,0 +1,410 @@
+//! One scene (an arch, a friction coefficient, a load case) and the answer to one question
+//! about it: the record shared by `archstudy solve --json` and the rows of results.parquet.
+
+use crate::analysis::symmetric::{self, Critical, CriticalState, ThrustState};
+use crate::analysis::{Hinge, Regime, SlidingJoint};
+use crate::model::{Arch, Friction, t_over_r_from_k};
+use serde::Serialize;
+use std::fmt;
+use std::time::Instant;
+
+/// What is asked of a scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Find {
+    /// The regime at (K, μ) and both thrust domains.
+    #[default]
+    State,
+    /// The collapse thickness K_c at μ.
+    Thickness,
+    /// The smallest μ at which K stands.
+    Friction,
+    /// The minimum and maximum thrust states at (K, μ).
+    Thrust,
+}
+
+impl Find {
+    /// All finds.
+    pub const ALL: [Find; 4] = [Find::State, Find::Thickness, Find::Friction, Find::Thrust];
+
+    /// `state`, `thickness`, `friction` or `thrust`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Find::State => "state",
+            Find::Thickness => "thickness",
+            Find::Friction => "friction",
+            Find::Thrust => "thrust",
+        }
+    }
+
+    /// Parses a find name.
+    pub fn parse(s: &str) -> Option<Self> {
+        Find::ALL.into_iter().find(|f| f.as_str() == s)
+    }
+
+    /// True when the find needs K as an input.
+    pub fn needs_k(self) -> bool {
+        self != Find::Thickness
+    }
+
+    /// True when the find needs μ as an input.
+    pub fn needs_mu(self) -> bool {
+        self != Find::Friction
+    }
+}
+
+impl fmt::Display for Find {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// A scene to analyse.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scene {
+    /// The arch (its K is ignored by the `thickness` find).
+    pub arch: Arch,
+    /// Friction (ignored by the `friction` find).
+    pub friction: Friction,
+    /// The question.
+    pub find: Find,
+}
+
+/// A hinge as stored: angle and face name.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct HingeRecord {
+    /// Angle from the crown, degrees.
+    pub angle_deg: f64,
+    /// `intrados` or `extrados`.
+    pub face: &'static str,
+}
+
+/// A sliding joint as stored: angle and sense.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SlidingRecord {
+    /// Angle from the crown, degrees.
+    pub angle_deg: f64,
+    /// `outward` or `inward`: how the crown-side part moves.
+    pub sense: &'static str,
+}
+
+fn hinge_records(h: &[Hinge]) -> Vec<HingeRecord> {
+    h.iter()
+        .map(|h| HingeRecord {
+            angle_deg: h.angle_deg,
+            face: h.face.as_str(),
+        })
+        .collect()
+}
+
+fn sliding_records(s: &[SlidingJoint]) -> Vec<SlidingRecord> {
+    s.iter()
+        .map(|s| SlidingRecord {
+            angle_deg: s.angle_deg,
+            sense: s.sense.as_str(),
+        })
+        .collect()
+}
+
+/// The answer for one scene: every key of `archstudy solve --json`, `null` where a value does
+/// not exist (an empty domain, an unbounded end, a quantity the find does not produce).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Solution {
+    /// The question asked.
+    pub find: &'static str,
+    /// K = R/r given (null for `thickness`).
+    pub k: Option<f64>,
+    /// t/R_c given (null for `thickness`).
+    pub t_over_r: Option<f64>,
+    /// μ given (null for infinite friction and for `friction`).
+    pub mu: Option<f64>,
+    /// True when μ is infinite.
+    pub mu_infinite: bool,
+    /// Half-embrace angle α in degrees.
+    pub half_angle_deg: f64,
+    /// `annular` or `centreline`.
+    pub weight: &'static str,
+    /// Voussoir count, null for the continuum.
+    pub voussoirs: Option<u32>,
+    /// `found`, `never_stands` or `always_stands` for critical finds, null otherwise.
+    pub outcome: Option<&'static str>,
+    /// Regime (state find).
+    pub regime: Option<&'static str>,
+    /// Lower end of H^r over W_half.
+    pub thrust_r_min: Option<f64>,
+    /// Upper end of H^r over W_half.
+    pub thrust_r_max: Option<f64>,
+    /// Lower end of H^s over W_half.
+    pub thrust_s_min: Option<f64>,
+    /// Upper end of H^s over W_half.
+    pub thrust_s_max: Option<f64>,
+    /// Collapse thickness (thickness find).
+    pub k_crit: Option<f64>,
+    /// t/R_c at the collapse thickness.
+    pub t_over_r_crit: Option<f64>,
+    /// Critical friction (friction find).
+    pub mu_crit: Option<f64>,
+    /// `rotational`, `mixed` or `sliding` at the critical state.
+    pub mechanism: Option<&'static str>,
+    /// Crown thrust of the critical state over W_half.
+    pub thrust_over_half_weight: Option<f64>,
+    /// Hinges of the critical state.
+    pub hinges: Vec<HingeRecord>,
+    /// Sliding joints of the critical state.
+    pub sliding_joints: Vec<SlidingRecord>,
+    /// Minimum admissible thrust over W_half (thrust find).
+    pub thrust_min: Option<f64>,
+    /// Maximum admissible thrust over W_half (null when unbounded).
+    pub thrust_max: Option<f64>,
+    /// Hinges of the minimum-thrust state.
+    pub hinges_min: Vec<HingeRecord>,
+    /// Hinges of the maximum-thrust state.
+    pub hinges_max: Vec<HingeRecord>,
+    /// Sliding joints of the minimum-thrust state.
+    pub sliding_joints_min: Vec<SlidingRecord>,
+    /// Sliding joints of the maximum-thrust state.
+    pub sliding_joints_max: Vec<SlidingRecord>,
+    /// Wall time of the analysis in microseconds.
+    pub solve_time_us: f64,
+}
+
+fn finite(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+impl Solution {
+    fn empty(scene: &Scene) -> Self {
+        let a = &scene.arch;
+        let (k, t) = if scene.find.needs_k() {
+            (Some(a.k), Some(a.t_over_r()))
+        } else {
+            (None, None)
+        };
+        let mu = if scene.find.needs_mu() {
+            finite(scene.friction.mu())
+        } else {
+            None
+        };
+        Solution {
+            find: scene.find.as_str(),
+            k,
+            t_over_r: t,
+            mu,
+            mu_infinite: scene.find.needs_mu() && scene.friction.is_infinite(),
+            half_angle_deg: a.half_angle_deg(),
+            weight: a.weight.as_str(),
+            voussoirs: a.joints.voussoirs(),
+            outcome: None,
+            regime: None,
+            thrust_r_min: None,
+            thrust_r_max: None,
+            thrust_s_min: None,
+            thrust_s_max: None,
+            k_crit: None,
+            t_over_r_crit: None,
+            mu_crit: None,
+            mechanism: None,
+            thrust_over_half_weight: None,
+            hinges: Vec::new(),
+            sliding_joints: Vec::new(),
+            thrust_min: None,
+            thrust_max: None,
+            hinges_min: Vec::new(),
+            hinges_max: Vec::new(),
+            sliding_joints_min: Vec::new(),
+            sliding_joints_max: Vec::new(),
+            solve_time_us: 0.0,
+        }
+    }
+
+    fn set_critical(&mut self, c: &Critical) -> Option<CriticalState> {
+        self.outcome = Some(c.outcome_str());
+        let s = c.found()?.clone();
+        self.mechanism = Some(s.mechanism.kind.as_str());
+        self.thrust_over_half_weight = finite(s.thrust_over_half_weight);
+        self.hinges = hinge_records(&s.mechanism.hinges);
+        self.sliding_joints = sliding_records(&s.mechanism.sliding_joints);
+        Some(s)
+    }
+
+    /// The regime, parsed back.
+    pub fn regime(&self) -> Option<Regime> {
+        self.regime.and_then(Regime::parse)
+    }
+}
+
+/// Analyses one scene.
+pub fn solve(scene: &Scene) -> Solution {
+    let start = Instant::now();
+    let mut out = Solution::empty(scene);
+    match scene.find {
+        Find::State => {
+            let r = symmetric::state(&scene.arch, scene.friction);
+            out.regime = Some(r.regime.as_str());
+            let (hr, hs) = (r.domains.rotational.interval, r.domains.sliding.interval);
+            if !hr.is_empty() {
+                out.thrust_r_min = finite(hr.lo);
+                out.thrust_r_max = finite(hr.hi);
+            }
+            if !hs.is_empty() {
+                out.thrust_s_min = finite(hs.lo);
+                out.thrust_s_max = finite(hs.hi);
+            }
+        }
+        Find::Thickness => {
+            let c = symmetric::thickness(&scene.arch, scene.friction);
+            if let Some(s) = out.set_critical(&c) {
+                out.k_crit = Some(s.k);
+                out.t_over_r_crit = Some(t_over_r_from_k(s.k));
+            }
+        }
+        Find::Friction => {
+            let c = symmetric::friction(&scene.arch);
+            if let Some(s) = out.set_critical(&c) {
+                out.mu_crit = Some(s.mu);
+            }
+        }
+        Find::Thrust => {
+            if let Some((lo, hi)) = symmetric::thrust(&scene.arch, scene.friction) {
+                let rec =
+                    |s: &ThrustState| (finite(s.thrust_over_half_weight), hinge_records(&s.hinges));
+                let (tmin, hmin) = rec(&lo);
+                let (tmax, hmax) = rec(&hi);
+                out.thrust_min = tmin;
+                out.thrust_max = tmax;
+                out.hinges_min = hmin;
+                out.hinges_max = hmax;
+                out.sliding_joints_min = sliding_records(&lo.sliding_joints);
+                out.sliding_joints_max = sliding_records(&hi.sliding_joints);
+            }
+        }
+    }
+    out.solve_time_us = start.elapsed().as_secs_f64() * 1e6;
+    out
+}
+
+/// A short readable summary of a solution (the output of `archstudy solve` without `--json`).
+pub fn summary(s: &Solution) -> String {
+    use std::fmt::Write;
+    let mut o = String::new();
+    let opt = |x: Option<f64>| x.map_or("none".to_string(), |v| format!("{v:.10}"));
+    let mu = if s.mu_infinite {
+        "inf".to_string()
+    } else {
+        opt(s.mu)
+    };
+    let n = s
+        .voussoirs
+        .map_or("continuum".to_string(), |n| format!("{n} voussoirs"));
+    let _ = writeln!(
+        o,
+        "arch: half-angle {}°, {} weight, {}; K = {}, t/R_c = {}, μ = {}",
+        s.half_angle_deg,
+        s.weight,
+        n,
+        opt(s.k),
+        opt(s.t_over_r),
+        mu
+    );
+    let hinges = |h: &[HingeRecord]| {
+        h.iter()
+            .map(|h| format!("{:.4}° {}", h.angle_deg, h.face))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let sliding = |h: &[SlidingRecord]| {
+        h.iter()
+            .map(|h| format!("{:.4}° {}", h.angle_deg, h.sense))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    match s.find {
+        "state" => {
+            let _ = writeln!(o, "regime: {}", s.regime.unwrap_or("?"));
+            let _ = writeln!(
+                o,
+                "H^r/W_half: [{}, {}]",
+                opt(s.thrust_r_min),
+                opt(s.thrust_r_max)
+            );
+            let _ = writeln!(
+                o,
+                "H^s/W_half: [{}, {}]",
+                opt(s.thrust_s_min),
+                opt(s.thrust_s_max)
+            );
+        }
+        _ => {
+            let outcome = s.outcome.unwrap_or("");
+            match (s.find, outcome) {
+                ("thickness", "never_stands") => {
+                    let _ = writeln!(
+                        o,
+                        "no collapse thickness: the arch cannot stand at this μ for any K"
+                    );
+                }
+                ("thickness", "always_stands") => {
+                    let _ = writeln!(o, "no collapse thickness: the arch stands for every K > 1");
+                }
+                ("friction", "never_stands") => {
+                    let _ = writeln!(
+                        o,
+                        "no critical friction: the arch cannot stand at this K for any μ"
+                    );
+                }
+                ("friction", "always_stands") => {
+                    let _ = writeln!(o, "critical friction 0: the arch stands without friction");
+                }
+                _ => {}
+            }
+            if let Some(k) = s.k_crit {
+                let _ = writeln!(
+                    o,
+                    "K_c = {k:.12}  (t/R_c = {:.12})",
+                    s.t_over_r_crit.unwrap_or(f64::NAN)
+                );
+            }
+            if let Some(m) = s.mu_crit {
+                let _ = writeln!(o, "μ_c = {m:.12}");
+            }
+            if let Some(m) = s.mechanism {
+                let _ = writeln!(o, "mechanism: {m}");
+            }
+            if let Some(h) = s.thrust_over_half_weight {
+                let _ = writeln!(o, "H/W_half = {h:.12}");
+            }
+            if !s.hinges.is_empty() {
+                let _ = writeln!(o, "hinges: {}", hinges(&s.hinges));
+            }
+            if !s.sliding_joints.is_empty() {
+                let _ = writeln!(o, "sliding joints: {}", sliding(&s.sliding_joints));
+            }
+            if s.find == "thrust" {
+                if s.thrust_min.is_none() && s.thrust_max.is_none() {
+                    let _ = writeln!(o, "no admissible state: the arch cannot stand");
+                } else {
+                    let _ = writeln!(
+                        o,
+                        "H_min/W_half = {}  hinges: {}",
+                        opt(s.thrust_min),
+                        hinges(&s.hinges_min)
+                    );
+                    if !s.sliding_joints_min.is_empty() {
+                        let _ = writeln!(o, "  sliding: {}", sliding(&s.sliding_joints_min));
+                    }
+                    let _ = writeln!(
+                        o,
+                        "H_max/W_half = {}  hinges: {}",
+                        opt(s.thrust_max),
+                        hinges(&s.hinges_max)
+                    );
+                    if !s.sliding_joints_max.is_empty() {
+                        let _ = writeln!(o, "  sliding: {}", sliding(&s.sliding_joints_max));
+                    }
+                }
+            }
+        }
+    }
+    let _ = writeln!(o, "solve time: {:.1} µs", s.solve_time_us);
+    o
+}
