@@ -3,11 +3,16 @@
 use crate::cli::{Cli, Command, SolveArgs, UsageError};
 use crate::scene;
 use anyhow::Result;
+use std::io::Write;
 use std::process::ExitCode;
 
 /// Exit status for an error: 2 for bad usage or input, 1 for a failed run.
 pub fn exit_code(err: &anyhow::Error) -> u8 {
-    if err.chain().any(|c| c.is::<UsageError>()) {
+    if err.chain().any(|c| {
+        c.is::<UsageError>()
+            || c.is::<crate::manifest::ManifestError>()
+            || c.is::<crate::plan::PlanTooLarge>()
+    }) {
         2
     } else {
         1
@@ -18,19 +23,25 @@ pub fn exit_code(err: &anyhow::Error) -> u8 {
 pub fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
         Command::Solve(args) => solve(&args),
-        Command::Run(_) | Command::Check(_) => {
-            anyhow::bail!("study manifests are not supported yet")
-        }
+        Command::Run(args) => crate::runner::run_command(&args),
+        Command::Check(args) => crate::runner::check_command(&args),
     }
 }
 
 fn solve(args: &SolveArgs) -> Result<ExitCode> {
     let scene = args.scene()?;
     let sol = scene::solve(&scene);
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&sol)?);
+    let text = if args.json {
+        serde_json::to_string_pretty(&sol)? + "\n"
     } else {
-        print!("{}", scene::summary(&sol));
+        scene::summary(&sol)
+    };
+    let mut out = std::io::stdout().lock();
+    // A closed pipe (e.g. `| head`) is not an error worth a panic.
+    match out.write_all(text.as_bytes()).and_then(|_| out.flush()) {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {}
+        Err(e) => return Err(e.into()),
+        Ok(()) => {}
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -6,5 +6,11 @@
 pub mod analysis;
 pub mod app;
 pub mod cli;
+pub mod engine;
+pub mod manifest;
 pub mod model;
+pub mod output;
+pub mod plan;
+pub mod runner;
 pub mod scene;
+pub mod store;

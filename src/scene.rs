@@ -1,7 +1,9 @@
 //! One scene (an arch, a friction coefficient, a load case) and the answer to one question
 //! about it: the record shared by `archstudy solve --json` and the rows of results.parquet.
 
-use crate::analysis::symmetric::{self, Critical, CriticalState, ThrustState};
+use crate::analysis::symmetric::{
+    self, Critical, CriticalState, RotationalDomain, SlidingDomain, ThrustState,
+};
 use crate::analysis::{Hinge, Regime, SlidingJoint};
 use crate::model::{Arch, Friction, t_over_r_from_k};
 use serde::Serialize;
@@ -233,23 +235,35 @@ impl Solution {
     }
 }
 
+/// The inputs of a scene with every output null (the row of a failed case).
+pub fn solve_inputs_only(scene: &Scene) -> Solution {
+    Solution::empty(scene)
+}
+
+/// The `state` answer from already computed domains (the separable grid path).
+pub fn state_from_domains(scene: &Scene, rot: &RotationalDomain, sld: &SlidingDomain) -> Solution {
+    let mut out = Solution::empty(scene);
+    out.regime = Some(symmetric::regime_of(rot, sld).as_str());
+    let (hr, hs) = (rot.interval, sld.interval);
+    if !hr.is_empty() {
+        out.thrust_r_min = finite(hr.lo);
+        out.thrust_r_max = finite(hr.hi);
+    }
+    if !hs.is_empty() {
+        out.thrust_s_min = finite(hs.lo);
+        out.thrust_s_max = finite(hs.hi);
+    }
+    out
+}
+
 /// Analyses one scene.
 pub fn solve(scene: &Scene) -> Solution {
     let start = Instant::now();
     let mut out = Solution::empty(scene);
     match scene.find {
         Find::State => {
-            let r = symmetric::state(&scene.arch, scene.friction);
-            out.regime = Some(r.regime.as_str());
-            let (hr, hs) = (r.domains.rotational.interval, r.domains.sliding.interval);
-            if !hr.is_empty() {
-                out.thrust_r_min = finite(hr.lo);
-                out.thrust_r_max = finite(hr.hi);
-            }
-            if !hs.is_empty() {
-                out.thrust_s_min = finite(hs.lo);
-                out.thrust_s_max = finite(hs.hi);
-            }
+            let d = symmetric::domains(&scene.arch, scene.friction);
+            out = state_from_domains(scene, &d.rotational, &d.sliding);
         }
         Find::Thickness => {
             let c = symmetric::thickness(&scene.arch, scene.friction);

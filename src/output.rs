@@ -1,0 +1,139 @@
+//! The output layout: the one owner of every path a run writes.
+//!
+//! A run is written into a hidden staging directory beside its final place and renamed into
+//! place only when complete, so a crash or Ctrl-C never leaves a half-written run directory;
+//! single files are written to a temporary sibling and renamed.
+
+use anyhow::{Context, Result};
+use std::path::{Path, PathBuf};
+
+/// The files of one run directory.
+#[derive(Debug, Clone)]
+pub struct RunLayout {
+    /// The directory the files are written to (staging during a run, final afterwards).
+    pub dir: PathBuf,
+}
+
+impl RunLayout {
+    /// The layout of an existing run directory.
+    pub fn at(dir: impl Into<PathBuf>) -> Self {
+        RunLayout { dir: dir.into() }
+    }
+    /// results.parquet.
+    pub fn results(&self) -> PathBuf {
+        self.dir.join("results.parquet")
+    }
+    /// boundaries.parquet.
+    pub fn boundaries(&self) -> PathBuf {
+        self.dir.join("boundaries.parquet")
+    }
+    /// bifurcations.parquet.
+    pub fn bifurcations(&self) -> PathBuf {
+        self.dir.join("bifurcations.parquet")
+    }
+    /// run.json.
+    pub fn run_json(&self) -> PathBuf {
+        self.dir.join("run.json")
+    }
+    /// The manifest as run (a byte copy of the input file).
+    pub fn manifest(&self) -> PathBuf {
+        self.dir.join("manifest.yaml")
+    }
+    /// plots/.
+    pub fn plots(&self) -> PathBuf {
+        self.dir.join("plots")
+    }
+    /// A figure file in plots/.
+    pub fn plot(&self, stem: &str, ext: &str) -> PathBuf {
+        self.plots().join(format!("{stem}.{ext}"))
+    }
+    /// report.html.
+    pub fn report_html(&self) -> PathBuf {
+        self.dir.join("report.html")
+    }
+    /// report.md.
+    pub fn report_md(&self) -> PathBuf {
+        self.dir.join("report.md")
+    }
+}
+
+/// A run being written: staging directory and final place.
+#[derive(Debug)]
+pub struct StagedRun {
+    /// Where files go while the run is in progress.
+    pub layout: RunLayout,
+    /// Where the run directory ends up.
+    pub target: PathBuf,
+    committed: bool,
+}
+
+impl StagedRun {
+    /// Creates the staging directory `OUT/.NAME.partial-PID` (fails at once on a bad path).
+    pub fn create(out: &Path, name: &str) -> Result<Self> {
+        std::fs::create_dir_all(out)
+            .with_context(|| format!("cannot create the output directory {}", out.display()))?;
+        let staging = out.join(format!(".{name}.partial-{}", std::process::id()));
+        if staging.exists() {
+            std::fs::remove_dir_all(&staging)
+                .with_context(|| format!("cannot clear {}", staging.display()))?;
+        }
+        std::fs::create_dir_all(staging.join("plots"))
+            .with_context(|| format!("cannot create {}", staging.display()))?;
+        Ok(StagedRun {
+            layout: RunLayout::at(staging),
+            target: out.join(name),
+            committed: false,
+        })
+    }
+
+    /// Moves the complete run into place, replacing an earlier run of the same name.
+    pub fn commit(mut self) -> Result<PathBuf> {
+        let old = self.target.with_file_name(format!(
+            ".{}.old-{}",
+            self.target
+                .file_name()
+                .and_then(|s| s.to_str())
+                .unwrap_or("run"),
+            std::process::id()
+        ));
+        let had_old = self.target.exists();
+        if had_old {
+            std::fs::rename(&self.target, &old).with_context(|| {
+                format!(
+                    "cannot move the earlier run {} aside",
+                    self.target.display()
+                )
+            })?;
+        }
+        std::fs::rename(&self.layout.dir, &self.target)
+            .with_context(|| format!("cannot move the run into {}", self.target.display()))?;
+        if had_old {
+            let _ = std::fs::remove_dir_all(&old);
+        }
+        self.committed = true;
+        Ok(self.target.clone())
+    }
+}
+
+impl Drop for StagedRun {
+    fn drop(&mut self) {
+        if !self.committed {
+            let _ = std::fs::remove_dir_all(&self.layout.dir);
+        }
+    }
+}
+
+/// A temporary sibling of a file, renamed onto it once written.
+pub fn temp_sibling(path: &Path) -> PathBuf {
+    let name = path.file_name().and_then(|s| s.to_str()).unwrap_or("file");
+    path.with_file_name(format!(".{name}.tmp-{}", std::process::id()))
+}
+
+/// Writes bytes to a file atomically.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    let tmp = temp_sibling(path);
+    std::fs::write(&tmp, bytes).with_context(|| format!("cannot write {}", tmp.display()))?;
+    std::fs::rename(&tmp, path)
+        .with_context(|| format!("cannot move {} into place", path.display()))?;
+    Ok(())
+}

@@ -1,0 +1,195 @@
+//! The store: the only user of polars. Parquet schemas of the run's tables, written
+//! atomically (a temporary file renamed into place) and read back.
+
+mod results;
+
+pub use results::results_frame;
+
+use anyhow::Context as _;
+use anyhow::Result;
+use polars::prelude::{
+    Column, DataFrame, DataType, Float64Type, IntoSeries, ListBuilderTrait,
+    ListPrimitiveChunkedBuilder, ListStringChunkedBuilder, NamedFrom, ParquetCompression,
+    ParquetReader, ParquetWriter, SerReader, Series,
+};
+use std::fs::File;
+use std::path::Path;
+
+/// Builds named columns of a table.
+#[derive(Default)]
+pub struct TableBuilder {
+    columns: Vec<Column>,
+}
+
+impl TableBuilder {
+    /// An empty table.
+    pub fn new() -> Self {
+        TableBuilder::default()
+    }
+
+    /// A UInt64 column.
+    pub fn u64(mut self, name: &str, v: Vec<u64>) -> Self {
+        self.columns.push(Column::new(name.into(), v));
+        self
+    }
+
+    /// A nullable UInt32 column.
+    pub fn opt_u32(mut self, name: &str, v: Vec<Option<u32>>) -> Self {
+        self.columns.push(Column::new(name.into(), v));
+        self
+    }
+
+    /// A Float64 column.
+    pub fn f64(mut self, name: &str, v: Vec<f64>) -> Self {
+        self.columns.push(Column::new(name.into(), v));
+        self
+    }
+
+    /// A nullable Float64 column.
+    pub fn opt_f64(mut self, name: &str, v: Vec<Option<f64>>) -> Self {
+        self.columns.push(Column::new(name.into(), v));
+        self
+    }
+
+    /// A String column.
+    pub fn str(mut self, name: &str, v: Vec<String>) -> Self {
+        self.columns.push(Column::new(name.into(), v));
+        self
+    }
+
+    /// A nullable String column.
+    pub fn opt_str(mut self, name: &str, v: Vec<Option<String>>) -> Self {
+        self.columns.push(Column::new(name.into(), v));
+        self
+    }
+
+    /// A Boolean column.
+    pub fn bool(mut self, name: &str, v: Vec<bool>) -> Self {
+        self.columns.push(Column::new(name.into(), v));
+        self
+    }
+
+    /// A List(Float64) column.
+    pub fn list_f64(mut self, name: &str, v: Vec<Vec<f64>>) -> Self {
+        let values: usize = v.iter().map(Vec::len).sum();
+        let mut b = ListPrimitiveChunkedBuilder::<Float64Type>::new(
+            name.into(),
+            v.len(),
+            values,
+            DataType::Float64,
+        );
+        for x in &v {
+            b.append_slice(x);
+        }
+        self.columns.push(b.finish().into_series().into());
+        self
+    }
+
+    /// A List(String) column.
+    pub fn list_str(mut self, name: &str, v: Vec<Vec<String>>) -> Self {
+        let values: usize = v.iter().map(Vec::len).sum();
+        let mut b = ListStringChunkedBuilder::new(name.into(), v.len(), values);
+        for x in &v {
+            b.append_values_iter(x.iter().map(String::as_str));
+        }
+        self.columns.push(b.finish().into_series().into());
+        self
+    }
+
+    /// The data frame.
+    pub fn finish(self) -> Result<DataFrame> {
+        Ok(DataFrame::new_infer_height(self.columns)?)
+    }
+}
+
+/// Writes a data frame as Parquet, atomically: a temporary file in the same directory is
+/// renamed into place once complete.
+pub fn write_parquet(df: &mut DataFrame, path: &Path) -> Result<()> {
+    let tmp = crate::output::temp_sibling(path);
+    let result = (|| -> Result<()> {
+        let file =
+            File::create(&tmp).with_context(|| format!("cannot create {}", tmp.display()))?;
+        ParquetWriter::new(file)
+            .with_compression(ParquetCompression::Zstd(None))
+            .finish(df)
+            .with_context(|| format!("cannot write {}", tmp.display()))?;
+        std::fs::rename(&tmp, path)
+            .with_context(|| format!("cannot move {} into place", path.display()))?;
+        Ok(())
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+/// Reads a Parquet file.
+pub fn read_parquet(path: &Path) -> Result<DataFrame> {
+    let file = File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
+    ParquetReader::new(file)
+        .finish()
+        .with_context(|| format!("cannot read {} as Parquet", path.display()))
+}
+
+/// A nullable f64 column as a vector.
+pub fn f64_column(df: &DataFrame, name: &str) -> Result<Vec<Option<f64>>> {
+    let c = df
+        .column(name)
+        .with_context(|| format!("column `{name}` is missing"))?;
+    let s = c.as_materialized_series().cast(&DataType::Float64)?;
+    let ca = s.f64()?;
+    Ok((0..ca.len()).map(|i| ca.get(i)).collect())
+}
+
+/// A nullable string column as a vector.
+pub fn str_column(df: &DataFrame, name: &str) -> Result<Vec<Option<String>>> {
+    let c = df
+        .column(name)
+        .with_context(|| format!("column `{name}` is missing"))?;
+    let ca = c.as_materialized_series().str()?;
+    Ok((0..ca.len())
+        .map(|i| ca.get(i).map(str::to_string))
+        .collect())
+}
+
+/// A List(Float64) column as vectors (null lists become empty).
+pub fn list_f64_column(df: &DataFrame, name: &str) -> Result<Vec<Vec<f64>>> {
+    let c = df
+        .column(name)
+        .with_context(|| format!("column `{name}` is missing"))?;
+    let l = c.as_materialized_series().list()?.clone();
+    let mut out = Vec::with_capacity(l.len());
+    for i in 0..l.len() {
+        out.push(match l.get_as_series(i) {
+            Some(s) => {
+                let ca = s.f64()?;
+                (0..ca.len())
+                    .map(|j| ca.get(j).unwrap_or(f64::NAN))
+                    .collect()
+            }
+            None => Vec::new(),
+        });
+    }
+    Ok(out)
+}
+
+/// A List(String) column as vectors (null lists become empty).
+pub fn list_str_column(df: &DataFrame, name: &str) -> Result<Vec<Vec<String>>> {
+    let c = df
+        .column(name)
+        .with_context(|| format!("column `{name}` is missing"))?;
+    let l = c.as_materialized_series().list()?.clone();
+    let mut out = Vec::with_capacity(l.len());
+    for i in 0..l.len() {
+        out.push(match l.get_as_series(i) {
+            Some(s) => {
+                let ca = s.str()?;
+                (0..ca.len())
+                    .map(|j| ca.get(j).unwrap_or("").to_string())
+                    .collect()
+            }
+            None => Vec::new(),
+        });
+    }
+    Ok(out)
+}
