@@ -9,8 +9,8 @@ use anyhow::Context as _;
 use anyhow::Result;
 use polars::prelude::{
     Column, DataFrame, DataType, Float64Type, IntoSeries, ListBuilderTrait,
-    ListPrimitiveChunkedBuilder, ListStringChunkedBuilder, NamedFrom, ParquetCompression,
-    ParquetReader, ParquetWriter, SerReader, Series,
+    ListPrimitiveChunkedBuilder, ListStringChunkedBuilder, ParquetCompression, ParquetReader,
+    ParquetWriter, SerReader,
 };
 use std::fs::File;
 use std::path::Path;
