@@ -150,6 +150,9 @@ pub struct Solution {
     pub mechanism: Option<&'static str>,
     /// Crown thrust of the critical state over W_half.
     pub thrust_over_half_weight: Option<f64>,
+    /// Crown moment m/(W_half·r) of the critical state: the line of thrust crosses the crown
+    /// joint at height m/h over r (with h = thrust_over_half_weight).
+    pub crown_moment: Option<f64>,
     /// Hinges of the critical state.
     pub hinges: Vec<HingeRecord>,
     /// Sliding joints of the critical state.
@@ -207,6 +210,7 @@ impl Solution {
             mu_crit: None,
             mechanism: None,
             thrust_over_half_weight: None,
+            crown_moment: None,
             hinges: Vec::new(),
             sliding_joints: Vec::new(),
             thrust_min: None,
@@ -224,6 +228,7 @@ impl Solution {
         let s = c.found()?.clone();
         self.mechanism = Some(s.mechanism.kind.as_str());
         self.thrust_over_half_weight = finite(s.thrust_over_half_weight);
+        self.crown_moment = finite(s.crown_moment);
         self.hinges = hinge_records(&s.mechanism.hinges);
         self.sliding_joints = sliding_records(&s.mechanism.sliding_joints);
         Some(s)
