@@ -84,6 +84,7 @@ pub fn results_frame(plan: &Plan, rows: &[CaseResult]) -> Result<DataFrame> {
             "thrust_over_half_weight",
             col(&|r| r.solution.thrust_over_half_weight),
         )
+        .opt_f64("crown_moment", col(&|r| r.solution.crown_moment))
         .list_f64(
             "hinge_angles_deg",
             rows.iter()
