@@ -152,6 +152,10 @@ pub enum SlidingBound {
 
 /// The bound on h from a row a·h ≤ b.
 fn bound_from_row(a: f64, b: f64) -> SlidingBound {
+    // Coefficients are sines of angles in [0, 2π): below this they are rounding noise of an
+    // exact zero (θ = φ or θ + φ = π), where the row reads 0 ≤ b.
+    const ZERO: f64 = 1e-14;
+    let a = if a.abs() < ZERO { 0.0 } else { a };
     if a > 0.0 {
         SlidingBound::Upper(b / a)
     } else if a < 0.0 {
