@@ -386,18 +386,18 @@ pub fn summary(s: &Solution) -> String {
             if let Some(k) = s.k_crit {
                 let _ = writeln!(
                     o,
-                    "K_c = {k:.12}  (t/R_c = {:.12})",
+                    "K_c = {k:.12} ≈ {k:.4}  (t/R_c = {:.12})",
                     s.t_over_r_crit.unwrap_or(f64::NAN)
                 );
             }
             if let Some(m) = s.mu_crit {
-                let _ = writeln!(o, "μ_c = {m:.12}");
+                let _ = writeln!(o, "μ_c = {m:.12} ≈ {m:.3}");
             }
             if let Some(m) = s.mechanism {
                 let _ = writeln!(o, "mechanism: {m}");
             }
             if let Some(h) = s.thrust_over_half_weight {
-                let _ = writeln!(o, "H/W_half = {h:.12}");
+                let _ = writeln!(o, "H/W_half = {h:.12} ≈ {h:.3}");
             }
             if !s.hinges.is_empty() {
                 let _ = writeln!(o, "hinges: {}", hinges(&s.hinges));

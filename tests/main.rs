@@ -1,1 +1,6 @@
+//! End-to-end tests of the `archstudy` binary and the library's study pipeline, in one test
+//! binary.
 
+mod common;
+mod run;
+mod solve;

@@ -396,7 +396,7 @@ mod tests {
         let geom = CircularArch::new(arch);
         let sym = SymmetricCircular::new(&arch);
         let phi = 0.4f64.atan();
-        for &theta in &[0.0, 0.3, 1.0, 1.5707963] {
+        for &theta in &[0.0, 0.3, 1.0, std::f64::consts::FRAC_PI_2] {
             let rows = joint_rows(&geom, theta, phi);
             let h = 0.37;
             for m in [0.2, 0.45] {
