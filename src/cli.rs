@@ -23,6 +23,8 @@ pub enum Command {
     Run(RunArgs),
     /// Validate a study manifest and print its plan without running it.
     Check(CheckArgs),
+    /// Pack a run directory into one .tar.gz with SHA256SUMS, for deposit with a paper.
+    Archive(ArchiveArgs),
 }
 
 /// `archstudy run`.
@@ -46,6 +48,18 @@ pub struct RunArgs {
 pub struct CheckArgs {
     /// The study manifest (YAML).
     pub study: PathBuf,
+}
+
+/// `archstudy archive`.
+#[derive(Debug, Args)]
+pub struct ArchiveArgs {
+    /// The run directory written by `archstudy run`.
+    #[arg(value_name = "RUN_DIR")]
+    pub run_dir: PathBuf,
+    /// The archive to write (default: `<name>-<first 12 hex of the manifest SHA-256>.tar.gz`
+    /// in the current directory; in FILE when it is a directory).
+    #[arg(short = 'o', long = "output", value_name = "FILE")]
+    pub output: Option<PathBuf>,
 }
 
 /// `archstudy solve` as typed.

@@ -5,6 +5,7 @@
 
 pub mod analysis;
 pub mod app;
+pub mod archive;
 pub mod cli;
 pub mod engine;
 pub mod manifest;
