@@ -25,6 +25,8 @@ pub enum Command {
     Check(CheckArgs),
     /// Pack a run directory into one .tar.gz with SHA256SUMS, for deposit with a paper.
     Archive(ArchiveArgs),
+    /// Check an archive or run directory: checksums, then re-run and compare every result.
+    Verify(VerifyArgs),
 }
 
 /// `archstudy run`.
@@ -60,6 +62,20 @@ pub struct ArchiveArgs {
     /// in the current directory; in FILE when it is a directory).
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub output: Option<PathBuf>,
+}
+
+/// `archstudy verify`.
+#[derive(Debug, Args)]
+pub struct VerifyArgs {
+    /// An archive made by `archstudy archive`, or a run directory.
+    #[arg(value_name = "ARCHIVE|RUN_DIR")]
+    pub target: PathBuf,
+    /// Check integrity only; do not re-run the manifest.
+    #[arg(long)]
+    pub no_rerun: bool,
+    /// Tolerance T of float columns: |stored - recomputed| <= T * (1 + max(|stored|, |recomputed|)).
+    #[arg(long, value_name = "T", default_value_t = crate::verify::compare::DEFAULT_TOLERANCE, allow_hyphen_values = true)]
+    pub tolerance: f64,
 }
 
 /// `archstudy solve` as typed.

@@ -15,3 +15,4 @@ pub mod plan;
 pub mod runner;
 pub mod scene;
 pub mod store;
+pub mod verify;
