@@ -25,6 +25,8 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Solve(args) => solve(&args),
         Command::Run(args) => crate::runner::run_command(&args),
         Command::Check(args) => crate::runner::check_command(&args),
+        Command::Archive(args) => crate::archive::archive_command(&args),
+        Command::Verify(args) => crate::verify::verify_command(&args),
     }
 }
 

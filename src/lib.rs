@@ -8,6 +8,7 @@
 
 pub mod analysis;
 pub mod app;
+pub mod archive;
 pub mod cli;
 pub mod engine;
 pub mod manifest;
@@ -17,3 +18,4 @@ pub mod plan;
 pub mod runner;
 pub mod scene;
 pub mod store;
+pub mod verify;
