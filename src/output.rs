@@ -72,6 +72,7 @@ impl StagedRun {
     pub fn create(out: &Path, name: &str) -> Result<Self> {
         std::fs::create_dir_all(out)
             .with_context(|| format!("cannot create the output directory {}", out.display()))?;
+        remove_stale_staging(out, name);
         let staging = out.join(format!(".{name}.partial-{}", std::process::id()));
         if staging.exists() {
             std::fs::remove_dir_all(&staging)
@@ -119,6 +120,26 @@ impl Drop for StagedRun {
     fn drop(&mut self) {
         if !self.committed {
             let _ = std::fs::remove_dir_all(&self.layout.dir);
+        }
+    }
+}
+
+/// Removes staging and set-aside directories of `name` left by runs that were killed (their
+/// process no longer exists), so an interrupted run leaves nothing behind for long.
+fn remove_stale_staging(out: &Path, name: &str) {
+    let Ok(entries) = std::fs::read_dir(out) else { return };
+    for e in entries.flatten() {
+        let file = e.file_name();
+        let Some(f) = file.to_str() else { continue };
+        let pid = f
+            .strip_prefix(&format!(".{name}.partial-"))
+            .or_else(|| f.strip_prefix(&format!(".{name}.old-")))
+            .and_then(|p| p.parse::<u32>().ok());
+        if let Some(pid) = pid
+            && pid != std::process::id()
+            && !Path::new(&format!("/proc/{pid}")).exists()
+        {
+            let _ = std::fs::remove_dir_all(e.path());
         }
     }
 }
