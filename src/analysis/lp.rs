@@ -165,6 +165,8 @@ struct Lu<const D: usize> {
     perm: [usize; D],
 }
 
+// Index loops read like the textbook triangular solves they implement.
+#[allow(clippy::needless_range_loop)]
 impl<const D: usize> Lu<D> {
     /// Factorises `m`; `None` when a pivot is negligible (singular to working precision).
     fn factor(mut m: [[f64; D]; D]) -> Option<Self> {
@@ -176,7 +178,7 @@ impl<const D: usize> Lu<D> {
             .iter()
             .flat_map(|r| r.iter())
             .fold(0.0_f64, |s, v| s.max(v.abs()));
-        if !(scale > 0.0) {
+        if scale.is_nan() || scale <= 0.0 {
             return None;
         }
         for k in 0..D {
@@ -186,7 +188,7 @@ impl<const D: usize> Lu<D> {
                     p = i;
                 }
             }
-            if !(m[p][k].abs() > 1e-14 * scale) {
+            if m[p][k].is_nan() || m[p][k].abs() <= 1e-14 * scale {
                 return None;
             }
             m.swap(k, p);
@@ -461,12 +463,16 @@ fn price<const D: usize>(
             best0 = Some((v0, k));
         }
     };
-    for k in 0..t.m {
-        let inv = t.inv_norm[k];
-        if inv == 0.0 || in_basis[k] {
+    for (k, ((row, &inv), (&bk, &basic))) in
+        t.a.iter()
+            .zip(&t.inv_norm)
+            .zip(t.b.iter().zip(in_basis))
+            .enumerate()
+    {
+        if inv == 0.0 || basic {
             continue;
         }
-        consider(k, &t.a[k], inv, t.b[k], 0.0);
+        consider(k, row, inv, bk, 0.0);
     }
     for i in 0..D {
         let k = t.m + i;
