@@ -77,7 +77,7 @@ pub struct Settings {
     /// Upper bound τ_cap of the margin, in units of x (default 1).
     pub margin_cap: f64,
     /// A margin ≥ −`margin_tol` counts as feasible: limit states are admissible
-    /// (default 1e-12, absolute).
+    /// (default 1e-12, absolute; keep it above `exchange_tol`).
     pub margin_tol: f64,
     /// A row is active when its distance to x is within this of the margin (default 1e-9).
     pub active_tol: f64,

@@ -963,4 +963,62 @@ mod tests {
             }
         }
     }
+
+    #[test]
+    fn random_four_unknown_programmes_match_clarabel() {
+        use clarabel::algebra::CscMatrix;
+        use clarabel::solver::{
+            DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus,
+        };
+        let mut seed = 987654321u64;
+        let mut rnd = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64) / ((1u64 << 53) as f64) * 2.0 - 1.0
+        };
+        for _ in 0..40 {
+            // A bounded polytope: random rows with positive right-hand sides around the origin
+            // plus a loose box, and rows duplicated to make the optimum degenerate.
+            let mut a = Vec::new();
+            let mut b = Vec::new();
+            for i in 0..4 {
+                for s in [1.0, -1.0] {
+                    let mut r = [0.0; 4];
+                    r[i] = s;
+                    a.push(r);
+                    b.push(10.0);
+                }
+            }
+            for _ in 0..60 {
+                let r = [rnd(), rnd(), rnd(), rnd()];
+                let bi = 0.1 + rnd().abs();
+                a.push(r);
+                b.push(bi);
+                a.push(r.map(|v| 3.0 * v));
+                b.push(3.0 * bi);
+            }
+            let c = [rnd(), rnd(), rnd(), rnd()];
+            let ours = solve(c, &a, &b);
+            assert_eq!(ours.status, Status::Optimal);
+            assert!(ours.max_violation <= 1e-12);
+            let p = CscMatrix::<f64>::zeros((4, 4));
+            let q = c.map(|v| -v);
+            let am = CscMatrix::from(a.iter());
+            let cones = [NonnegativeConeT(b.len())];
+            let settings = DefaultSettingsBuilder::default()
+                .verbose(false)
+                .build()
+                .unwrap();
+            let mut solver = DefaultSolver::new(&p, &q, &am, &b, &cones, settings).unwrap();
+            solver.solve();
+            assert_eq!(solver.solution.status, SolverStatus::Solved);
+            let theirs = dot(&c, &[0, 1, 2, 3].map(|i| solver.solution.x[i]));
+            assert!(
+                (ours.objective - theirs).abs() < 1e-6 * (1.0 + theirs.abs()),
+                "{} vs {theirs}",
+                ours.objective
+            );
+        }
+    }
 }
