@@ -4,6 +4,8 @@
 //! thrusts over the half weight W_half.
 
 pub mod circular;
+pub mod general;
+pub mod lp;
 pub mod roots;
 pub mod statics;
 pub mod symmetric;
