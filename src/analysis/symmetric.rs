@@ -206,7 +206,10 @@ fn stability_margin(sym: &SymmetricCircular, sd: &Interval) -> (f64, f64) {
         }
     };
     if sd.is_empty() {
-        return (sd.hi - sd.lo, 0.0);
+        // Within the classification tolerance H^s may be a point with its ends crossed by
+        // rounding (μ = μ_min): that point, not 0, is the thrust of the limit state.
+        let mid = 0.5 * (sd.lo + sd.hi);
+        return (sd.hi - sd.lo, if mid.is_finite() { mid } else { 0.0 });
     }
     let (h, v) = concave_peak(value, slope);
     (v, h)
@@ -600,6 +603,20 @@ mod tests {
         let t = thickness(&semi(1.5), Friction::new(mu_min).unwrap());
         let s = t.found().unwrap();
         assert!((s.k - K_BIF).abs() < 1e-8, "K = {}", s.k);
+    }
+
+    #[test]
+    fn friction_on_the_sliding_segment_is_the_sliding_mechanism() {
+        // Beyond the mixed/sliding bifurcation μ_c = μ_min, where H^s is a single thrust
+        // (μ_min·W_half at the springings) inside H^r: no hinge, four sliding joints.
+        let s = friction(&semi(1.3)).found().cloned().unwrap();
+        assert!((s.mu - MU_MIN).abs() < 1e-9, "μ = {}", s.mu);
+        assert_eq!(s.mechanism.kind, crate::analysis::MechanismKind::Sliding);
+        assert!((s.thrust_over_half_weight - MU_MIN).abs() < 1e-9);
+        assert!(s.mechanism.hinges.is_empty(), "{:?}", s.mechanism.hinges);
+        let angles: Vec<f64> = s.mechanism.sliding_joints.iter().map(|j| j.angle_deg).collect();
+        assert_eq!(angles.len(), 4, "{angles:?}");
+        assert!((angles[2] - 28.63619468).abs() < 1e-6 && (angles[3] - 90.0).abs() < 1e-9);
     }
 
     #[test]
