@@ -5,6 +5,7 @@
 
 pub mod analysis;
 pub mod app;
+pub mod boundaries;
 pub mod cli;
 pub mod engine;
 pub mod manifest;
