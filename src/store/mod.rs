@@ -1,8 +1,10 @@
 //! The store: the only user of polars. Parquet schemas of the run's tables, written
 //! atomically (a temporary file renamed into place) and read back.
 
+mod boundaries;
 mod results;
 
+pub use boundaries::{bifurcations_frame, boundaries_frame};
 pub use results::results_frame;
 
 use anyhow::Context as _;
