@@ -614,7 +614,12 @@ mod tests {
         assert_eq!(s.mechanism.kind, crate::analysis::MechanismKind::Sliding);
         assert!((s.thrust_over_half_weight - MU_MIN).abs() < 1e-9);
         assert!(s.mechanism.hinges.is_empty(), "{:?}", s.mechanism.hinges);
-        let angles: Vec<f64> = s.mechanism.sliding_joints.iter().map(|j| j.angle_deg).collect();
+        let angles: Vec<f64> = s
+            .mechanism
+            .sliding_joints
+            .iter()
+            .map(|j| j.angle_deg)
+            .collect();
         assert_eq!(angles.len(), 4, "{angles:?}");
         assert!((angles[2] - 28.63619468).abs() < 1e-6 && (angles[3] - 90.0).abs() < 1e-9);
     }
