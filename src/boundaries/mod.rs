@@ -15,17 +15,20 @@
 //! An edge whose ends lie in regimes that are not adjacent (rotational → stable with a thin
 //! mixed band inside the cell) yields one point per crossing. Points on the boundary of the
 //! stable region (the collapse curve) carry the collapse state of the one-parameter problem
-//! through them: K_c(μ) ([`symmetric::thickness`]) for a K-edge, μ_c(K)
-//! ([`symmetric::friction`]) for a μ-edge. Points between two unstable regimes carry the
-//! state of the domain that empties: the rotational limit state (K_c at infinite friction)
-//! where H^r shrinks to a point, the sliding threshold state (μ_min) where H^s does.
+//! through them: K_c(μ) ([`thickness`](crate::analysis::symmetric::thickness)) for a
+//! K-edge, μ_c(K) ([`friction`](crate::analysis::symmetric::friction)) for a μ-edge. Points
+//! between two unstable regimes carry the state of the domain that empties: the rotational
+//! limit state (K_c at infinite friction) where H^r shrinks to a point, the sliding
+//! threshold state (μ_min) where H^s does.
 //!
 //! Bifurcations are where the mechanism along the collapse curve changes (paper §5,
-//! Figs. 6, 7); see [`bifurcation`](self) for how they are characterised. `thickness` and
-//! `friction` studies trace one collapse curve each: their mechanism changes along the swept
-//! parameter are located by bisection and reported as bifurcations; their boundary table is
-//! empty (the critical points are the rows of results.parquet). `thrust` studies have
-//! neither.
+//! Figs. 6, 7): the rotational/mixed one is μ_c at the rotational K_c, the mixed/sliding one
+//! K_c at μ_min; which exist is read from the mechanism changes between consecutive located
+//! collapse points, and each is confirmed by a bracketing search between them.
+//! `thickness` and `friction` studies trace one collapse curve each: their mechanism
+//! changes along the swept parameter are located by bisection and reported as
+//! bifurcations; their boundary table is empty (the critical points are the rows of
+//! results.parquet). `thrust` studies have neither.
 
 mod bifurcation;
 mod grid;
