@@ -9,6 +9,7 @@
 pub mod analysis;
 pub mod app;
 pub mod archive;
+pub mod boundaries;
 pub mod cli;
 pub mod engine;
 pub mod manifest;

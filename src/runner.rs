@@ -1,6 +1,7 @@
 //! `archstudy run` and `archstudy check`: manifest → plan → engine → store → boundaries →
 //! figures and reports, with the provenance of the run in run.json.
 
+use crate::boundaries;
 use crate::cli::{CheckArgs, RunArgs, UsageError};
 use crate::engine::{self, CaseResult, Progress, Status};
 use crate::manifest::{self, Manifest};
@@ -228,6 +229,18 @@ pub fn run_study(opts: &RunOptions) -> Result<RunSummary> {
     store::write_parquet(&mut df, &layout.results())?;
     stages.store_ms = ms(t);
 
+    let t = Instant::now();
+    let located = pool.install(|| boundaries::locate(&plan, &results));
+    store::write_parquet(
+        &mut store::boundaries_frame(&plan, &located)?,
+        &layout.boundaries(),
+    )?;
+    store::write_parquet(
+        &mut store::bifurcations_frame(&plan, &located)?,
+        &layout.bifurcations(),
+    )?;
+    stages.boundaries_ms = ms(t);
+
     let ok = results.iter().filter(|r| r.status == Status::Ok).count() as u64;
     let mut info = RunInfo {
         name: plan.manifest.name.clone(),
@@ -248,7 +261,7 @@ pub fn run_study(opts: &RunOptions) -> Result<RunSummary> {
         },
         separable: plan.is_separable_state_grid(),
         stages,
-        boundary_refinement_analyses: 0,
+        boundary_refinement_analyses: located.refinement_analyses,
     };
     info.finished_at = chrono::Utc::now().to_rfc3339_opts(chrono::SecondsFormat::Millis, true);
     write_atomic(

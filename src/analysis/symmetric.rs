@@ -215,9 +215,10 @@ fn stability_margin(sym: &SymmetricCircular, sd: &Interval) -> (f64, f64) {
         }
     };
     if sd.is_empty() {
-        // No thrust satisfies the sliding conditions: the margin is the (negative) width,
-        // at the middle of the crossed bounds.
-        return (sd.hi - sd.lo, 0.5 * (sd.lo + sd.hi));
+        // Within the classification tolerance H^s may be a point with its ends crossed by
+        // rounding (μ = μ_min): that point, not 0, is the thrust of the limit state.
+        let mid = 0.5 * (sd.lo + sd.hi);
+        return (sd.hi - sd.lo, if mid.is_finite() { mid } else { 0.0 });
     }
     let (h, v) = concave_peak(value, slope);
     (v, h)
@@ -398,16 +399,24 @@ fn limit_state(
     })
 }
 
-/// The limit between `lo` (margin below −tolerance) and `hi` (margin ≥ −tolerance): the
-/// exact root of the margin when it rises clearly above zero, otherwise (a margin that only
-/// touches zero, as at μ = μ_min where H^s is a single value) the first point within the
-/// tolerance. The returned point is admissible.
+/// Offset below which a margin counts as having reached its plateau when locating a limit.
+const PLATEAU_TOL: f64 = 1e-13;
+
+/// The limit between `lo` (margin below −tolerance) and `hi` (admissible within tolerance),
+/// for a margin that is non-decreasing in the searched parameter.
+///
+/// Beyond the limit the margin either keeps rising (a clean root) or stays on a plateau: at
+/// K = K_c the rotational margin is 0 for every larger μ, at μ = μ_min the sliding one is 0
+/// for every larger K, and rounding makes such a plateau noise of ±1e-16. The root is taken
+/// of margin − min(margin(hi), 0) + 1e-13, which is positive on the plateau and crosses
+/// zero where the margin reaches it; the returned point is admissible.
 fn limit_root(margin: impl Fn(f64) -> f64, lo: f64, hi: f64) -> Option<f64> {
-    if margin(hi) > 0.0 {
-        brent(&margin, lo, hi, 1e-15)
-    } else {
-        brent(|x| margin(x) + MARGIN_TOL, lo, hi, 1e-15)
+    let plateau = margin(hi).min(0.0);
+    let f = |x: f64| margin(x) - plateau + PLATEAU_TOL;
+    if f(lo) >= 0.0 {
+        return Some(lo);
     }
+    brent(f, lo, hi, 1e-15)
 }
 
 /// The collapse thickness K_c at friction μ (paper §5): the smallest K at which the arch
@@ -627,6 +636,25 @@ mod tests {
         let t = thickness(&semi(1.5), Friction::new(mu_min).unwrap());
         let s = t.found().unwrap();
         assert!((s.k - K_BIF).abs() < 1e-8, "K = {}", s.k);
+    }
+
+    #[test]
+    fn friction_on_the_sliding_segment_is_the_sliding_mechanism() {
+        // Beyond the mixed/sliding bifurcation μ_c = μ_min, where H^s is a single thrust
+        // (μ_min·W_half at the springings) inside H^r: no hinge, four sliding joints.
+        let s = friction(&semi(1.3)).found().cloned().unwrap();
+        assert!((s.mu - MU_MIN).abs() < 1e-9, "μ = {}", s.mu);
+        assert_eq!(s.mechanism.kind, crate::analysis::MechanismKind::Sliding);
+        assert!((s.thrust_over_half_weight - MU_MIN).abs() < 1e-9);
+        assert!(s.mechanism.hinges.is_empty(), "{:?}", s.mechanism.hinges);
+        let angles: Vec<f64> = s
+            .mechanism
+            .sliding_joints
+            .iter()
+            .map(|j| j.angle_deg)
+            .collect();
+        assert_eq!(angles.len(), 4, "{angles:?}");
+        assert!((angles[2] - 28.63619468).abs() < 1e-6 && (angles[3] - 90.0).abs() < 1e-9);
     }
 
     #[test]

@@ -1,9 +1,11 @@
 //! The store: the only user of polars. Parquet schemas of the run's tables, written
 //! atomically (a temporary file renamed into place) and read back.
 
+mod boundaries;
 mod results;
 mod table;
 
+pub use boundaries::{bifurcations_frame, boundaries_frame};
 pub use results::results_frame;
 pub use table::{ColumnData, Table, TableColumn, read_table, table_from_frame};
 
