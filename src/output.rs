@@ -127,7 +127,9 @@ impl Drop for StagedRun {
 /// Removes staging and set-aside directories of `name` left by runs that were killed (their
 /// process no longer exists), so an interrupted run leaves nothing behind for long.
 fn remove_stale_staging(out: &Path, name: &str) {
-    let Ok(entries) = std::fs::read_dir(out) else { return };
+    let Ok(entries) = std::fs::read_dir(out) else {
+        return;
+    };
     for e in entries.flatten() {
         let file = e.file_name();
         let Some(f) = file.to_str() else { continue };

@@ -2,7 +2,7 @@
 //! binary.
 
 mod archive;
+mod boundaries;
 mod common;
 mod run;
 mod solve;
-mod boundaries;

@@ -278,3 +278,41 @@ fn hinges_of_the_maximum_thrust_state() {
         ]
     );
 }
+
+#[test]
+fn critical_friction_exactly_at_the_collapse_thickness() {
+    // At K = K_c the rotational margin is zero for every μ above the threshold: the search
+    // must not chase rounding noise on that plateau (64 voussoirs used to give 0.418).
+    let cases = [
+        arch(1.5, 90.0, Some(64)),
+        Arch {
+            weight: WeightModel::Centreline,
+            ..arch(1.5, 90.0, Some(16))
+        },
+        arch(1.5, 90.0, Some(16)),
+        arch(1.5, 90.0, None),
+        arch(1.5, 60.0, None),
+        arch(1.5, 120.0, None),
+    ];
+    for a in cases {
+        let kc = thickness(&a, Friction::INFINITE).found().unwrap().clone();
+        let at = a.with_k(kc.k);
+        let f = friction(&at);
+        let m = f.found().unwrap_or_else(|| panic!("{a:?}: {f:?}")).mu;
+        // Stands at μ_c, not clearly below it.
+        assert_eq!(state(&at, mu(m)).regime, Regime::Stable, "{a:?}");
+        assert_ne!(
+            state(&at, mu(m * (1.0 - 1e-7))).regime,
+            Regime::Stable,
+            "{a:?}: μ_c = {m}"
+        );
+        if a.half_angle_deg() == 90.0 {
+            // Semicircle: H_max^s = μ W_half at the springing, so μ_c is the thrust at K_c.
+            assert!(
+                (m - kc.thrust_over_half_weight).abs() < 1e-9,
+                "{a:?}: {m} vs {}",
+                kc.thrust_over_half_weight
+            );
+        }
+    }
+}
