@@ -95,7 +95,7 @@ pub fn rotational_domain(sym: &SymmetricCircular) -> RotationalDomain {
             peak_margin: g,
         };
     }
-    let (h_peak, g) = concave_peak(phi, |h| sym.rotational_slope(h));
+    let (h_peak, g) = rotational_peak(sym);
     if g < -MARGIN_TOL {
         return RotationalDomain {
             interval: Interval::EMPTY,
@@ -201,27 +201,116 @@ pub fn domains(arch: &Arch, friction: Friction) -> Domains {
     }
 }
 
-/// Ψ and its maximiser: the stability margin of a symmetric arch with sliding domain `sd`.
+/// The maximiser and maximum of Φ (the widest point of H^r).
+///
+/// Continuum: min_θ U is the crown extrados A(h) = Kh left of the kink h_k where it meets the
+/// springing extrados B(h) = Kh cos α + b_α, and B right of it. A − max_θ L rises (slope
+/// K − cos θ* > 0), so the peak is h_k unless B − max_θ L still rises there, in which case it
+/// is the stationary point cos θ*(h) = K cos α, i.e. θ* = acos(K cos α) and, from
+/// θ* cot θ* = hα + ρ_s − 1, h = (θ* cot θ* + 1 − ρ_s)/α. One solve of θ*, no iteration.
+/// Voussoirs: bisection on the supergradient of the piecewise-linear Φ.
+pub fn rotational_peak(sym: &SymmetricCircular) -> (f64, f64) {
+    let phi = |h: f64| sym.rotational_margin(h);
+    if sym.voussoirs.is_some() {
+        return concave_peak(phi, |h| sym.rotational_slope(h));
+    }
+    let (k, alpha) = (sym.k, sym.alpha);
+    // U(θ, h) = a(θ) h + b(θ).
+    let b_alpha = sym.extrados(alpha, 0.0);
+    let (a0, a1) = (k, k * alpha.cos());
+    let h_k = b_alpha / (a0 - a1);
+    let theta_k = sym.intrados_max(h_k).1;
+    if a1 - theta_k.cos() <= 0.0 {
+        return (h_k, phi(h_k));
+    }
+    let c = k * alpha.cos();
+    if c >= 1.0 {
+        // Φ rises for ever: a thick flat segment carries any thrust.
+        return (f64::INFINITY, phi(FAR).max(phi(h_k)));
+    }
+    let t = c.acos();
+    let h = (super::circular::theta_cot_theta(t) + 1.0 - sym.rho_s) / alpha;
+    let h = h.max(h_k);
+    (h, phi(h))
+}
+
+/// Ψ and its maximiser: the stability margin of a symmetric arch with sliding domain `sd`,
+/// max_h min(Φ(h), h_s,max − h, h − h_s,min).
+///
+/// The maximum of this concave function is at the peak of Φ, at the middle of H^s, or where
+/// Φ crosses one of the two lines; each crossing is a bracketed root of a monotone function.
 fn stability_margin(sym: &SymmetricCircular, sd: &Interval) -> (f64, f64) {
-    let value = |h: f64| sym.rotational_margin(h).min(sd.hi - h).min(h - sd.lo);
-    let slope = |h: f64| {
-        let (a, b, c) = (sym.rotational_margin(h), sd.hi - h, h - sd.lo);
-        if a <= b && a <= c {
-            sym.rotational_slope(h)
-        } else if b <= c {
-            -1.0
-        } else {
-            1.0
-        }
-    };
     if sd.is_empty() {
         // Within the classification tolerance H^s may be a point with its ends crossed by
         // rounding (μ = μ_min): that point, not 0, is the thrust of the limit state.
         let mid = 0.5 * (sd.lo + sd.hi);
         return (sd.hi - sd.lo, if mid.is_finite() { mid } else { 0.0 });
     }
-    let (h, v) = concave_peak(value, slope);
-    (v, h)
+    let phi = |h: f64| sym.rotational_margin(h);
+    let value = |h: f64| phi(h).min(sd.hi - h).min(h - sd.lo);
+    let (hp, g) = rotational_peak(sym);
+    let mut best = (f64::NEG_INFINITY, 0.0);
+    let mut consider = |h: f64| {
+        if h.is_finite() {
+            let v = value(h);
+            if v > best.0 {
+                best = (v, h);
+            }
+        }
+    };
+    consider(hp);
+    if sd.lo.is_finite() && sd.hi.is_finite() {
+        consider(0.5 * (sd.lo + sd.hi));
+    }
+    // Φ(h) = h_s,max − h left of the peak (Φ + h rises there).
+    if sd.hi.is_finite() && (hp.is_infinite() || sd.hi - hp < g) {
+        let top = if hp.is_finite() { hp } else { sd.hi };
+        let f = |h: f64| phi(h) + h - sd.hi;
+        if let Some(lo) = bracket_below(&f, top) {
+            if let Some(h) = brent(&f, lo, top, 1e-15) {
+                consider(h);
+            }
+        }
+    }
+    // Φ(h) = h − h_s,min right of the peak (Φ − h falls there).
+    if sd.lo.is_finite() && hp.is_finite() && hp - sd.lo < g {
+        let f = |h: f64| phi(h) - h + sd.lo;
+        if let Some(hi) = bracket_above(&f, hp) {
+            if let Some(h) = brent(&f, hi, hp, 1e-15) {
+                consider(h);
+            }
+        }
+    }
+    if hp.is_infinite() && sd.hi.is_infinite() {
+        return (f64::INFINITY, f64::INFINITY);
+    }
+    best
+}
+
+/// A point left of `x` where the increasing function `f` is negative.
+fn bracket_below(f: &impl Fn(f64) -> f64, x: f64) -> Option<f64> {
+    let mut step = 1.0;
+    while step < 4.0 * FAR {
+        let y = x - step;
+        if f(y) < 0.0 {
+            return Some(y);
+        }
+        step *= 2.0;
+    }
+    None
+}
+
+/// A point right of `x` where the decreasing function `f` is negative.
+fn bracket_above(f: &impl Fn(f64) -> f64, x: f64) -> Option<f64> {
+    let mut step = 1.0;
+    while step < 4.0 * FAR {
+        let y = x + step;
+        if f(y) < 0.0 {
+            return Some(y);
+        }
+        step *= 2.0;
+    }
+    None
 }
 
 /// The regime of a point (DESIGN.md §1), tolerance-aware: limit states count as admissible.
@@ -655,6 +744,34 @@ mod tests {
             .collect();
         assert_eq!(angles.len(), 4, "{angles:?}");
         assert!((angles[2] - 28.63619468).abs() < 1e-6 && (angles[3] - 90.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn closed_form_peak_matches_bisection_on_the_supergradient() {
+        for alpha in [20.0, 45.0, 90.0, 120.0, 160.0] {
+            for k in [1.05, 1.2, 1.6, 3.0] {
+                for w in [WeightModel::Annular, WeightModel::Centreline] {
+                    let a = Arch::new(k, alpha, w, Discretisation::Continuum).unwrap();
+                    let sym = SymmetricCircular::new(&a);
+                    let (h1, g1) = rotational_peak(&sym);
+                    let (h2, g2) =
+                        concave_peak(|h| sym.rotational_margin(h), |h| sym.rotational_slope(h));
+                    if h1.is_infinite() || h2.is_infinite() {
+                        assert_eq!(h1.is_infinite(), h2.is_infinite(), "α = {alpha}, K = {k}");
+                        continue;
+                    }
+                    assert!(
+                        (g1 - g2).abs() < 1e-13,
+                        "α = {alpha}, K = {k}: {g1} vs {g2}"
+                    );
+                    assert!(g1 >= g2 - 1e-15, "the closed form is the true maximum");
+                    assert!(
+                        (h1 - h2).abs() < 1e-6 * (1.0 + h1.abs()),
+                        "α = {alpha}, K = {k}: {h1} vs {h2}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]
