@@ -56,13 +56,15 @@ impl TableBuilder {
     }
 
     /// A String column.
-    pub fn str(mut self, name: &str, v: Vec<String>) -> Self {
+    pub fn str<S: AsRef<str>>(mut self, name: &str, v: Vec<S>) -> Self {
+        let v: Vec<&str> = v.iter().map(AsRef::as_ref).collect();
         self.columns.push(Column::new(name.into(), v));
         self
     }
 
     /// A nullable String column.
-    pub fn opt_str(mut self, name: &str, v: Vec<Option<String>>) -> Self {
+    pub fn opt_str<S: AsRef<str>>(mut self, name: &str, v: Vec<Option<S>>) -> Self {
+        let v: Vec<Option<&str>> = v.iter().map(|s| s.as_ref().map(AsRef::as_ref)).collect();
         self.columns.push(Column::new(name.into(), v));
         self
     }
@@ -90,11 +92,11 @@ impl TableBuilder {
     }
 
     /// A List(String) column.
-    pub fn list_str(mut self, name: &str, v: Vec<Vec<String>>) -> Self {
+    pub fn list_str<S: AsRef<str>>(mut self, name: &str, v: Vec<Vec<S>>) -> Self {
         let values: usize = v.iter().map(Vec::len).sum();
         let mut b = ListStringChunkedBuilder::new(name.into(), v.len(), values);
         for x in &v {
-            b.append_values_iter(x.iter().map(String::as_str));
+            b.append_values_iter(x.iter().map(AsRef::as_ref));
         }
         self.columns.push(b.finish().into_series().into());
         self
@@ -114,7 +116,7 @@ pub fn write_parquet(df: &mut DataFrame, path: &Path) -> Result<()> {
         let file =
             File::create(&tmp).with_context(|| format!("cannot create {}", tmp.display()))?;
         ParquetWriter::new(file)
-            .with_compression(ParquetCompression::Zstd(None))
+            .with_compression(ParquetCompression::Lz4Raw)
             .finish(df)
             .with_context(|| format!("cannot write {}", tmp.display()))?;
         std::fs::rename(&tmp, path)

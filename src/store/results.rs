@@ -10,38 +10,38 @@ use polars::prelude::DataFrame;
 pub(crate) fn hinge_angles(h: &[HingeRecord]) -> Vec<f64> {
     h.iter().map(|h| h.angle_deg).collect()
 }
-pub(crate) fn hinge_faces(h: &[HingeRecord]) -> Vec<String> {
-    h.iter().map(|h| h.face.to_string()).collect()
+pub(crate) fn hinge_faces(h: &[HingeRecord]) -> Vec<&'static str> {
+    h.iter().map(|h| h.face).collect()
 }
 pub(crate) fn sliding_angles(s: &[SlidingRecord]) -> Vec<f64> {
     s.iter().map(|s| s.angle_deg).collect()
 }
-pub(crate) fn sliding_senses(s: &[SlidingRecord]) -> Vec<String> {
-    s.iter().map(|s| s.sense.to_string()).collect()
+pub(crate) fn sliding_senses(s: &[SlidingRecord]) -> Vec<&'static str> {
+    s.iter().map(|s| s.sense).collect()
 }
 
 /// The results table: one row per case (schema in the README).
 pub fn results_frame(plan: &Plan, rows: &[CaseResult]) -> Result<DataFrame> {
     let col = |f: &dyn Fn(&CaseResult) -> Option<f64>| rows.iter().map(f).collect::<Vec<_>>();
-    let scol = |f: &dyn Fn(&CaseResult) -> Option<String>| rows.iter().map(f).collect::<Vec<_>>();
+    let scol = |f: &dyn Fn(&CaseResult) -> Option<&'static str>| rows.iter().map(f).collect::<Vec<_>>();
     let m = &plan.manifest;
     TableBuilder::new()
         .u64("case_id", rows.iter().map(|r| r.case_id).collect())
         .str(
             "load_case",
             rows.iter()
-                .map(|r| m.load_cases[r.load_case].name.clone())
+                .map(|r| m.load_cases[r.load_case].name.as_str())
                 .collect(),
         )
         .str(
             "load_kind",
             rows.iter()
-                .map(|r| m.load_cases[r.load_case].kind.as_str().to_string())
+                .map(|r| m.load_cases[r.load_case].kind.as_str())
                 .collect(),
         )
         .str(
             "find",
-            rows.iter().map(|r| r.solution.find.to_string()).collect(),
+            rows.iter().map(|r| r.solution.find).collect(),
         )
         .opt_f64("k", col(&|r| r.solution.k))
         .opt_f64("t_over_r", col(&|r| r.solution.t_over_r))
@@ -61,14 +61,14 @@ pub fn results_frame(plan: &Plan, rows: &[CaseResult]) -> Result<DataFrame> {
         )
         .str(
             "weight",
-            rows.iter().map(|r| r.solution.weight.to_string()).collect(),
+            rows.iter().map(|r| r.solution.weight).collect(),
         )
         .opt_u32(
             "voussoirs",
             rows.iter().map(|r| r.solution.voussoirs).collect(),
         )
-        .opt_str("outcome", scol(&|r| r.solution.outcome.map(str::to_string)))
-        .opt_str("regime", scol(&|r| r.solution.regime.map(str::to_string)))
+        .opt_str("outcome", scol(&|r| r.solution.outcome))
+        .opt_str("regime", scol(&|r| r.solution.regime))
         .opt_f64("thrust_r_min", col(&|r| r.solution.thrust_r_min))
         .opt_f64("thrust_r_max", col(&|r| r.solution.thrust_r_max))
         .opt_f64("thrust_s_min", col(&|r| r.solution.thrust_s_min))
@@ -78,7 +78,7 @@ pub fn results_frame(plan: &Plan, rows: &[CaseResult]) -> Result<DataFrame> {
         .opt_f64("mu_crit", col(&|r| r.solution.mu_crit))
         .opt_str(
             "mechanism",
-            scol(&|r| r.solution.mechanism.map(str::to_string)),
+            scol(&|r| r.solution.mechanism),
         )
         .opt_f64(
             "thrust_over_half_weight",
@@ -137,9 +137,9 @@ pub fn results_frame(plan: &Plan, rows: &[CaseResult]) -> Result<DataFrame> {
         )
         .str(
             "status",
-            rows.iter().map(|r| r.status.as_str().to_string()).collect(),
+            rows.iter().map(|r| r.status.as_str()).collect(),
         )
-        .opt_str("message", rows.iter().map(|r| r.message.clone()).collect())
+        .opt_str("message", rows.iter().map(|r| r.message.as_deref()).collect())
         .f64(
             "solve_time_us",
             rows.iter().map(|r| r.solution.solve_time_us).collect(),
