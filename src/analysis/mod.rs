@@ -4,6 +4,7 @@
 //! thrusts over the half weight W_half.
 
 pub mod circular;
+pub mod kinematics;
 pub mod roots;
 pub mod statics;
 pub mod symmetric;
