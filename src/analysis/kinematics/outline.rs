@@ -76,6 +76,9 @@ pub struct MechanismDrawing {
     pub slides: Vec<SlideMark>,
     /// The two supports, left then right.
     pub supports: [SupportMark; 2],
+    /// Joints between voussoirs inside the parts (intrados and extrados ends), displaced
+    /// with their part; empty for a continuum.
+    pub voussoir_joints: Vec<[Point; 2]>,
     /// The displacement amplitude ε used (over r).
     pub amplitude: f64,
 }
@@ -188,6 +191,21 @@ pub fn drawing<G: ArchGeometry + ?Sized>(
             });
         }
     }
+    let mut voussoir_joints = Vec::new();
+    for t in geom.discrete_joints().unwrap_or_default() {
+        let Some(p) = field
+            .parts
+            .iter()
+            .find(|p| p.theta_from < t && t < p.theta_to)
+        else {
+            continue;
+        };
+        let j = geom.joint(t);
+        voussoir_joints.push([
+            displace(&p.velocity, j.intrados, amplitude),
+            displace(&p.velocity, j.extrados, amplitude),
+        ]);
+    }
     let alpha = geom.half_angle();
     let support = |theta: f64, sign: f64| {
         let j = geom.joint(theta);
@@ -203,6 +221,7 @@ pub fn drawing<G: ArchGeometry + ?Sized>(
         hinges,
         slides,
         supports: [support(-alpha, -1.0), support(alpha, 1.0)],
+        voussoir_joints,
         amplitude,
     }
 }
