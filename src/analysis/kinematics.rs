@@ -193,7 +193,9 @@ pub fn normalise_pattern<G: ArchGeometry + ?Sized>(
 pub enum FlowRule {
     /// Pure sliding, no dilatancy (the paper's non-associative Coulomb friction).
     NonAssociative,
-    /// Normality to the Coulomb cone: relative normal separation tan φ · |slip|.
+    /// Normality to the Coulomb cone: relative normal separation tan φ · |slip|. The sign of
+    /// the slip that |slip| stands for is the joint's required sense (outward when it has
+    /// none), which keeps the system linear.
     Associative {
         /// μ = tan φ.
         tan_phi: f64,
@@ -805,7 +807,8 @@ pub struct Modes {
 }
 
 /// The mechanisms of a pattern: the null space of its compatibility system and, within it
-/// (within its symmetric part when `prefer_symmetric` and the pattern is symmetric), the
+/// (within its symmetric part when `prefer_symmetric`, the pattern is symmetric and that part
+/// is not empty; otherwise in the whole null space), the
 /// fields obeying the normality rule at the hinges (eq. 5 with δα of the sign of the face)
 /// and maximum dissipation at sliding joints that carry a sense (eq. 10).
 pub fn mechanism_modes<G: ArchGeometry + ?Sized>(
@@ -838,7 +841,12 @@ pub fn mechanism_modes<G: ArchGeometry + ?Sized>(
             return Ok(failed(dof));
         };
         let d = b.ncols() as u32;
-        (b, Some(d))
+        // A symmetric state whose only modes are antisymmetric (a sway) collapses in those.
+        if d == 0 {
+            (full, Some(d))
+        } else {
+            (b, Some(d))
+        }
     } else {
         (full, None)
     };

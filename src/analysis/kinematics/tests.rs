@@ -452,3 +452,40 @@ fn la_hire_joint_is_merged_from_a_state_pattern() {
         (Some(Face::Extrados), true, Some(Sense::Outward))
     );
 }
+
+#[test]
+fn every_critical_state_of_a_sweep_gets_a_status_and_admissible_ones_balance() {
+    let (mut admissible, mut total) = (0, 0);
+    for alpha in [10.0, 45.0, 90.0, 150.0, 179.0] {
+        for joints in [None, Some(1), Some(2), Some(3), Some(16), Some(101)] {
+            for weight in [WeightModel::Annular, WeightModel::Centreline] {
+                let d = joints.map_or(Discretisation::Continuum, Discretisation::Voussoirs);
+                let base = Arch::new(1.5, alpha, weight, d).unwrap();
+                let mut states = Vec::new();
+                for f in [Friction::INFINITE, mu(0.0), mu(0.2), mu(0.35), mu(1.5)] {
+                    states.push(thickness(&base, f));
+                }
+                for k in [1.01, 1.2, 3.0] {
+                    states.push(friction(&base.with_k(k)));
+                }
+                for c in states {
+                    let Some(s) = c.found() else { continue };
+                    let m = collapse_mechanism(&base, s);
+                    total += 1;
+                    assert_ne!(m.status, ModeStatus::Failed, "α {alpha} {d}: {s:?}");
+                    if let Some(w) = m.work {
+                        // Eq. (11) holds for any field of the state's pattern, even a
+                        // degenerate one (μ = 0, zero thrust).
+                        assert!(w.work_residual < 1e-9, "α {alpha} {d}: {s:?} {w:?}");
+                    }
+                    if m.status == ModeStatus::Admissible {
+                        admissible += 1;
+                    }
+                }
+            }
+        }
+    }
+    // The exceptions are degenerate: zero thrust at μ = 0 on two voussoirs, and the thick
+    // horseshoe whose crown tangency is a double hinge of zero length (three hinges: rigid).
+    assert!(admissible + 12 >= total, "{admissible} of {total}");
+}

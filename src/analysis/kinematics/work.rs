@@ -96,19 +96,25 @@ pub struct WorkEquation {
     /// Σ T δr^t of the state's reactions: equals `work_friction` when every slip opposes the
     /// friction force of a joint on the cone.
     pub work_tangential: f64,
-    /// Σ over blocks of |work of the loads on that block|: the scale of dL^(a).
+    /// Σ over blocks of |f||u| + |ω||m|: the size of the work the loads could do on each
+    /// block (force times speed of its reference point, moment about it times rotation), the
+    /// scale against which dL^(a) = 0 is judged.
     pub load_scale: f64,
     /// |dL^(a) + dL^(r,t)| / max(|dL^(a)|, |dL^(r,t)|, load_scale): zero when eq. (11) holds.
     pub work_residual: f64,
 }
 
-/// Power of a load resultant (force and moment about the origin) on a rigid velocity.
-fn load_power(r: Resultant, v: &super::RigidVelocity) -> f64 {
+/// Power of a load resultant (force and moment about the origin) on a rigid velocity, and an
+/// upper bound of its magnitude: |f||u| + |ω||m_ref| with m_ref the moment about the block's
+/// reference point.
+fn load_power(r: Resultant, v: &super::RigidVelocity) -> (f64, f64) {
     let p = v.reference;
-    // f·u + ω (m_O − p × f).
-    r.fx * v.translation[0]
-        + r.fy * v.translation[1]
-        + v.rotation * (r.m - (p[0] * r.fy - p[1] * r.fx))
+    let m_ref = r.m - (p[0] * r.fy - p[1] * r.fx);
+    let u = v.translation;
+    // f·u + ω m_ref.
+    let power = r.fx * u[0] + r.fy * u[1] + v.rotation * m_ref;
+    let bound = r.fx.hypot(r.fy) * u[0].hypot(u[1]) + (v.rotation * m_ref).abs();
+    (power, bound)
 }
 
 /// The work equation (eqs. 9 and 11) of a field at a state. The load of a block [a, b] is the
@@ -125,9 +131,9 @@ pub fn work_equation<G: ArchGeometry + ?Sized>(
     let mut load_scale = 0.0;
     for b in field.blocks() {
         let r = load(b.theta_to).plus(load(b.theta_from).scale(-1.0));
-        let w = load_power(r, &b.velocity);
+        let (w, bound) = load_power(r, &b.velocity);
         work_loads += w;
-        load_scale += w.abs();
+        load_scale += bound;
     }
     let mut work_friction = 0.0;
     let mut work_normal = 0.0;
