@@ -126,8 +126,9 @@ impl ActiveJoint {
     }
 }
 
-/// The active joints of a limit state's pattern, in increasing angle; a hinge and a sliding
-/// joint at the same angle become one La Hire joint.
+/// The active joints of a limit state's pattern, in increasing angle, each sliding joint with
+/// the state's sense; a hinge and a sliding joint at the same angle are merged into one La Hire
+/// joint by [`normalise_pattern`].
 pub fn pattern_of(m: &Mechanism) -> Vec<ActiveJoint> {
     let mut joints: Vec<ActiveJoint> = m
         .hinges
