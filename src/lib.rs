@@ -16,6 +16,7 @@ pub mod manifest;
 pub mod model;
 pub mod output;
 pub mod plan;
+pub mod plot;
 pub mod runner;
 pub mod scene;
 pub mod store;

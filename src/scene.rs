@@ -1,6 +1,7 @@
 //! One scene (an arch, a friction coefficient, a load case) and the answer to one question
 //! about it: the record shared by `archstudy solve --json` and the rows of results.parquet.
 
+use crate::analysis::kinematics::collapse_mechanism;
 use crate::analysis::symmetric::{
     self, Critical, CriticalState, RotationalDomain, SlidingDomain, ThrustState,
 };
@@ -158,6 +159,17 @@ pub struct Solution {
     pub hinges: Vec<HingeRecord>,
     /// Sliding joints of the critical state.
     pub sliding_joints: Vec<SlidingRecord>,
+    /// dL^(a): work of the loads on the collapse mechanism of the critical state (eq. 11),
+    /// over W_half·r for a field whose largest block-corner speed is 1.
+    pub work_loads: Option<f64>,
+    /// dL^(r,t) = −μ Σ R^n |dr^t| over the sliding joints of that mechanism (eq. 11), same units.
+    pub work_friction: Option<f64>,
+    /// |dL^(a) + dL^(r,t)| over the scale of the block works: about 0 when the state and its
+    /// mechanism satisfy eq. (11).
+    pub work_residual: Option<f64>,
+    /// Degrees of freedom of the blocks between the active joints of the critical state (2 for
+    /// a symmetric five-joint state: the collapse mechanism is its symmetric mode).
+    pub mechanism_dof: Option<u32>,
     /// Minimum admissible thrust over W_half (thrust find).
     pub thrust_min: Option<f64>,
     /// Maximum admissible thrust over W_half (null when unbounded).
@@ -214,6 +226,10 @@ impl Solution {
             crown_moment: None,
             hinges: Vec::new(),
             sliding_joints: Vec::new(),
+            work_loads: None,
+            work_friction: None,
+            work_residual: None,
+            mechanism_dof: None,
             thrust_min: None,
             thrust_max: None,
             hinges_min: Vec::new(),
@@ -233,6 +249,17 @@ impl Solution {
         self.hinges = hinge_records(&s.mechanism.hinges);
         self.sliding_joints = sliding_records(&s.mechanism.sliding_joints);
         Some(s)
+    }
+
+    /// The collapse mechanism of a found critical state and its work equation.
+    fn set_mechanism(&mut self, arch: &Arch, s: &CriticalState) {
+        let m = collapse_mechanism(arch, s);
+        self.mechanism_dof = Some(m.mechanism_dof);
+        if let Some(w) = m.work {
+            self.work_loads = finite(w.work_loads);
+            self.work_friction = finite(w.work_friction);
+            self.work_residual = finite(w.work_residual);
+        }
     }
 
     /// The regime, parsed back.
@@ -274,6 +301,7 @@ pub fn solve(scene: &Scene) -> Solution {
         Find::Thickness => {
             let c = symmetric::thickness(&scene.arch, scene.friction);
             if let Some(s) = out.set_critical(&c) {
+                out.set_mechanism(&scene.arch, &s);
                 out.k_crit = Some(s.k);
                 out.t_over_r_crit = Some(t_over_r_from_k(s.k));
             }
@@ -281,6 +309,7 @@ pub fn solve(scene: &Scene) -> Solution {
         Find::Friction => {
             let c = symmetric::friction(&scene.arch);
             if let Some(s) = out.set_critical(&c) {
+                out.set_mechanism(&scene.arch, &s);
                 out.mu_crit = Some(s.mu);
             }
         }
@@ -404,6 +433,18 @@ pub fn summary(s: &Solution) -> String {
             }
             if !s.sliding_joints.is_empty() {
                 let _ = writeln!(o, "sliding joints: {}", sliding(&s.sliding_joints));
+            }
+            if let (Some(dof), Some(a), Some(f), Some(r)) = (
+                s.mechanism_dof,
+                s.work_loads,
+                s.work_friction,
+                s.work_residual,
+            ) {
+                let _ = writeln!(
+                    o,
+                    "work equation: dL(a) = {a:.6e}, dL(r,t) = {f:.6e}, residual {r:.1e} \
+                     (mechanism dof {dof})"
+                );
             }
             if s.find == "thrust" {
                 if s.outcome == Some("never_stands") {

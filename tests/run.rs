@@ -146,6 +146,10 @@ fn parquet_schema_reads_back_with_documented_names_and_types() {
             DataType::List(Box::new(DataType::Float64)),
         ),
         ("sliding_senses", DataType::List(Box::new(DataType::String))),
+        ("work_loads", DataType::Float64),
+        ("work_friction", DataType::Float64),
+        ("work_residual", DataType::Float64),
+        ("mechanism_dof", DataType::UInt32),
         ("thrust_min", DataType::Float64),
         ("thrust_max", DataType::Float64),
         (

@@ -6,6 +6,7 @@
 pub mod circular;
 pub mod general;
 pub mod lp;
+pub mod kinematics;
 pub mod roots;
 pub mod statics;
 pub mod symmetric;

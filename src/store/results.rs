@@ -109,6 +109,13 @@ pub fn results_frame(plan: &Plan, rows: &[CaseResult]) -> Result<DataFrame> {
                 .map(|r| sliding_senses(&r.solution.sliding_joints))
                 .collect(),
         )
+        .opt_f64("work_loads", col(&|r| r.solution.work_loads))
+        .opt_f64("work_friction", col(&|r| r.solution.work_friction))
+        .opt_f64("work_residual", col(&|r| r.solution.work_residual))
+        .opt_u32(
+            "mechanism_dof",
+            rows.iter().map(|r| r.solution.mechanism_dof).collect(),
+        )
         .opt_f64("thrust_min", col(&|r| r.solution.thrust_min))
         .opt_f64("thrust_max", col(&|r| r.solution.thrust_max))
         .list_f64(
