@@ -110,7 +110,7 @@ pub struct SolveArgs {
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub voussoirs: Option<i64>,
     /// What to compute.
-    #[arg(long, value_name = "WHAT", default_value = "state", value_parser = ["state", "thickness", "friction", "thrust"])]
+    #[arg(long, value_name = "WHAT", default_value = "state", value_parser = ["state", "thickness", "friction", "thrust", "thresholds"])]
     pub find: String,
     /// Print one JSON object instead of a summary.
     #[arg(long)]
@@ -153,7 +153,7 @@ impl SolveArgs {
             usage(
                 "--find",
                 &self.find,
-                "one of state, thickness, friction, thrust",
+                "one of state, thickness, friction, thrust, thresholds",
             )
         })?;
         let k = match (self.k, self.t_over_r) {

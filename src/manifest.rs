@@ -62,7 +62,8 @@ impl<'de> Deserialize<'de> for Number {
             }
             fn visit_str<E: de::Error>(self, v: &str) -> Result<Number, E> {
                 match v.trim() {
-                    "inf" | "+inf" | ".inf" | "infinity" | "Inf" | "INF" => {
+                    // `continuum` is the voussoir count N → ∞.
+                    "inf" | "+inf" | ".inf" | "infinity" | "Inf" | "INF" | "continuum" => {
                         Ok(Number(f64::INFINITY))
                     }
                     other => other.parse::<f64>().map(Number).map_err(|_| {
@@ -670,7 +671,9 @@ fn check_value(
         AxisName::TOverR => v > 0.0 && v < 2.0,
         AxisName::Mu => v >= 0.0,
         AxisName::HalfAngleDeg => v > 0.0 && v < 180.0,
-        AxisName::Voussoirs => v.fract() == 0.0 && (1.0..=1e7).contains(&v),
+        AxisName::Voussoirs => {
+            v.is_infinite() && v > 0.0 || v.fract() == 0.0 && (1.0..=1e7).contains(&v)
+        }
     };
     if ok {
         return Ok(());
@@ -680,7 +683,9 @@ fn check_value(
         AxisName::TOverR => "t/R_c must lie in (0, 2)",
         AxisName::Mu => "μ must be a number ≥ 0 or inf (NaN and negative values are not allowed)",
         AxisName::HalfAngleDeg => "the half-angle must lie in (0, 180) degrees",
-        AxisName::Voussoirs => "the voussoir count must be an integer in [1, 10000000]",
+        AxisName::Voussoirs => {
+            "the voussoir count must be an integer in [1, 10000000], or `continuum`"
+        }
     };
     Err(cx.err(
         Some(at),
@@ -710,6 +715,15 @@ fn validate_grid(
             Some(a.referenced),
             "grid.k",
             "a `thickness` study finds K itself: remove the k / t_over_r axis",
+        ));
+    }
+    if find == Find::Thresholds
+        && let Some(a) = g.k.as_ref().or(g.t_over_r.as_ref()).or(g.mu.as_ref())
+    {
+        return Err(cx.err(
+            Some(a.referenced),
+            "grid",
+            "a `thresholds` study finds K and μ itself: remove the k, t_over_r and mu axes",
         ));
     }
     if find == Find::Friction

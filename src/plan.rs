@@ -94,7 +94,13 @@ fn scene_at(m: &Manifest, idx: &[usize]) -> Scene {
             AxisName::TOverR => k = k_from_t_over_r(v),
             AxisName::Mu => mu = v,
             AxisName::HalfAngleDeg => half = v,
-            AxisName::Voussoirs => joints = Discretisation::Voussoirs(v as u32),
+            AxisName::Voussoirs => {
+                joints = if v.is_infinite() {
+                    Discretisation::Continuum
+                } else {
+                    Discretisation::Voussoirs(v as u32)
+                }
+            }
         }
     }
     // Every value was validated with the manifest, so the constructors cannot fail.

@@ -24,19 +24,29 @@ pub enum Find {
     Friction,
     /// The minimum and maximum thrust states at (K, μ).
     Thrust,
+    /// The critical values of the arch under self-weight: K_c at μ = ∞, the μ of the
+    /// rotational/mixed bifurcation, μ_min and the K of the mixed/sliding bifurcation.
+    Thresholds,
 }
 
 impl Find {
     /// All finds.
-    pub const ALL: [Find; 4] = [Find::State, Find::Thickness, Find::Friction, Find::Thrust];
+    pub const ALL: [Find; 5] = [
+        Find::State,
+        Find::Thickness,
+        Find::Friction,
+        Find::Thrust,
+        Find::Thresholds,
+    ];
 
-    /// `state`, `thickness`, `friction` or `thrust`.
+    /// `state`, `thickness`, `friction`, `thrust` or `thresholds`.
     pub fn as_str(self) -> &'static str {
         match self {
             Find::State => "state",
             Find::Thickness => "thickness",
             Find::Friction => "friction",
             Find::Thrust => "thrust",
+            Find::Thresholds => "thresholds",
         }
     }
 
@@ -47,12 +57,12 @@ impl Find {
 
     /// True when the find needs K as an input.
     pub fn needs_k(self) -> bool {
-        self != Find::Thickness
+        !matches!(self, Find::Thickness | Find::Thresholds)
     }
 
     /// True when the find needs μ as an input.
     pub fn needs_mu(self) -> bool {
-        self != Find::Friction
+        !matches!(self, Find::Friction | Find::Thresholds)
     }
 }
 
@@ -170,6 +180,14 @@ pub struct Solution {
     /// Degrees of freedom of the blocks between the active joints of the critical state (2 for
     /// a symmetric five-joint state: the collapse mechanism is its symmetric mode).
     pub mechanism_dof: Option<u32>,
+    /// Collapse thickness at μ = ∞ (thresholds find).
+    pub k_c_rotational: Option<f64>,
+    /// μ of the rotational/mixed bifurcation: the critical friction at K_c (thresholds find).
+    pub mu_rotational_mixed: Option<f64>,
+    /// μ_min: below it H^s is empty for every K (thresholds find).
+    pub mu_min: Option<f64>,
+    /// K of the mixed/sliding bifurcation: the collapse thickness at μ_min (thresholds find).
+    pub k_mixed_sliding: Option<f64>,
     /// Minimum admissible thrust over W_half (thrust find).
     pub thrust_min: Option<f64>,
     /// Maximum admissible thrust over W_half (null when unbounded).
@@ -230,6 +248,10 @@ impl Solution {
             work_friction: None,
             work_residual: None,
             mechanism_dof: None,
+            k_c_rotational: None,
+            mu_rotational_mixed: None,
+            mu_min: None,
+            k_mixed_sliding: None,
             thrust_min: None,
             thrust_max: None,
             hinges_min: Vec::new(),
@@ -311,6 +333,20 @@ pub fn solve(scene: &Scene) -> Solution {
             if let Some(s) = out.set_critical(&c) {
                 out.set_mechanism(&scene.arch, &s);
                 out.mu_crit = Some(s.mu);
+            }
+        }
+        Find::Thresholds => {
+            let a = &scene.arch;
+            let kc = symmetric::thickness(a, Friction::INFINITE);
+            out.outcome = Some(kc.outcome_str());
+            if let Some(s) = kc.found() {
+                out.k_c_rotational = Some(s.k);
+                out.mu_rotational_mixed = symmetric::friction(&a.with_k(s.k)).found().map(|f| f.mu);
+            }
+            if let Some(m) = symmetric::sliding_threshold(a).found() {
+                out.mu_min = Some(m.mu);
+                out.k_mixed_sliding = Friction::new(m.mu)
+                    .and_then(|f| symmetric::thickness(a, f).found().map(|s| s.k));
             }
         }
         Find::Thrust => {
@@ -411,6 +447,20 @@ pub fn summary(s: &Solution) -> String {
                     let _ = writeln!(o, "critical friction 0: the arch stands without friction");
                 }
                 _ => {}
+            }
+            if s.find == "thresholds" {
+                let _ = writeln!(o, "K_c (μ = ∞) = {}", opt(s.k_c_rotational));
+                let _ = writeln!(
+                    o,
+                    "μ at the rotational/mixed bifurcation = {}",
+                    opt(s.mu_rotational_mixed)
+                );
+                let _ = writeln!(o, "μ_min = {}", opt(s.mu_min));
+                let _ = writeln!(
+                    o,
+                    "K at the mixed/sliding bifurcation = {}",
+                    opt(s.k_mixed_sliding)
+                );
             }
             if let Some(k) = s.k_crit {
                 let _ = writeln!(

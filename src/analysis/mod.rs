@@ -5,8 +5,8 @@
 
 pub mod circular;
 pub mod general;
-pub mod lp;
 pub mod kinematics;
+pub mod lp;
 pub mod roots;
 pub mod statics;
 pub mod symmetric;

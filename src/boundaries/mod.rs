@@ -173,7 +173,8 @@ pub fn locate(plan: &Plan, results: &[CaseResult]) -> Located {
             Vec::new(),
             sweep::locate(&groups, results, sweep::Swept::K, tol, &counter),
         ),
-        Find::Thrust => (Vec::new(), Vec::new()),
+        // Thresholds are the bifurcations themselves, one set per row.
+        Find::Thrust | Find::Thresholds => (Vec::new(), Vec::new()),
     };
     Located {
         boundaries,

@@ -23,7 +23,8 @@ pub(crate) fn sliding_senses(s: &[SlidingRecord]) -> Vec<&'static str> {
 /// The results table: one row per case (schema in the README).
 pub fn results_frame(plan: &Plan, rows: &[CaseResult]) -> Result<DataFrame> {
     let col = |f: &dyn Fn(&CaseResult) -> Option<f64>| rows.iter().map(f).collect::<Vec<_>>();
-    let scol = |f: &dyn Fn(&CaseResult) -> Option<&'static str>| rows.iter().map(f).collect::<Vec<_>>();
+    let scol =
+        |f: &dyn Fn(&CaseResult) -> Option<&'static str>| rows.iter().map(f).collect::<Vec<_>>();
     let m = &plan.manifest;
     TableBuilder::new()
         .u64("case_id", rows.iter().map(|r| r.case_id).collect())
@@ -39,10 +40,7 @@ pub fn results_frame(plan: &Plan, rows: &[CaseResult]) -> Result<DataFrame> {
                 .map(|r| m.load_cases[r.load_case].kind.as_str())
                 .collect(),
         )
-        .str(
-            "find",
-            rows.iter().map(|r| r.solution.find).collect(),
-        )
+        .str("find", rows.iter().map(|r| r.solution.find).collect())
         .opt_f64("k", col(&|r| r.solution.k))
         .opt_f64("t_over_r", col(&|r| r.solution.t_over_r))
         .opt_f64(
@@ -59,10 +57,7 @@ pub fn results_frame(plan: &Plan, rows: &[CaseResult]) -> Result<DataFrame> {
             "half_angle_deg",
             rows.iter().map(|r| r.solution.half_angle_deg).collect(),
         )
-        .str(
-            "weight",
-            rows.iter().map(|r| r.solution.weight).collect(),
-        )
+        .str("weight", rows.iter().map(|r| r.solution.weight).collect())
         .opt_u32(
             "voussoirs",
             rows.iter().map(|r| r.solution.voussoirs).collect(),
@@ -76,10 +71,7 @@ pub fn results_frame(plan: &Plan, rows: &[CaseResult]) -> Result<DataFrame> {
         .opt_f64("k_crit", col(&|r| r.solution.k_crit))
         .opt_f64("t_over_r_crit", col(&|r| r.solution.t_over_r_crit))
         .opt_f64("mu_crit", col(&|r| r.solution.mu_crit))
-        .opt_str(
-            "mechanism",
-            scol(&|r| r.solution.mechanism),
-        )
+        .opt_str("mechanism", scol(&|r| r.solution.mechanism))
         .opt_f64(
             "thrust_over_half_weight",
             col(&|r| r.solution.thrust_over_half_weight),
@@ -116,6 +108,13 @@ pub fn results_frame(plan: &Plan, rows: &[CaseResult]) -> Result<DataFrame> {
             "mechanism_dof",
             rows.iter().map(|r| r.solution.mechanism_dof).collect(),
         )
+        .opt_f64("k_c_rotational", col(&|r| r.solution.k_c_rotational))
+        .opt_f64(
+            "mu_rotational_mixed",
+            col(&|r| r.solution.mu_rotational_mixed),
+        )
+        .opt_f64("mu_min", col(&|r| r.solution.mu_min))
+        .opt_f64("k_mixed_sliding", col(&|r| r.solution.k_mixed_sliding))
         .opt_f64("thrust_min", col(&|r| r.solution.thrust_min))
         .opt_f64("thrust_max", col(&|r| r.solution.thrust_max))
         .list_f64(
@@ -142,11 +141,11 @@ pub fn results_frame(plan: &Plan, rows: &[CaseResult]) -> Result<DataFrame> {
                 .map(|r| hinge_faces(&r.solution.hinges_max))
                 .collect(),
         )
-        .str(
-            "status",
-            rows.iter().map(|r| r.status.as_str()).collect(),
+        .str("status", rows.iter().map(|r| r.status.as_str()).collect())
+        .opt_str(
+            "message",
+            rows.iter().map(|r| r.message.as_deref()).collect(),
         )
-        .opt_str("message", rows.iter().map(|r| r.message.as_deref()).collect())
         .f64(
             "solve_time_us",
             rows.iter().map(|r| r.solution.solve_time_us).collect(),
