@@ -12,9 +12,9 @@ pub use table::{ColumnData, Table, TableColumn, read_table, table_from_frame};
 use anyhow::Context as _;
 use anyhow::Result;
 use polars::prelude::{
-    Column, DataFrame, DataType, Float64Type, IntoSeries, ListBuilderTrait,
+    AnyValue, Column, DataFrame, DataType, Float64Type, IntoSeries, ListBuilderTrait,
     ListPrimitiveChunkedBuilder, ListStringChunkedBuilder, ParquetCompression, ParquetReader,
-    ParquetWriter, SerReader,
+    ParquetWriter, Scalar, SerReader,
 };
 use std::fs::File;
 use std::path::Path;
@@ -39,6 +39,11 @@ impl TableBuilder {
 
     /// A nullable UInt32 column.
     pub fn opt_u32(mut self, name: &str, v: Vec<Option<u32>>) -> Self {
+        if v.iter().all(Option::is_none) {
+            self.columns
+                .push(Column::full_null(name.into(), v.len(), &DataType::UInt32));
+            return self;
+        }
         self.columns.push(Column::new(name.into(), v));
         self
     }
@@ -51,12 +56,27 @@ impl TableBuilder {
 
     /// A nullable Float64 column.
     pub fn opt_f64(mut self, name: &str, v: Vec<Option<f64>>) -> Self {
+        if v.iter().all(Option::is_none) {
+            self.columns
+                .push(Column::full_null(name.into(), v.len(), &DataType::Float64));
+            return self;
+        }
         self.columns.push(Column::new(name.into(), v));
         self
     }
 
     /// A String column.
     pub fn str<S: AsRef<str>>(mut self, name: &str, v: Vec<S>) -> Self {
+        if let Some(first) = v.first()
+            && v.iter().all(|x| x.as_ref() == first.as_ref())
+        {
+            // One value in every row (a load case, a status): a constant column.
+            let value = AnyValue::StringOwned(first.as_ref().into());
+            let scalar = Scalar::new(DataType::String, value);
+            self.columns
+                .push(Column::new_scalar(name.into(), scalar, v.len()));
+            return self;
+        }
         let v: Vec<&str> = v.iter().map(AsRef::as_ref).collect();
         self.columns.push(Column::new(name.into(), v));
         self
@@ -64,6 +84,11 @@ impl TableBuilder {
 
     /// A nullable String column.
     pub fn opt_str<S: AsRef<str>>(mut self, name: &str, v: Vec<Option<S>>) -> Self {
+        if v.iter().all(Option::is_none) {
+            self.columns
+                .push(Column::full_null(name.into(), v.len(), &DataType::String));
+            return self;
+        }
         let v: Vec<Option<&str>> = v.iter().map(|s| s.as_ref().map(AsRef::as_ref)).collect();
         self.columns.push(Column::new(name.into(), v));
         self
@@ -78,6 +103,13 @@ impl TableBuilder {
     /// A List(Float64) column.
     pub fn list_f64(mut self, name: &str, v: Vec<Vec<f64>>) -> Self {
         let values: usize = v.iter().map(Vec::len).sum();
+        if values == 0 {
+            // No row has a list (e.g. hinges of a state grid): a null column, built at once.
+            let dtype = DataType::List(Box::new(DataType::Float64));
+            self.columns
+                .push(Column::full_null(name.into(), v.len(), &dtype));
+            return self;
+        }
         let mut b = ListPrimitiveChunkedBuilder::<Float64Type>::new(
             name.into(),
             v.len(),
@@ -94,6 +126,12 @@ impl TableBuilder {
     /// A List(String) column.
     pub fn list_str<S: AsRef<str>>(mut self, name: &str, v: Vec<Vec<S>>) -> Self {
         let values: usize = v.iter().map(Vec::len).sum();
+        if values == 0 {
+            let dtype = DataType::List(Box::new(DataType::String));
+            self.columns
+                .push(Column::full_null(name.into(), v.len(), &dtype));
+            return self;
+        }
         let mut b = ListStringChunkedBuilder::new(name.into(), v.len(), values);
         for x in &v {
             b.append_values_iter(x.iter().map(AsRef::as_ref));
