@@ -1,0 +1,440 @@
+//! Figure 1: the regime map over (μ, K) with a t/R_c axis beside K: coloured regions, the
+//! collapse curve from the located boundary points with each segment named by its
+//! mechanism, other regime boundaries, and the bifurcation points with their values.
+
+use super::style::{
+    self, LabelPlacer, LegendItem, Mark, PixelBox, clip_polyline, decimals_for, palette,
+};
+use super::{Figure, PlotContext};
+use crate::model::{k_from_t_over_r, t_over_r_from_k};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+
+/// A run of the collapse curve with one mechanism.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CollapseSegment {
+    /// `rotational`, `mixed` or `sliding`.
+    pub mechanism: String,
+    /// Points (μ, K) in order along the curve.
+    pub points: Vec<(f64, f64)>,
+}
+
+/// A bifurcation point with the lines of its annotation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BifurcationMark {
+    /// μ.
+    pub mu: f64,
+    /// K.
+    pub k: f64,
+    /// Annotation, one string per line (already formatted).
+    pub lines: Vec<String>,
+}
+
+/// What the regime map shows.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RegimeMap {
+    /// Title.
+    pub title: String,
+    /// Grid μ values, increasing, finite.
+    pub mu: Vec<f64>,
+    /// Grid K values, increasing.
+    pub k: Vec<f64>,
+    /// Regime names per cell, K-major: `regimes[ik * mu.len() + imu]` (None: no value).
+    pub regimes: Vec<Option<String>>,
+    /// The collapse curve, by mechanism.
+    pub collapse: Vec<CollapseSegment>,
+    /// Other regime boundaries (not on the collapse curve), as polylines (μ, K).
+    pub other_boundaries: Vec<Vec<(f64, f64)>>,
+    /// Bifurcation points.
+    pub bifurcations: Vec<BifurcationMark>,
+}
+
+const REGIME_ORDER: [&str; 5] = ["stable", "rotational", "mixed", "sliding", "none"];
+
+fn region_label(regime: &str) -> [&'static str; 2] {
+    match regime {
+        "stable" => ["STABLE", "Hʳ ∩ Hˢ ≠ ∅"],
+        "rotational" => ["ROTATIONAL", "Hʳ = ∅"],
+        "mixed" => ["MIXED", "Hʳ ∩ Hˢ = ∅"],
+        "sliding" => ["SLIDING", "Hˢ = ∅"],
+        _ => ["NO EQUILIBRIUM", "Hʳ = Hˢ = ∅"],
+    }
+}
+
+fn edges(v: &[f64]) -> Vec<f64> {
+    let n = v.len();
+    let mut e = Vec::with_capacity(n + 1);
+    e.push(v[0]);
+    for w in v.windows(2) {
+        e.push(0.5 * (w[0] + w[1]));
+    }
+    e.push(v[n - 1]);
+    e
+}
+
+/// For each regime, the cell farthest (in plot pixels) from any other regime or the border:
+/// where its label fits best. Two-pass chamfer distance transform.
+fn label_cells(m: &RegimeMap, dx: f64, dy: f64) -> Vec<(String, usize, usize, f64)> {
+    let (nx, ny) = (m.mu.len(), m.k.len());
+    let at = |i: usize, j: usize| m.regimes[j * nx + i].as_deref();
+    let mut d = vec![f64::INFINITY; nx * ny];
+    let diag = dx.hypot(dy);
+    for j in 0..ny {
+        for i in 0..nx {
+            let r = at(i, j);
+            let border = i == 0 || j == 0 || i + 1 == nx || j + 1 == ny;
+            let differs = |a: usize, b: usize| at(a, b) != r;
+            let edge = border
+                || differs(i - 1, j)
+                || differs(i + 1, j)
+                || differs(i, j - 1)
+                || differs(i, j + 1);
+            if edge {
+                d[j * nx + i] = 0.5 * dx.min(dy);
+            }
+        }
+    }
+    let pass = |d: &mut Vec<f64>, i: usize, j: usize, di: isize, dj: isize| {
+        let (ii, jj) = (i as isize + di, j as isize + dj);
+        if ii < 0 || jj < 0 || ii >= nx as isize || jj >= ny as isize {
+            return;
+        }
+        let step = if di != 0 && dj != 0 {
+            diag
+        } else if di != 0 {
+            dx
+        } else {
+            dy
+        };
+        let cand = d[jj as usize * nx + ii as usize] + step;
+        if cand < d[j * nx + i] {
+            d[j * nx + i] = cand;
+        }
+    };
+    for j in 0..ny {
+        for i in 0..nx {
+            for (di, dj) in [(-1, 0), (0, -1), (-1, -1), (1, -1)] {
+                pass(&mut d, i, j, di, dj);
+            }
+        }
+    }
+    for j in (0..ny).rev() {
+        for i in (0..nx).rev() {
+            for (di, dj) in [(1, 0), (0, 1), (1, 1), (-1, 1)] {
+                pass(&mut d, i, j, di, dj);
+            }
+        }
+    }
+    let mut out = Vec::new();
+    for name in REGIME_ORDER {
+        let best = (0..nx * ny)
+            .filter(|&c| m.regimes[c].as_deref() == Some(name))
+            .max_by(|&a, &b| d[a].total_cmp(&d[b]));
+        if let Some(c) = best {
+            out.push((name.to_string(), c % nx, c / nx, d[c]));
+        }
+    }
+    out
+}
+
+/// Ticks of t/R_c inside [t0, t1] at a nice step.
+fn t_ticks(t0: f64, t1: f64) -> (Vec<f64>, usize) {
+    let step = style::nice_step(t1 - t0, 6);
+    let mut v = Vec::new();
+    let mut t = (t0 / step).ceil() * step;
+    while t <= t1 + 1e-12 {
+        v.push(t);
+        t += step;
+    }
+    (v, decimals_for(t1 - t0))
+}
+
+impl Figure for RegimeMap {
+    fn size(&self) -> (u32, u32) {
+        (820, 640)
+    }
+
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        ctx: &PlotContext,
+    ) -> DrawResult<(), DB> {
+        let legend = self.legend();
+        let (w, h) = ctx.pixels();
+        let lh = ctx.px(style::legend_height(
+            ctx,
+            &legend,
+            f64::from(w) / ctx.scale - 20.0,
+        ));
+        let (upper, lower) = root.split_vertically(h as i32 - lh);
+        style::draw_legend(&lower, ctx, &legend)?;
+        if self.mu.len() < 2 || self.k.len() < 2 {
+            upper.draw(&Text::new(
+                "The regime map needs at least two values of μ and of K.".to_string(),
+                (ctx.px(20.0), ctx.px(60.0)),
+                ctx.font(15.0),
+            ))?;
+            return Ok(());
+        }
+        let (mu0, mu1) = (self.mu[0], self.mu[self.mu.len() - 1]);
+        let (k0, k1) = (self.k[0], self.k[self.k.len() - 1]);
+        let mut chart = ChartBuilder::on(&upper)
+            .caption(&self.title, ctx.font(17.0))
+            .margin(ctx.px(10.0))
+            .margin_right(ctx.px(4.0))
+            .x_label_area_size(ctx.px(50.0))
+            .y_label_area_size(ctx.px(72.0))
+            .right_y_label_area_size(ctx.px(76.0))
+            .build_cartesian_2d(mu0..mu1, k0..k1)?;
+        // Regions: runs of equal regime along each K row, slightly overlapped to avoid seams.
+        let (me, ke) = (edges(&self.mu), edges(&self.k));
+        let (xr, yr) = chart.plotting_area().get_pixel_range();
+        let px_mu = (mu1 - mu0) / f64::from((xr.end - xr.start).max(1));
+        let px_k = (k1 - k0) / f64::from((yr.end - yr.start).max(1));
+        let nx = self.mu.len();
+        let mut rects = Vec::new();
+        for j in 0..self.k.len() {
+            let mut i = 0;
+            while i < nx {
+                let r = self.regimes[j * nx + i].clone();
+                let start = i;
+                while i < nx && self.regimes[j * nx + i] == r {
+                    i += 1;
+                }
+                if let Some(name) = r {
+                    let x0 = me[start];
+                    let x1 = (me[i] + px_mu).min(mu1);
+                    let y0 = ke[j];
+                    let y1 = (ke[j + 1] + px_k).min(k1);
+                    rects.push(Rectangle::new(
+                        [(x0, y0), (x1, y1)],
+                        palette::regime(&name).filled(),
+                    ));
+                }
+            }
+        }
+        chart.draw_series(rects)?;
+        let fmt_mu = |v: &f64| format!("{:.*}", decimals_for(mu1 - mu0), v);
+        let fmt_k = |v: &f64| format!("{:.*}", decimals_for(k1 - k0), v);
+        chart
+            .configure_mesh()
+            .x_desc("friction coefficient μ")
+            .y_desc("thickness ratio K = R/r")
+            .x_label_formatter(&fmt_mu)
+            .y_label_formatter(&fmt_k)
+            .label_style(ctx.font(13.0))
+            .axis_desc_style(ctx.font(14.0))
+            .set_all_tick_mark_size(ctx.px(5.0))
+            .light_line_style(TRANSPARENT)
+            .bold_line_style(BLACK.mix(0.10).stroke_width(1))
+            .axis_style(BLACK.stroke_width(ctx.upx(1.0).max(1)))
+            .draw()?;
+        // The t/R_c axis at the right edge, ticks at round values of t/R_c.
+        let (t0, t1) = (t_over_r_from_k(k0), t_over_r_from_k(k1));
+        let (ticks, dec) = t_ticks(t0, t1);
+        let x_axis = xr.end;
+        let tick_font = ctx.font(13.0).pos(Pos::new(HPos::Left, VPos::Center));
+        root.draw(&PathElement::new(
+            vec![(x_axis, yr.start), (x_axis, yr.end)],
+            BLACK.stroke_width(ctx.upx(1.0).max(1)),
+        ))?;
+        for t in &ticks {
+            let (_, py) = chart.backend_coord(&(mu1, k_from_t_over_r(*t)));
+            root.draw(&PathElement::new(
+                vec![(x_axis, py), (x_axis + ctx.px(5.0), py)],
+                BLACK.stroke_width(ctx.upx(1.0).max(1)),
+            ))?;
+            root.draw(&Text::new(
+                format!("{t:.dec$}"),
+                (x_axis + ctx.px(8.0), py),
+                tick_font.clone(),
+            ))?;
+        }
+        let desc = ctx
+            .font(14.0)
+            .transform(FontTransform::Rotate90)
+            .pos(Pos::new(HPos::Center, VPos::Bottom));
+        root.draw(&Text::new(
+            "thickness t/R_c".to_string(),
+            (x_axis + ctx.px(62.0), (yr.start + yr.end) / 2),
+            desc,
+        ))?;
+
+        let window = ((mu0, mu1), (k0, k1));
+        // Other regime boundaries: thin dashed lines.
+        for line in &self.other_boundaries {
+            for piece in clip_polyline(line, window.0, window.1) {
+                chart.draw_series(DashedLineSeries::new(
+                    piece,
+                    ctx.upx(6.0),
+                    ctx.upx(4.0),
+                    palette::INK.mix(0.75).stroke_width(ctx.upx(1.2).max(1)),
+                ))?;
+            }
+        }
+        // The collapse curve.
+        for seg in &self.collapse {
+            let color = palette::mechanism(&seg.mechanism);
+            for piece in clip_polyline(&seg.points, window.0, window.1) {
+                chart.draw_series(LineSeries::new(piece, color.stroke_width(ctx.upx(3.2))))?;
+            }
+        }
+        // Labels: bifurcations first (most important), then curve segments, then regions.
+        let bounds: PixelBox = (
+            xr.start + ctx.px(4.0),
+            yr.start + ctx.px(4.0),
+            xr.end - ctx.px(4.0),
+            yr.end - ctx.px(4.0),
+        );
+        let mut placer = LabelPlacer::new(bounds);
+        let pts: Vec<(i32, i32)> = self
+            .bifurcations
+            .iter()
+            .map(|b| chart.backend_coord(&(b.mu, b.k)))
+            .collect();
+        for p in &pts {
+            let r = ctx.px(9.0);
+            placer.block((p.0 - r, p.1 - r, p.0 + r, p.1 + r));
+        }
+        let ann_font = ctx.font(12.5);
+        for (b, p) in self.bifurcations.iter().zip(&pts) {
+            let (bw, bh) = style::text_block_size(&ann_font, &b.lines, 1.25);
+            let g = ctx.px(14.0);
+            let at = placer.place(
+                bw,
+                bh,
+                &[
+                    (p.0 + g, p.1 + g),
+                    (p.0 + g, p.1 - g - bh),
+                    (p.0 + g, p.1 - bh / 2),
+                    (p.0 - g - bw, p.1 + g),
+                    (p.0 - g - bw, p.1 - g - bh),
+                    (p.0 + 3 * g, p.1 + 3 * g),
+                    (p.0 + 3 * g, p.1 - 3 * g - bh),
+                ],
+            );
+            // Leader line from the marker to the nearest corner of the box.
+            let cx = if at.0 > p.0 { at.0 } else { at.0 + bw };
+            let cy = if at.1 > p.1 { at.1 } else { at.1 + bh };
+            root.draw(&PathElement::new(
+                vec![*p, (cx, cy)],
+                palette::INK.stroke_width(1),
+            ))?;
+            style::draw_text_block(root, ctx, &ann_font, &b.lines, at, Some(palette::GREY))?;
+        }
+        for p in &pts {
+            style::dot(root, ctx, *p, 5.5, palette::INK)?;
+        }
+        let seg_font = ctx.font_with(13.0, FontStyle::Italic);
+        for seg in &self.collapse {
+            let inside: Vec<(f64, f64)> = seg
+                .points
+                .iter()
+                .copied()
+                .filter(|&(x, y)| x >= mu0 && x <= mu1 && y >= k0 && y <= k1)
+                .collect();
+            if inside.len() < 2 {
+                continue;
+            }
+            let mid = chart.backend_coord(&inside[inside.len() / 2]);
+            let text = format!("{} collapse", seg.mechanism);
+            let color = palette::mechanism(&seg.mechanism);
+            let (tw, th) = style::text_block_size(&seg_font, std::slice::from_ref(&text), 1.0);
+            let g = ctx.px(8.0);
+            let at = placer.place(
+                tw,
+                th,
+                &[
+                    (mid.0 - tw / 2, mid.1 - g - th),
+                    (mid.0 + g, mid.1 - th / 2),
+                    (mid.0 + g, mid.1 - g - th),
+                    (mid.0 - tw / 2, mid.1 + g),
+                    (mid.0 - g - tw, mid.1 - th / 2),
+                    (mid.0 + g, mid.1 + g),
+                    (mid.0 - tw / 2, mid.1 - 3 * g - th),
+                    (mid.0 + 3 * g, mid.1 - th / 2),
+                ],
+            );
+            root.draw(&Text::new(
+                text,
+                at,
+                seg_font.color(&color).pos(Pos::new(HPos::Left, VPos::Top)),
+            ))?;
+        }
+        let dxp = f64::from(xr.end - xr.start) / self.mu.len() as f64;
+        let dyp = f64::from(yr.end - yr.start) / self.k.len() as f64;
+        let reg_font = ctx.font_with(13.0, FontStyle::Bold);
+        let sub_font = ctx.font(12.0);
+        for (name, i, j, _) in label_cells(self, dxp, dyp) {
+            let c = chart.backend_coord(&(self.mu[i], self.k[j]));
+            let [l1, l2] = region_label(&name);
+            let lines = [l1.to_string(), l2.to_string()];
+            let (w1, h1) = style::text_block_size(&reg_font, &lines[..1], 1.2);
+            let (w2, h2) = style::text_block_size(&sub_font, &lines[1..], 1.2);
+            let (bw, bh) = (w1.max(w2), h1 + h2);
+            let g = ctx.px(6.0);
+            let at = placer.place(
+                bw,
+                bh,
+                &[
+                    (c.0 - bw / 2, c.1 - bh / 2),
+                    (c.0 - bw / 2, c.1 - bh - g),
+                    (c.0 - bw / 2, c.1 + g),
+                    (c.0 + g, c.1 - bh / 2),
+                    (c.0 - bw - g, c.1 - bh / 2),
+                ],
+            );
+            let top = Pos::new(HPos::Center, VPos::Top);
+            let mid = at.0 + bw / 2;
+            root.draw(&Text::new(lines[0].clone(), (mid, at.1), reg_font.pos(top)))?;
+            root.draw(&Text::new(
+                lines[1].clone(),
+                (mid, at.1 + h1),
+                sub_font.pos(top),
+            ))?;
+        }
+        Ok(())
+    }
+}
+
+impl RegimeMap {
+    fn legend(&self) -> Vec<LegendItem> {
+        let mut items = Vec::new();
+        for name in REGIME_ORDER {
+            if self.regimes.iter().any(|r| r.as_deref() == Some(name)) {
+                let label = match name {
+                    "none" => "no equilibrium",
+                    other => other,
+                };
+                items.push(LegendItem::new(label, Mark::Swatch(palette::regime(name))));
+            }
+        }
+        for m in ["rotational", "mixed", "sliding"] {
+            if self.collapse.iter().any(|s| s.mechanism == m) {
+                items.push(LegendItem::new(
+                    format!("{m} collapse"),
+                    Mark::Line {
+                        color: palette::mechanism(m),
+                        width: 3.2,
+                        dashed: false,
+                    },
+                ));
+            }
+        }
+        if !self.other_boundaries.is_empty() {
+            items.push(LegendItem::new(
+                "other regime boundary",
+                Mark::Line {
+                    color: palette::INK,
+                    width: 1.2,
+                    dashed: true,
+                },
+            ));
+        }
+        if !self.bifurcations.is_empty() {
+            items.push(LegendItem::new("bifurcation", Mark::Dot(palette::INK)));
+        }
+        items
+    }
+}
