@@ -23,6 +23,16 @@ pub enum Command {
     Run(RunArgs),
     /// Validate a study manifest and print its plan without running it.
     Check(CheckArgs),
+    /// Re-render the figures and both reports of a run directory from its stored files.
+    Report(ReportArgs),
+}
+
+/// `archstudy report`.
+#[derive(Debug, Args)]
+pub struct ReportArgs {
+    /// The run directory (the `<out>/<name>/` that `archstudy run` wrote).
+    #[arg(value_name = "RUN_DIR")]
+    pub run_dir: PathBuf,
 }
 
 /// `archstudy run`.
