@@ -27,6 +27,8 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Run(args) => crate::runner::run_command(&args),
         Command::Check(args) => crate::runner::check_command(&args),
         Command::Report(args) => report(&args),
+        Command::Archive(args) => crate::archive::archive_command(&args),
+        Command::Verify(args) => crate::verify::verify_command(&args),
     }
 }
 

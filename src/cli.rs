@@ -25,6 +25,10 @@ pub enum Command {
     Check(CheckArgs),
     /// Re-render the figures and both reports of a run directory from its stored files.
     Report(ReportArgs),
+    /// Pack a run directory into one .tar.gz with SHA256SUMS, for deposit with a paper.
+    Archive(ArchiveArgs),
+    /// Check an archive or run directory: checksums, then re-run and compare every result.
+    Verify(VerifyArgs),
 }
 
 /// `archstudy report`.
@@ -56,6 +60,32 @@ pub struct RunArgs {
 pub struct CheckArgs {
     /// The study manifest (YAML).
     pub study: PathBuf,
+}
+
+/// `archstudy archive`.
+#[derive(Debug, Args)]
+pub struct ArchiveArgs {
+    /// The run directory written by `archstudy run`.
+    #[arg(value_name = "RUN_DIR")]
+    pub run_dir: PathBuf,
+    /// The archive to write (default: `<name>-<first 12 hex of the manifest SHA-256>.tar.gz`
+    /// in the current directory; in FILE when it is a directory).
+    #[arg(short = 'o', long = "output", value_name = "FILE")]
+    pub output: Option<PathBuf>,
+}
+
+/// `archstudy verify`.
+#[derive(Debug, Args)]
+pub struct VerifyArgs {
+    /// An archive made by `archstudy archive`, or a run directory.
+    #[arg(value_name = "ARCHIVE|RUN_DIR")]
+    pub target: PathBuf,
+    /// Check integrity only; do not re-run the manifest.
+    #[arg(long)]
+    pub no_rerun: bool,
+    /// Tolerance T of float columns: |stored - recomputed| <= T * (1 + max(|stored|, |recomputed|)).
+    #[arg(long, value_name = "T", default_value_t = crate::verify::compare::DEFAULT_TOLERANCE, allow_hyphen_values = true)]
+    pub tolerance: f64,
 }
 
 /// `archstudy solve` as typed.

@@ -3,8 +3,12 @@
 //! The data flow is one-way: manifest → plan → analysis → engine → store → boundaries →
 //! plots and report. The library does everything the `archstudy` binary does.
 
+// `!(x > a)` is how validation rejects NaN together with out-of-range values.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 pub mod analysis;
 pub mod app;
+pub mod archive;
 pub mod cli;
 pub mod engine;
 pub mod figdata;
@@ -17,3 +21,4 @@ pub mod report;
 pub mod runner;
 pub mod scene;
 pub mod store;
+pub mod verify;

@@ -554,7 +554,7 @@ fn check_half_angle(v: f64, at: Location, key: &str, cx: &Ctx) -> Result<f64, Ma
 }
 
 fn check_voussoirs(v: f64, at: Location, key: &str, cx: &Ctx) -> Result<u32, ManifestError> {
-    if v.fract() == 0.0 && v >= 1.0 && v <= 1e7 {
+    if v.fract() == 0.0 && (1.0..=1e7).contains(&v) {
         Ok(v as u32)
     } else {
         Err(cx.err(

@@ -112,7 +112,12 @@ pub fn load_plan(path: &Path) -> Result<(Plan, Vec<u8>)> {
         message: "the manifest is not valid UTF-8 text".into(),
     })?;
     let m: Manifest = manifest::parse(&text, path)?;
-    let plan = plan::build(m)?;
+    let plan = plan::build(m).map_err(|e| manifest::ManifestError {
+        path: path.to_path_buf(),
+        position: None,
+        key: Some("grid".into()),
+        message: e.to_string(),
+    })?;
     Ok((plan, bytes))
 }
 

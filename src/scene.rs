@@ -128,7 +128,8 @@ pub struct Solution {
     pub weight: &'static str,
     /// Voussoir count, null for the continuum.
     pub voussoirs: Option<u32>,
-    /// `found`, `never_stands` or `always_stands` for critical finds, null otherwise.
+    /// `found`, `never_stands` or `always_stands` for critical finds (`found` or `never_stands`
+    /// for thrust), null for state.
     pub outcome: Option<&'static str>,
     /// Regime (state find).
     pub regime: Option<&'static str>,
@@ -284,7 +285,13 @@ pub fn solve(scene: &Scene) -> Solution {
             }
         }
         Find::Thrust => {
-            if let Some((lo, hi)) = symmetric::thrust(&scene.arch, scene.friction) {
+            let states = symmetric::thrust(&scene.arch, scene.friction);
+            out.outcome = Some(if states.is_some() {
+                "found"
+            } else {
+                "never_stands"
+            });
+            if let Some((lo, hi)) = states {
                 let rec =
                     |s: &ThrustState| (finite(s.thrust_over_half_weight), hinge_records(&s.hinges));
                 let (tmin, hmin) = rec(&lo);
@@ -379,18 +386,18 @@ pub fn summary(s: &Solution) -> String {
             if let Some(k) = s.k_crit {
                 let _ = writeln!(
                     o,
-                    "K_c = {k:.12}  (t/R_c = {:.12})",
+                    "K_c = {k:.12} ≈ {k:.4}  (t/R_c = {:.12})",
                     s.t_over_r_crit.unwrap_or(f64::NAN)
                 );
             }
             if let Some(m) = s.mu_crit {
-                let _ = writeln!(o, "μ_c = {m:.12}");
+                let _ = writeln!(o, "μ_c = {m:.12} ≈ {m:.3}");
             }
             if let Some(m) = s.mechanism {
                 let _ = writeln!(o, "mechanism: {m}");
             }
             if let Some(h) = s.thrust_over_half_weight {
-                let _ = writeln!(o, "H/W_half = {h:.12}");
+                let _ = writeln!(o, "H/W_half = {h:.12} ≈ {h:.3}");
             }
             if !s.hinges.is_empty() {
                 let _ = writeln!(o, "hinges: {}", hinges(&s.hinges));
@@ -399,7 +406,7 @@ pub fn summary(s: &Solution) -> String {
                 let _ = writeln!(o, "sliding joints: {}", sliding(&s.sliding_joints));
             }
             if s.find == "thrust" {
-                if s.thrust_min.is_none() && s.thrust_max.is_none() {
+                if s.outcome == Some("never_stands") {
                     let _ = writeln!(o, "no admissible state: the arch cannot stand");
                 } else {
                     let _ = writeln!(

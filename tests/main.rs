@@ -1,1 +1,8 @@
+//! End-to-end tests of the `archstudy` binary and the library's study pipeline, in one test
+//! binary.
+
+mod archive;
+mod common;
 mod report;
+mod run;
+mod solve;

@@ -152,6 +152,10 @@ pub enum SlidingBound {
 
 /// The bound on h from a row a·h ≤ b.
 fn bound_from_row(a: f64, b: f64) -> SlidingBound {
+    // Coefficients are sines of angles in [0, 2π): below this they are rounding noise of an
+    // exact zero (θ = φ or θ + φ = π), where the row reads 0 ≤ b.
+    const ZERO: f64 = 1e-14;
+    let a = if a.abs() < ZERO { 0.0 } else { a };
     if a > 0.0 {
         SlidingBound::Upper(b / a)
     } else if a < 0.0 {
@@ -392,7 +396,7 @@ mod tests {
         let geom = CircularArch::new(arch);
         let sym = SymmetricCircular::new(&arch);
         let phi = 0.4f64.atan();
-        for &theta in &[0.0, 0.3, 1.0, 1.5707963] {
+        for &theta in &[0.0, 0.3, 1.0, std::f64::consts::FRAC_PI_2] {
             let rows = joint_rows(&geom, theta, phi);
             let h = 0.37;
             for m in [0.2, 0.45] {

@@ -10,3 +10,6 @@ pub mod symmetric;
 pub mod types;
 
 pub use types::{Face, Hinge, Interval, Mechanism, MechanismKind, Regime, Sense, SlidingJoint};
+
+#[cfg(test)]
+mod hard_cases;

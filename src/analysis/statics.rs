@@ -29,7 +29,7 @@ pub struct Resultant {
 
 impl Resultant {
     /// Sum of two resultants.
-    pub fn add(self, o: Resultant) -> Resultant {
+    pub fn plus(self, o: Resultant) -> Resultant {
         Resultant {
             fx: self.fx + o.fx,
             fy: self.fy + o.fy,

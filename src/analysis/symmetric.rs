@@ -13,8 +13,11 @@ use super::types::{Face, Hinge, Interval, Mechanism, Regime, Sense, SlidingJoint
 use crate::model::{Arch, Friction};
 use std::f64::consts::FRAC_PI_2;
 
-/// Tolerance on margins for classification: a state within it of a limit is admissible.
-pub const MARGIN_TOL: f64 = 1e-14;
+/// Tolerance on margins for classification (thrust over W_half, moments over W_half·r): a
+/// state within it of a limit is a limit state and counts as admissible. It is far below the
+/// 1e-9 to which critical values are reported, and above the rounding of the inputs (a
+/// μ_min or K_c typed to 12 digits lies within it).
+pub const MARGIN_TOL: f64 = 1e-12;
 /// Tolerance under which a condition counts as active when naming a mechanism.
 const ACTIVE_TOL: f64 = 1e-9;
 /// Largest |h| or K − 1 explored when looking for brackets.
@@ -109,11 +112,11 @@ pub fn rotational_domain(sym: &SymmetricCircular) -> RotationalDomain {
         let mut step = 1.0;
         let mut x = start + dir * step;
         while phi(x) >= 0.0 {
-            step *= 2.0;
-            x = start + dir * step;
-            if step > FAR {
+            if step > 4.0 * FAR {
                 return dir * f64::INFINITY;
             }
+            step *= 2.0;
+            x = start + dir * step;
         }
         if phi(start) < 0.0 {
             return start;
@@ -179,6 +182,12 @@ pub fn sliding_domain(sym: &SymmetricCircular, phi: f64) -> SlidingDomain {
     }
     if infeasible {
         d.interval = Interval::EMPTY;
+    } else if d.interval.lo > d.interval.hi
+        && d.interval.lo - d.interval.hi <= MARGIN_TOL * (1.0 + d.interval.lo.abs())
+    {
+        // Crossed by less than the tolerance: H^s is the single limit value (μ = μ_min).
+        let mid = 0.5 * (d.interval.lo + d.interval.hi);
+        d.interval = Interval { lo: mid, hi: mid };
     }
     d
 }
@@ -206,7 +215,9 @@ fn stability_margin(sym: &SymmetricCircular, sd: &Interval) -> (f64, f64) {
         }
     };
     if sd.is_empty() {
-        return (sd.hi - sd.lo, 0.0);
+        // No thrust satisfies the sliding conditions: the margin is the (negative) width,
+        // at the middle of the crossed bounds.
+        return (sd.hi - sd.lo, 0.5 * (sd.lo + sd.hi));
     }
     let (h, v) = concave_peak(value, slope);
     (v, h)
@@ -355,13 +366,17 @@ fn limit_state(
     let (hinges, m, _) = hinges_at(sym, h);
     let tol = ACTIVE_TOL * (1.0 + h.abs());
     let mut sliding = Vec::new();
+    // A joint that carries no normal force (an open crown at zero thrust) cannot slide.
+    let carries = |t: f64| h * t.cos() + sym.w(t) * t.sin() > tol;
     if let Some((t, s)) = sd.upper_joint
         && (sd.interval.hi - h).abs() <= tol
+        && carries(t)
     {
         sliding.push((t, s));
     }
     if let Some((t, s)) = sd.lower_joint
         && (h - sd.interval.lo).abs() <= tol
+        && carries(t)
     {
         sliding.push((t, s));
     }
@@ -383,6 +398,18 @@ fn limit_state(
     })
 }
 
+/// The limit between `lo` (margin below −tolerance) and `hi` (margin ≥ −tolerance): the
+/// exact root of the margin when it rises clearly above zero, otherwise (a margin that only
+/// touches zero, as at μ = μ_min where H^s is a single value) the first point within the
+/// tolerance. The returned point is admissible.
+fn limit_root(margin: impl Fn(f64) -> f64, lo: f64, hi: f64) -> Option<f64> {
+    if margin(hi) > 0.0 {
+        brent(&margin, lo, hi, 1e-15)
+    } else {
+        brent(|x| margin(x) + MARGIN_TOL, lo, hi, 1e-15)
+    }
+}
+
 /// The collapse thickness K_c at friction μ (paper §5): the smallest K at which the arch
 /// stands. Invariant: the arch stands at the returned K and not below it.
 pub fn thickness(arch: &Arch, friction: Friction) -> Critical {
@@ -393,19 +420,19 @@ pub fn thickness(arch: &Arch, friction: Friction) -> Critical {
         return Critical::NeverStands;
     }
     let sym_at = |k: f64| SymmetricCircular::new(&arch.with_k(k));
-    let psi = |k: f64| stability_margin(&sym_at(k), &sd.interval).0 + MARGIN_TOL;
+    let margin = |k: f64| stability_margin(&sym_at(k), &sd.interval).0;
     let k_lo = 1.0 + 1e-12;
-    if psi(k_lo) >= 0.0 {
+    if margin(k_lo) >= -MARGIN_TOL {
         return Critical::AlwaysStands;
     }
     let mut k_hi = 1.5;
-    while psi(k_hi) < 0.0 {
+    while margin(k_hi) < -MARGIN_TOL {
         k_hi = 1.0 + 2.0 * (k_hi - 1.0);
         if k_hi > FAR {
             return Critical::NeverStands;
         }
     }
-    let Some(k) = brent(psi, k_lo, k_hi, 1e-15) else {
+    let Some(k) = limit_root(margin, k_lo, k_hi) else {
         return Critical::NeverStands;
     };
     let sym = sym_at(k);
@@ -419,14 +446,14 @@ pub fn thickness(arch: &Arch, friction: Friction) -> Critical {
 /// The critical friction μ_c at K: the smallest μ at which the arch stands.
 pub fn friction(arch: &Arch) -> Critical {
     let sym = SymmetricCircular::new(arch);
-    let psi = |phi: f64| stability_margin(&sym, &sliding_domain(&sym, phi).interval).0 + MARGIN_TOL;
-    if psi(FRAC_PI_2) < 0.0 {
+    let margin = |phi: f64| stability_margin(&sym, &sliding_domain(&sym, phi).interval).0;
+    if margin(FRAC_PI_2) < -MARGIN_TOL {
         return Critical::NeverStands;
     }
-    if psi(0.0) >= 0.0 {
+    if margin(0.0) >= -MARGIN_TOL {
         return Critical::AlwaysStands;
     }
-    let Some(phi) = brent(psi, 0.0, FRAC_PI_2, 1e-16) else {
+    let Some(phi) = limit_root(margin, 0.0, FRAC_PI_2) else {
         return Critical::NeverStands;
     };
     let sd = sliding_domain(&sym, phi);

@@ -1,7 +1,7 @@
 //! The figure data of a run (written by `figdata`, read by the report): curves.parquet,
 //! states.parquet and reference.parquet. Schemas in docs/report-files.md.
 
-use super::tables::JointLists;
+use super::rows::JointLists;
 use super::{
     TableBuilder, f64_column, list_f64_column, list_str_column, read_parquet, str_column,
     u64_column,

@@ -3,17 +3,19 @@
 
 mod figures;
 mod results;
-mod tables;
+mod rows;
+mod table;
 
 pub use figures::{
     CurvePoint, ReferenceRow, StateRow, curves_frame, read_curves, read_reference, read_states,
     reference_frame, states_frame,
 };
 pub use results::results_frame;
-pub use tables::{
+pub use rows::{
     BifurcationRow, BoundaryRow, JointLists, ResultRow, read_bifurcations, read_boundaries,
     read_results,
 };
+pub use table::{ColumnData, Table, TableColumn, read_table, table_from_frame};
 
 use anyhow::Context as _;
 use anyhow::Result;
@@ -139,6 +141,24 @@ pub fn read_parquet(path: &Path) -> Result<DataFrame> {
     ParquetReader::new(file)
         .finish()
         .with_context(|| format!("cannot read {} as Parquet", path.display()))
+}
+
+/// Rewrites one value of a float column of a Parquet file in place (atomically), leaving
+/// every other value and column as it was: how tests tamper with stored results.
+pub fn rewrite_f64_value(path: &Path, column: &str, row: usize, value: Option<f64>) -> Result<()> {
+    let mut df = read_parquet(path)?;
+    let mut values = f64_column(&df, column).with_context(|| format!("in {}", path.display()))?;
+    let slot = values.get_mut(row).with_context(|| {
+        format!(
+            "{} has no row {row} (it has {} rows)",
+            path.display(),
+            df.height()
+        )
+    })?;
+    *slot = value;
+    df.with_column(Column::new(column.into(), values))
+        .with_context(|| format!("cannot replace column `{column}` of {}", path.display()))?;
+    write_parquet(&mut df, path)
 }
 
 /// A nullable f64 column as a vector.

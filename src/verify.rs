@@ -1,0 +1,384 @@
+//! `archstudy verify`: checks an archive (or a run directory) years later.
+//!
+//! 1. Integrity: every checksum of SHA256SUMS (missing, extra and corrupt members named),
+//!    the required files present, and manifest.yaml the manifest run.json names by hash.
+//! 2. Provenance: says when run.json's archstudy version or commit differ from this build.
+//! 3. Unless `--no-rerun`: re-runs the stored manifest with this build into a temporary
+//!    directory and compares every column of every stored Parquet file with the recomputed
+//!    one ([`compare`]; the rules are stated there and printed). Figures and reports are
+//!    checked by checksum only.
+//!
+//! The Parquet files are read by the store; comparison works on the store's plain tables,
+//! so this module does not use polars.
+
+pub mod compare;
+
+use crate::archive::{self, Provenance, REQUIRED_FILES, SUMS_FILE, check_sums, parse_sums};
+use crate::cli::{UsageError, VerifyArgs};
+use crate::engine::Progress;
+use crate::runner::{self, RunOptions};
+use crate::store;
+use anyhow::{Context, Result};
+use compare::{ColumnVerdict, TableComparison, compare_tables};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// Options of `verify`, as domain values.
+#[derive(Debug, Clone)]
+pub struct VerifyOptions {
+    /// An archive made by `archstudy archive`, or a run directory.
+    pub target: PathBuf,
+    /// Whether to re-run the manifest and compare results (false: integrity only).
+    pub rerun: bool,
+    /// Tolerance T of float comparisons, relative and absolute (see [`compare`]).
+    pub tolerance: f64,
+}
+
+impl VerifyArgs {
+    /// The validated options.
+    pub fn options(&self) -> Result<VerifyOptions, UsageError> {
+        if !(self.tolerance.is_finite() && self.tolerance >= 0.0) {
+            return Err(UsageError {
+                option: "--tolerance",
+                value: self.tolerance.to_string(),
+                allowed: "the tolerance must be a finite number ≥ 0".into(),
+            });
+        }
+        Ok(VerifyOptions {
+            target: self.target.clone(),
+            rerun: !self.no_rerun,
+            tolerance: self.tolerance,
+        })
+    }
+}
+
+/// `archstudy verify` from the command line: exit 0 when everything agrees, 1 otherwise.
+pub fn verify_command(args: &VerifyArgs) -> Result<ExitCode> {
+    let opts = args.options()?;
+    let mut out = std::io::stdout().lock();
+    let agrees = verify(&opts, &mut out)?;
+    out.flush()?;
+    Ok(if agrees {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
+
+/// Verifies an archive or a run directory, writing the verdicts to `out`; true when the
+/// integrity check passes and (unless not re-running) every stored table agrees.
+pub fn verify(opts: &VerifyOptions, out: &mut dyn Write) -> Result<bool> {
+    let target = &opts.target;
+    if !target.exists() {
+        return Err(UsageError {
+            option: "ARCHIVE|RUN_DIR",
+            value: target.display().to_string(),
+            allowed: "an archive made by `archstudy archive`, or a run directory (no such file)"
+                .into(),
+        }
+        .into());
+    }
+    let is_archive = !target.is_dir();
+    let unpacked = if is_archive {
+        Some(archive::unpack(target)?)
+    } else {
+        None
+    };
+    let dir = unpacked
+        .as_ref()
+        .map_or_else(|| target.clone(), |u| u.dir());
+    let kind = if is_archive {
+        "archive"
+    } else {
+        "run directory"
+    };
+    writeln!(out, "verifying {kind} {}", target.display())?;
+
+    let damage = unpacked.as_ref().and_then(|u| u.stream_damage.clone());
+    let Some(prov) = integrity(&dir, is_archive, damage.as_deref(), out)? else {
+        writeln!(out, "verdict: FAILED (integrity); results not compared")?;
+        return Ok(false);
+    };
+    provenance(&prov, out)?;
+    if !opts.rerun {
+        writeln!(out, "re-run: skipped (--no-rerun)")?;
+        writeln!(out, "verdict: OK (integrity only)")?;
+        return Ok(true);
+    }
+    rerun_and_compare(&dir, opts.tolerance, out)
+}
+
+/// The integrity check; returns run.json's provenance when everything is intact.
+fn integrity(
+    dir: &Path,
+    is_archive: bool,
+    stream_damage: Option<&str>,
+    out: &mut dyn Write,
+) -> Result<Option<Provenance>> {
+    let mut ok = true;
+    if let Some(d) = stream_damage {
+        ok = false;
+        writeln!(out, "integrity: {d}")?;
+    }
+    let (files, skipped) = archive::run_files(dir)?;
+    let present: Vec<String> = files.iter().map(|f| f.rel.clone()).collect();
+    let sums_path = dir.join(SUMS_FILE);
+    if sums_path.is_file() {
+        let text = std::fs::read_to_string(&sums_path)
+            .with_context(|| format!("cannot read {}", sums_path.display()))?;
+        match parse_sums(&text, SUMS_FILE) {
+            Err(e) => {
+                ok = false;
+                writeln!(out, "integrity: {e}")?;
+            }
+            Ok(listed) => {
+                let c = check_sums(dir, &listed, &present)?;
+                if c.ok() {
+                    writeln!(
+                        out,
+                        "integrity: all {} files match {SUMS_FILE}",
+                        c.matching.len()
+                    )?;
+                } else {
+                    ok = false;
+                    writeln!(
+                        out,
+                        "integrity: {} of {} files listed in {SUMS_FILE} match",
+                        c.matching.len(),
+                        listed.len()
+                    )?;
+                    for p in &c.corrupt {
+                        writeln!(out, "  corrupt member (checksum differs): {p}")?;
+                    }
+                    for p in &c.missing {
+                        writeln!(out, "  missing member (listed, absent): {p}")?;
+                    }
+                    for p in &c.extra {
+                        writeln!(out, "  extra member (not listed): {p}")?;
+                    }
+                    for p in &c.duplicated {
+                        writeln!(out, "  listed more than once: {p}")?;
+                    }
+                }
+            }
+        }
+    } else if is_archive {
+        ok = false;
+        writeln!(out, "integrity: the archive has no {SUMS_FILE}")?;
+    } else {
+        writeln!(
+            out,
+            "integrity: no {SUMS_FILE} in this run directory; checking the required files \
+             and the manifest hash only"
+        )?;
+    }
+    for s in &skipped {
+        writeln!(out, "  note: {s} is not a regular file; not checked")?;
+    }
+    for f in REQUIRED_FILES {
+        if !present.iter().any(|p| p == f) {
+            ok = false;
+            writeln!(out, "  required file missing: {f}")?;
+        }
+    }
+    if !ok {
+        return Ok(None);
+    }
+    match archive::check_run_dir(dir) {
+        Ok(p) => {
+            writeln!(
+                out,
+                "integrity: manifest.yaml matches run.json's manifest_sha256"
+            )?;
+            Ok(Some(p))
+        }
+        Err(e) => {
+            writeln!(out, "integrity: {e:#}")?;
+            Ok(None)
+        }
+    }
+}
+
+fn provenance(p: &Provenance, out: &mut dyn Write) -> Result<()> {
+    let unknown = || "unknown".to_string();
+    let stored_version = p.archstudy_version.clone().unwrap_or_else(unknown);
+    let stored_commit = p.git_commit.clone().unwrap_or_else(unknown);
+    let this_commit = runner::git_commit().unwrap_or_else(unknown);
+    writeln!(
+        out,
+        "made by: archstudy {stored_version} (commit {stored_commit}); this build: archstudy {} (commit {this_commit})",
+        runner::version()
+    )?;
+    if stored_version != runner::version() {
+        writeln!(
+            out,
+            "  note: the archstudy version differs from this build; comparing anyway"
+        )?;
+    }
+    if stored_commit != this_commit {
+        writeln!(
+            out,
+            "  note: the commit differs from this build; comparing anyway"
+        )?;
+    }
+    Ok(())
+}
+
+fn rerun_and_compare(dir: &Path, tolerance: f64, out: &mut dyn Write) -> Result<bool> {
+    let temp = tempfile::Builder::new()
+        .prefix("archstudy-rerun-")
+        .tempdir()
+        .context("cannot create a temporary directory for the re-run")?;
+    let opts = RunOptions {
+        study: dir.join("manifest.yaml"),
+        out: temp.path().to_path_buf(),
+        jobs: None,
+        progress: Progress::Hidden,
+        command_line: std::env::args().collect(),
+    };
+    let summary = match runner::run_study(&opts) {
+        Ok(s) => s,
+        Err(e) => {
+            writeln!(out, "re-run: FAILED: {e:#}")?;
+            writeln!(
+                out,
+                "verdict: DIFFERENT (the stored manifest does not run with this build)"
+            )?;
+            return Ok(false);
+        }
+    };
+    writeln!(
+        out,
+        "re-run: {} cases in {:.2} s",
+        summary.info.cases.total, summary.wall_s
+    )?;
+    writeln!(
+        out,
+        "comparing: float columns within |stored - recomputed| <= T * (1 + max(|stored|, |recomputed|)), \
+         T = {tolerance:e}; other columns exactly; timing columns (solve_time_us, *_ms, *_us) ignored; \
+         rows count from 0"
+    )?;
+
+    let (stored_files, _) = archive::run_files(dir)?;
+    let (rerun_files, _) = archive::run_files(&summary.dir)?;
+    let is_parquet = |rel: &str| rel.ends_with(".parquet");
+    let mut compared = 0;
+    let mut differing = 0;
+    for f in stored_files.iter().filter(|f| is_parquet(&f.rel)) {
+        compared += 1;
+        let recomputed = summary.dir.join(&f.rel);
+        let agrees = compare_file(&f.rel, &f.path, &recomputed, tolerance, out)?;
+        if !agrees {
+            differing += 1;
+        }
+    }
+    for f in rerun_files.iter().filter(|f| is_parquet(&f.rel)) {
+        if !stored_files.iter().any(|s| s.rel == f.rel) {
+            writeln!(
+                out,
+                "{}: written by this build but not stored; not compared",
+                f.rel
+            )?;
+        }
+    }
+    if differing == 0 {
+        writeln!(
+            out,
+            "verdict: OK: all {compared} Parquet files agree with the re-run"
+        )?;
+        Ok(true)
+    } else {
+        writeln!(
+            out,
+            "verdict: DIFFERENT: {differing} of {compared} Parquet files differ from the re-run"
+        )?;
+        Ok(false)
+    }
+}
+
+/// Compares one stored Parquet file with its recomputed counterpart and prints the verdicts.
+fn compare_file(
+    rel: &str,
+    stored: &Path,
+    recomputed: &Path,
+    tolerance: f64,
+    out: &mut dyn Write,
+) -> Result<bool> {
+    if !recomputed.is_file() {
+        writeln!(out, "{rel}: different: not written by the re-run")?;
+        return Ok(false);
+    }
+    let s = match store::read_table(stored) {
+        Ok(t) => t,
+        Err(e) => {
+            writeln!(
+                out,
+                "{rel}: different: the stored file cannot be read: {e:#}"
+            )?;
+            return Ok(false);
+        }
+    };
+    let r = store::read_table(recomputed)
+        .with_context(|| format!("cannot read the recomputed {rel}"))?;
+    let c = compare_tables(&s, &r, tolerance);
+    print_comparison(rel, &c, out)?;
+    Ok(c.agrees())
+}
+
+fn print_comparison(rel: &str, c: &TableComparison, out: &mut dyn Write) -> Result<()> {
+    let verdict = if c.agrees() { "agrees" } else { "DIFFERENT" };
+    if c.stored_rows == c.recomputed_rows {
+        writeln!(out, "{rel}: {verdict} ({} rows)", c.stored_rows)?;
+    } else {
+        writeln!(
+            out,
+            "{rel}: {verdict}: row count differs: stored {}, recomputed {} (columns compared over the first {})",
+            c.stored_rows,
+            c.recomputed_rows,
+            c.stored_rows.min(c.recomputed_rows)
+        )?;
+    }
+    if !c.same_column_order {
+        writeln!(out, "  the column order differs")?;
+    }
+    let width = c.columns.iter().map(|x| x.name.len()).max().unwrap_or(0);
+    for col in &c.columns {
+        let text = match &col.verdict {
+            ColumnVerdict::Identical => "identical".to_string(),
+            ColumnVerdict::WithinTolerance { max_abs_diff } => {
+                format!("within tolerance (max difference {max_abs_diff:.3e})")
+            }
+            ColumnVerdict::Ignored => "ignored (timing)".to_string(),
+            ColumnVerdict::MissingFromRerun => "different: missing from the re-run".to_string(),
+            ColumnVerdict::NotStored => "different: not in the stored table".to_string(),
+            ColumnVerdict::TypeChanged { stored, recomputed } => {
+                format!("different: type stored {stored}, recomputed {recomputed}")
+            }
+            ColumnVerdict::Different {
+                rows_differing,
+                max_abs_diff,
+                ..
+            } => {
+                let n = c.stored_rows.min(c.recomputed_rows);
+                match max_abs_diff {
+                    Some(d) => format!(
+                        "different in {rows_differing} of {n} rows (max difference {d:.3e})"
+                    ),
+                    None => format!("different in {rows_differing} of {n} rows"),
+                }
+            }
+        };
+        writeln!(out, "  {:width$}  {text}", col.name)?;
+        if let ColumnVerdict::Different { first, .. } = &col.verdict {
+            for d in first {
+                writeln!(
+                    out,
+                    "      row {}: stored {}, recomputed {}",
+                    d.row, d.stored, d.recomputed
+                )?;
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,286 @@
+//! `archstudy run` and `archstudy check`: results agree with `solve`, determinism across
+//! thread counts, the Parquet schema, and bad manifests.
+
+use crate::common::{archstudy, manifest, scratch, solve_json, stderr, stdout};
+use archstudy::store;
+use std::path::Path;
+
+const SMALL: &str = "name: small
+grid:
+  k: {from: 1.05, to: 1.5, steps: 19}
+  mu: {values: [0.2, 0.3, 0.309215444331, 0.35, 0.395265252140, 0.5, inf]}
+";
+
+fn run(dir: &Path, manifest_path: &Path, extra: &[&str]) -> std::process::Output {
+    let out = dir.join("out");
+    let mut args = vec![
+        "run",
+        manifest_path.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ];
+    args.extend_from_slice(extra);
+    archstudy(&args)
+}
+
+#[test]
+fn regimes_agree_with_solve_and_the_exact_boundaries() {
+    let dir = scratch("agree");
+    let m = manifest(&dir, "small.yaml", SMALL);
+    let o = run(&dir, &m, &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let df = store::read_parquet(&dir.join("out/small/results.parquet")).unwrap();
+    assert_eq!(df.height(), 19 * 7);
+    let k = store::f64_column(&df, "k").unwrap();
+    let mu = store::f64_column(&df, "mu").unwrap();
+    let regime = store::str_column(&df, "regime").unwrap();
+    let lo = store::f64_column(&df, "thrust_r_min").unwrap();
+    for i in (0..df.height()).step_by(5) {
+        let (k, mu) = (k[i].unwrap(), mu[i].unwrap());
+        let mu_arg = if mu.is_infinite() {
+            "inf".to_string()
+        } else {
+            format!("{mu:?}")
+        };
+        let v = solve_json(&["--k", &format!("{k:?}"), "--mu", &mu_arg]);
+        assert_eq!(
+            v["regime"].as_str(),
+            regime[i].as_deref(),
+            "K = {k}, μ = {mu}"
+        );
+        assert_eq!(v["thrust_r_min"].as_f64(), lo[i], "K = {k}, μ = {mu}");
+    }
+    // The exact regime boundaries of the paper's case.
+    let (kc, mu_min, mu_rot) = (1.113581813339, 0.309215444330, 0.395265252140);
+    for i in 0..df.height() {
+        let (k, mu) = (k[i].unwrap(), mu[i].unwrap());
+        let expected = if mu < mu_min - 1e-12 {
+            if k < kc { "none" } else { "sliding" }
+        } else if k < kc {
+            "rotational"
+        } else if mu >= mu_rot || k >= 1.220507754643 {
+            "stable"
+        } else {
+            // Between the bifurcations: stable iff above the mixed collapse curve.
+            let v = solve_json(&["--find", "thickness", "--mu", &format!("{mu:?}")]);
+            if k >= v["k_crit"].as_f64().unwrap() {
+                "stable"
+            } else {
+                "mixed"
+            }
+        };
+        assert_eq!(regime[i].as_deref(), Some(expected), "K = {k}, μ = {mu}");
+    }
+}
+
+#[test]
+fn one_and_two_threads_give_identical_results() {
+    let dir = scratch("jobs");
+    let text = "name: jobs\nfind: thickness\narch: {voussoirs: 24}\ngrid:\n  mu: {from: 0.3, to: 0.5, steps: 9}\n  half_angle_deg: {values: [60, 90, 120]}\n";
+    let m = manifest(&dir, "jobs.yaml", text);
+    let a = dir.join("a");
+    let b = dir.join("b");
+    for (out, jobs) in [(&a, "1"), (&b, "2")] {
+        let o = archstudy(&[
+            "run",
+            m.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--jobs",
+            jobs,
+            "--quiet",
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    let mut da = store::read_parquet(&a.join("jobs/results.parquet")).unwrap();
+    let mut db = store::read_parquet(&b.join("jobs/results.parquet")).unwrap();
+    let _ = da.drop_in_place("solve_time_us");
+    let _ = db.drop_in_place("solve_time_us");
+    assert!(
+        da.equals_missing(&db),
+        "results differ between --jobs 1 and --jobs 2"
+    );
+    assert_eq!(da.height(), 27);
+}
+
+#[test]
+fn parquet_schema_reads_back_with_documented_names_and_types() {
+    use polars::prelude::DataType;
+    let dir = scratch("schema");
+    let text = "name: schema\nfind: thickness\ngrid:\n  mu: {values: [0.25, 0.35, inf]}\n";
+    let m = manifest(&dir, "schema.yaml", text);
+    let o = run(&dir, &m, &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let df = store::read_parquet(&dir.join("out/schema/results.parquet")).unwrap();
+    let expect = [
+        ("case_id", DataType::UInt64),
+        ("load_case", DataType::String),
+        ("load_kind", DataType::String),
+        ("find", DataType::String),
+        ("k", DataType::Float64),
+        ("t_over_r", DataType::Float64),
+        ("mu", DataType::Float64),
+        ("half_angle_deg", DataType::Float64),
+        ("weight", DataType::String),
+        ("voussoirs", DataType::UInt32),
+        ("outcome", DataType::String),
+        ("regime", DataType::String),
+        ("thrust_r_min", DataType::Float64),
+        ("thrust_r_max", DataType::Float64),
+        ("thrust_s_min", DataType::Float64),
+        ("thrust_s_max", DataType::Float64),
+        ("k_crit", DataType::Float64),
+        ("t_over_r_crit", DataType::Float64),
+        ("mu_crit", DataType::Float64),
+        ("mechanism", DataType::String),
+        ("thrust_over_half_weight", DataType::Float64),
+        ("crown_moment", DataType::Float64),
+        (
+            "hinge_angles_deg",
+            DataType::List(Box::new(DataType::Float64)),
+        ),
+        ("hinge_faces", DataType::List(Box::new(DataType::String))),
+        (
+            "sliding_angles_deg",
+            DataType::List(Box::new(DataType::Float64)),
+        ),
+        ("sliding_senses", DataType::List(Box::new(DataType::String))),
+        ("thrust_min", DataType::Float64),
+        ("thrust_max", DataType::Float64),
+        (
+            "hinges_min_angles_deg",
+            DataType::List(Box::new(DataType::Float64)),
+        ),
+        (
+            "hinges_min_faces",
+            DataType::List(Box::new(DataType::String)),
+        ),
+        (
+            "hinges_max_angles_deg",
+            DataType::List(Box::new(DataType::Float64)),
+        ),
+        (
+            "hinges_max_faces",
+            DataType::List(Box::new(DataType::String)),
+        ),
+        ("status", DataType::String),
+        ("message", DataType::String),
+        ("solve_time_us", DataType::Float64),
+    ];
+    for (name, dtype) in &expect {
+        let c = df
+            .column(name)
+            .unwrap_or_else(|_| panic!("column {name} missing"));
+        assert_eq!(c.dtype(), dtype, "column {name}");
+    }
+    let k = store::f64_column(&df, "k_crit").unwrap();
+    assert!(k[0].is_none(), "μ = 0.25 < μ_min: no collapse thickness");
+    assert!((k[2].unwrap() - 1.113581813339).abs() < 1e-9);
+    let mech = store::str_column(&df, "mechanism").unwrap();
+    assert_eq!(mech[1].as_deref(), Some("mixed"));
+    let hinges = store::list_f64_column(&df, "hinge_angles_deg").unwrap();
+    assert_eq!(hinges[2].len(), 5);
+    let mu = store::f64_column(&df, "mu").unwrap();
+    assert!(mu[2].unwrap().is_infinite());
+    let info: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("out/schema/run.json")).unwrap()).unwrap();
+    for key in [
+        "manifest",
+        "manifest_sha256",
+        "archstudy_version",
+        "rustc_version",
+        "command_line",
+        "threads",
+        "started_at",
+        "finished_at",
+        "cases",
+        "stages",
+    ] {
+        assert!(info.get(key).is_some(), "run.json lacks {key}");
+    }
+    assert_eq!(info["cases"]["total"], 3);
+}
+
+#[test]
+fn bad_manifests_exit_2_with_a_located_message_and_write_nothing() {
+    let dir = scratch("bad");
+    let good_grid = "grid:\n  k: {from: 1.05, to: 1.5, steps: 5}\n  mu: {values: [0.3, inf]}\n";
+    let cases: Vec<(&str, String, &[&str])> = vec![
+        ("malformed", "name: x\ngrid: [unclosed\n".to_string(), &["malformed.yaml:"]),
+        ("unknown-key", format!("name: x\ncolour: red\n{good_grid}"), &["colour", ":2:"]),
+        ("wrong-type", "name: x\ngrid:\n  k: {from: one, to: 1.5, steps: 5}\n  mu: {values: [0.3]}\n".to_string(), &[":3:", "one"]),
+        ("empty-range", "name: x\ngrid:\n  k: {from: 1.2, to: 1.2, steps: 5}\n  mu: {values: [0.3]}\n".to_string(), &["grid.k", "empty", ":3:"]),
+        ("reversed-range", "name: x\ngrid:\n  k: {from: 1.5, to: 1.2, steps: 5}\n  mu: {values: [0.3]}\n".to_string(), &["grid.k.to", "reversed", ":3:"]),
+        ("zero-steps", "name: x\ngrid:\n  k: {from: 1.1, to: 1.2, steps: 0}\n  mu: {values: [0.3]}\n".to_string(), &["grid.k.steps", "value 0", ":3:"]),
+        ("dup-load-case", format!("name: x\n{good_grid}load_cases:\n  - {{name: g, kind: self_weight}}\n  - {{name: g, kind: self_weight}}\n"), &["load_cases.name", "duplicate", ":7:"]),
+        ("k-le-1", "name: x\ngrid:\n  k: {values: [1.2, 1.0]}\n  mu: {values: [0.3]}\n".to_string(), &["grid.k.values", "value 1", "greater than 1", ":3:"]),
+        ("negative-mu", "name: x\ngrid:\n  k: {values: [1.2]}\n  mu: {values: [0.3, -0.2]}\n".to_string(), &["grid.mu.values", "value -0.2", "≥ 0", ":4:"]),
+        ("nan-mu", "name: x\ngrid:\n  k: {values: [1.2]}\n  mu: {values: [.nan]}\n".to_string(), &["grid.mu.values", "NaN", ":4:"]),
+        ("thickness-with-k", "name: x\nfind: thickness\ngrid:\n  k: {values: [1.2]}\n  mu: {values: [0.3]}\n".to_string(), &["grid.k", "thickness"]),
+        ("friction-with-mu", "name: x\nfind: friction\ngrid:\n  k: {values: [1.2]}\n  mu: {values: [0.3]}\n".to_string(), &["grid.mu", "friction"]),
+        ("absurd-size", "name: x\ngrid:\n  k: {from: 1.1, to: 1.5, steps: 100000}\n  mu: {from: 0.1, to: 0.9, steps: 100000}\n".to_string(), &["10000000000 cases"]),
+    ];
+    for (name, text, needles) in cases {
+        let m = manifest(&dir, &format!("{name}.yaml"), &text);
+        let out = dir.join(format!("out-{name}"));
+        let o = archstudy(&[
+            "run",
+            m.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ]);
+        assert_eq!(o.status.code(), Some(2), "{name}: {}", stderr(&o));
+        let e = stderr(&o);
+        assert!(
+            e.contains(&format!("{name}.yaml")),
+            "{name}: message does not name the file: {e}"
+        );
+        for n in needles {
+            assert!(e.contains(n), "{name}: message lacks {n:?}: {e}");
+        }
+        assert!(!out.exists(), "{name}: output written");
+        let c = archstudy(&["check", m.to_str().unwrap()]);
+        assert_eq!(c.status.code(), Some(2), "{name}: check");
+    }
+    let missing = archstudy(&[
+        "run",
+        dir.join("nope.yaml").to_str().unwrap(),
+        "--out",
+        dir.join("o").to_str().unwrap(),
+    ]);
+    assert_eq!(missing.status.code(), Some(2));
+    assert!(stderr(&missing).contains("nope.yaml"));
+    assert!(!dir.join("o").exists());
+}
+
+#[test]
+fn check_prints_the_plan() {
+    let dir = scratch("check");
+    let m = manifest(&dir, "small.yaml", SMALL);
+    let o = archstudy(&["check", m.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = stdout(&o);
+    assert!(
+        s.contains("cases: 133")
+            && s.contains("axis k: 19 values")
+            && s.contains("axis mu: 7 values"),
+        "{s}"
+    );
+}
+
+#[test]
+fn a_rerun_replaces_the_earlier_run_and_leaves_no_staging_directory() {
+    let dir = scratch("rerun");
+    let m = manifest(&dir, "small.yaml", SMALL);
+    for _ in 0..2 {
+        let o = run(&dir, &m, &[]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    let entries: Vec<String> = std::fs::read_dir(dir.join("out"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(entries, vec!["small".to_string()]);
+}

@@ -1,0 +1,182 @@
+//! `archstudy solve`: the reference values, the JSON contract and bad input.
+
+use crate::common::{archstudy, solve_json, stderr, stdout};
+use serde_json::Value;
+
+fn f(v: &Value, key: &str) -> f64 {
+    v[key]
+        .as_f64()
+        .unwrap_or_else(|| panic!("{key} is not a number in {v}"))
+}
+
+#[test]
+fn reference_values_of_the_semicircular_arch() {
+    let t = solve_json(&["--find", "thickness"]);
+    assert!((f(&t, "k_crit") - 1.113581813339).abs() < 1e-9);
+    assert!((f(&t, "t_over_r_crit") - 0.107478038107).abs() < 1e-9);
+    assert!((f(&t, "thrust_over_half_weight") - 0.395265252140).abs() < 1e-9);
+    assert_eq!(t["mechanism"], "rotational");
+    let haunch = t["hinges"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|h| h["face"] == "intrados")
+        .unwrap();
+    assert!((haunch["angle_deg"].as_f64().unwrap().abs() - 54.48397403).abs() < 1e-6);
+
+    let m = solve_json(&["--find", "friction", "--k", "1.4"]);
+    assert!((f(&m, "mu_crit") - 0.309215444330).abs() < 1e-9);
+    assert_eq!(m["mechanism"], "sliding");
+    let angles: Vec<f64> = m["sliding_joints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|j| j["angle_deg"].as_f64().unwrap())
+        .collect();
+    assert!(
+        (angles[2] - 28.63619468).abs() < 1e-6 && (angles[3] - 90.0).abs() < 1e-9,
+        "{angles:?}"
+    );
+
+    let b = solve_json(&["--find", "thickness", "--mu", "0.309215444331"]);
+    assert!((f(&b, "k_crit") - 1.220507754643).abs() < 1e-8);
+    let r = solve_json(&["--find", "friction", "--k", "1.113581813339"]);
+    assert!((f(&r, "mu_crit") - 0.395265252140).abs() < 1e-9);
+    let th = solve_json(&["--find", "thrust", "--k", "1.35"]);
+    let h = th["hinges_min"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|h| h["face"] == "intrados")
+        .unwrap();
+    assert!((h["angle_deg"].as_f64().unwrap().abs() - 63.2903024).abs() < 1e-6);
+}
+
+#[test]
+fn the_papers_printed_digits_in_the_summary() {
+    let o = archstudy(&["solve", "--find", "thickness"]);
+    assert!(stdout(&o).contains("≈ 1.1136"), "{}", stdout(&o));
+    assert!(stdout(&o).contains("≈ 0.395"));
+    let o = archstudy(&["solve", "--find", "friction", "--k", "1.3"]);
+    let s = stdout(&o);
+    assert!(
+        s.contains("≈ 0.309") && s.contains("28.6362° inward") && s.contains("90.0000° outward"),
+        "{s}"
+    );
+    let o = archstudy(&["solve", "--find", "thickness", "--mu", "0.3092154443303"]);
+    assert!(stdout(&o).contains("≈ 1.2205"), "{}", stdout(&o));
+    let o = archstudy(&["solve", "--find", "thrust", "--k", "1.35"]);
+    assert!(stdout(&o).contains("63.2903° intrados"), "{}", stdout(&o));
+}
+
+#[test]
+fn json_has_the_documented_keys() {
+    let always = [
+        "find",
+        "k",
+        "t_over_r",
+        "mu",
+        "half_angle_deg",
+        "weight",
+        "voussoirs",
+        "solve_time_us",
+    ];
+    let per_find: [(&str, &[&str]); 4] = [
+        (
+            "state",
+            &[
+                "regime",
+                "thrust_r_min",
+                "thrust_r_max",
+                "thrust_s_min",
+                "thrust_s_max",
+            ],
+        ),
+        (
+            "thickness",
+            &[
+                "k_crit",
+                "t_over_r_crit",
+                "mechanism",
+                "thrust_over_half_weight",
+                "hinges",
+                "sliding_joints",
+            ],
+        ),
+        (
+            "friction",
+            &[
+                "mu_crit",
+                "mechanism",
+                "thrust_over_half_weight",
+                "hinges",
+                "sliding_joints",
+            ],
+        ),
+        (
+            "thrust",
+            &["thrust_min", "thrust_max", "hinges_min", "hinges_max"],
+        ),
+    ];
+    for (find, keys) in per_find {
+        let v = solve_json(&["--find", find, "--mu", "0.4"]);
+        for k in always.iter().chain(keys.iter()) {
+            assert!(v.get(*k).is_some(), "{find}: key {k} missing in {v}");
+        }
+    }
+    let v = solve_json(&["--find", "state"]);
+    assert!(v["mu"].is_null(), "infinite μ is null");
+    assert!(v["voussoirs"].is_null(), "continuum is null");
+    let v = solve_json(&[
+        "--find",
+        "state",
+        "--voussoirs",
+        "12",
+        "--t-over-r",
+        "0.2",
+        "--weight",
+        "centreline",
+    ]);
+    assert_eq!(v["voussoirs"], 12);
+    assert!((f(&v, "k") - 1.2222222222222223).abs() < 1e-15);
+    assert_eq!(v["weight"], "centreline");
+    let below = solve_json(&["--find", "thickness", "--mu", "0.2"]);
+    assert!(below["k_crit"].is_null());
+    assert_eq!(below["outcome"], "never_stands");
+}
+
+#[test]
+fn bad_input_exits_2_naming_option_value_and_allowed() {
+    let cases: [(&[&str], &str, &str); 8] = [
+        (&["--k", "1"], "--k", "greater than 1"),
+        (&["--k", "0.5"], "--k", "greater than 1"),
+        (&["--mu", "-0.1"], "--mu", "≥ 0"),
+        (&["--mu", "NaN"], "--mu", "≥ 0"),
+        (
+            &["--half-angle", "180"],
+            "--half-angle",
+            "between 0 and 180",
+        ),
+        (&["--half-angle", "0"], "--half-angle", "between 0 and 180"),
+        (&["--voussoirs", "0"], "--voussoirs", "≥ 1"),
+        (
+            &["--k", "1.2", "--t-over-r", "0.2"],
+            "--t-over-r",
+            "not both",
+        ),
+    ];
+    for (args, option, allowed) in cases {
+        let mut all = vec!["solve"];
+        all.extend_from_slice(args);
+        let o = archstudy(&all);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        let e = stderr(&o);
+        assert!(e.contains(option) && e.contains(allowed), "{args:?}: {e}");
+        assert!(
+            e.contains(args[1]) || e.contains(&args[args.len() - 1].to_string()),
+            "{args:?}: {e}"
+        );
+    }
+    let o = archstudy(&["solve", "--find", "everything"]);
+    assert_eq!(o.status.code(), Some(2));
+}
