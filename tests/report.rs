@@ -250,6 +250,7 @@ fn masked(md: &str) -> String {
         .map(|l| {
             for label in [
                 "| date |",
+                "| manifest |",
                 "| archstudy commit |",
                 "| rustc |",
                 "| archstudy version |",

@@ -83,12 +83,21 @@ pub fn domain_curves(arch: &Arch, friction: Friction) -> DomainCurves {
 }
 
 /// The line of thrust of a symmetric state with crown thrust h and crown moment m (over
-/// W_half and W_half·r): the point where it crosses each joint, in units of r, from the left
-/// springing to the right one. It crosses joint θ at radius ρ = −M/N with M = −m − s(θ) and
+/// W_half and W_half·r): the point where it crosses each radial section, in units of r, from
+/// the left springing to the right one. It crosses joint θ at radius ρ = −M/N with M = −m − s(θ) and
 /// N = h cos θ + w(θ) sin θ; joints where N ≤ 0 give NaN (no compressive resultant).
 pub fn line_of_thrust(arch: &Arch, h: f64, m: f64) -> Samples {
     let sym = SymmetricCircular::new(arch);
-    let half = sample_angles(&sym);
+    // Every section, not only the joints: the weight is distributed, so the line is curved
+    // within a voussoir too (a polygon through the joint points would cut the intrados).
+    let mut half: Vec<f64> = (0..=360)
+        .map(|i| sym.alpha * f64::from(i) / 360.0)
+        .collect();
+    if sym.voussoirs.is_some() {
+        half.extend(sym.half_joints());
+        half.sort_by(f64::total_cmp);
+        half.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
+    }
     let rho = |t: f64| {
         let n = h * t.cos() + sym.w(t) * t.sin();
         if n > 0.0 {

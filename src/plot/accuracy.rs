@@ -55,12 +55,13 @@ fn log_range(v: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
     })
 }
 
+/// Tick labels at powers of ten only (the other ticks stay unlabelled).
 fn sci(v: f64) -> String {
     let e = v.log10().round() as i32;
     if (v / 10f64.powi(e) - 1.0).abs() < 1e-9 {
         format!("1e{e}")
     } else {
-        format!("{v:.0e}")
+        String::new()
     }
 }
 
@@ -89,6 +90,7 @@ fn panel<DB: DrawingBackend>(
     let mut chart = ChartBuilder::on(area)
         .caption(title, ctx.font(15.0))
         .margin(ctx.px(10.0))
+        .margin_right(ctx.px(24.0))
         .x_label_area_size(ctx.px(48.0))
         .y_label_area_size(ctx.px(66.0))
         .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
@@ -152,7 +154,7 @@ impl Figure for AccuracyChart {
         ));
         let (upper, lower) = root.split_vertically(h as i32 - lh);
         style::draw_legend(&lower, ctx, &legend)?;
-        let upper = upper.titled(&self.title, ctx.font(17.0))?;
+        let upper = style::title(&upper, ctx, &self.title)?;
         let areas = upper.split_evenly((1, 2));
         let by_n: Vec<(String, Vec<(f64, f64)>)> = self
             .series

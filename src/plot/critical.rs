@@ -92,6 +92,7 @@ fn draw_panel<DB: DrawingBackend>(
     let mut chart = ChartBuilder::on(area)
         .caption(&p.title, ctx.font(15.0))
         .margin(ctx.px(10.0))
+        .margin_right(ctx.px(24.0))
         .x_label_area_size(ctx.px(48.0))
         .y_label_area_size(ctx.px(66.0))
         .build_cartesian_2d(x0..x1, y0..y1)?;
@@ -201,7 +202,7 @@ impl Figure for CriticalChart {
         ));
         let (upper, lower) = root.split_vertically(h as i32 - lh);
         style::draw_legend(&lower, ctx, &legend)?;
-        let upper = upper.titled(&self.title, ctx.font(17.0))?;
+        let upper = style::title(&upper, ctx, &self.title)?;
         let n = self.panels.len().max(1);
         let areas = upper.split_evenly((1, n));
         for (a, p) in areas.iter().zip(&self.panels) {

@@ -101,7 +101,7 @@ impl Figure for DomainsChart {
             .margin(ctx.px(10.0))
             .x_label_area_size(ctx.px(50.0))
             .y_label_area_size(ctx.px(72.0))
-            .right_y_label_area_size(ctx.px(110.0))
+            .margin_right(ctx.px(110.0))
             .build_cartesian_2d(x0..x1, y0..y1)?;
         let clamp = |v: f64| v.clamp(y0, y1);
         // Bands first, under everything.
@@ -173,8 +173,8 @@ impl Figure for DomainsChart {
         let mut placer = LabelPlacer::new((xr.end, yr.start, w as i32, yr.end));
         let brackets = [
             (self.h_r, "Hʳ", palette::ORANGE, 10.0),
-            (self.h_s, "Hˢ", palette::SKY, 34.0),
-            (both, "Hʳ ∩ Hˢ", palette::GREEN, 58.0),
+            (self.h_s, "Hˢ", palette::SKY, 30.0),
+            (both, "Hʳ ∩ Hˢ", palette::GREEN, 50.0),
         ];
         let font = ctx.font(13.0).pos(Pos::new(HPos::Left, VPos::Center));
         for (range, label, color, off) in brackets {

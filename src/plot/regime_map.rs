@@ -182,10 +182,9 @@ impl Figure for RegimeMap {
         let mut chart = ChartBuilder::on(&upper)
             .caption(&self.title, ctx.font(17.0))
             .margin(ctx.px(10.0))
-            .margin_right(ctx.px(4.0))
+            .margin_right(ctx.px(86.0))
             .x_label_area_size(ctx.px(50.0))
             .y_label_area_size(ctx.px(72.0))
-            .right_y_label_area_size(ctx.px(76.0))
             .build_cartesian_2d(mu0..mu1, k0..k1)?;
         // Regions: runs of equal regime along each K row, slightly overlapped to avoid seams.
         let (me, ke) = (edges(&self.mu), edges(&self.k));
@@ -257,7 +256,7 @@ impl Figure for RegimeMap {
             .pos(Pos::new(HPos::Center, VPos::Bottom));
         root.draw(&Text::new(
             "thickness t/R_c".to_string(),
-            (x_axis + ctx.px(62.0), (yr.start + yr.end) / 2),
+            (x_axis + ctx.px(72.0), (yr.start + yr.end) / 2),
             desc,
         ))?;
 
@@ -296,6 +295,35 @@ impl Figure for RegimeMap {
         for p in &pts {
             let r = ctx.px(9.0);
             placer.block((p.0 - r, p.1 - r, p.0 + r, p.1 + r));
+        }
+        // Keep labels off the curves: block a thin box around every piece of them.
+        let pad = ctx.px(4.0);
+        let curves = self
+            .collapse
+            .iter()
+            .map(|s| &s.points)
+            .chain(self.other_boundaries.iter());
+        for line in curves {
+            for piece in clip_polyline(line, window.0, window.1) {
+                for w in piece.windows(2) {
+                    let (a, b) = (chart.backend_coord(&w[0]), chart.backend_coord(&w[1]));
+                    // Short pieces, so that a diagonal blocks a band and not its bounding box.
+                    let n = ((a.0 - b.0).abs().max((a.1 - b.1).abs()) / pad.max(1)).max(1);
+                    for i in 0..n {
+                        let p = (a.0 + (b.0 - a.0) * i / n, a.1 + (b.1 - a.1) * i / n);
+                        let q = (
+                            a.0 + (b.0 - a.0) * (i + 1) / n,
+                            a.1 + (b.1 - a.1) * (i + 1) / n,
+                        );
+                        placer.block((
+                            p.0.min(q.0) - pad,
+                            p.1.min(q.1) - pad,
+                            p.0.max(q.0) + pad,
+                            p.1.max(q.1) + pad,
+                        ));
+                    }
+                }
+            }
         }
         let ann_font = ctx.font(12.5);
         for (b, p) in self.bifurcations.iter().zip(&pts) {
@@ -369,30 +397,39 @@ impl Figure for RegimeMap {
         for (name, i, j, _) in label_cells(self, dxp, dyp) {
             let c = chart.backend_coord(&(self.mu[i], self.k[j]));
             let [l1, l2] = region_label(&name);
-            let lines = [l1.to_string(), l2.to_string()];
-            let (w1, h1) = style::text_block_size(&reg_font, &lines[..1], 1.2);
-            let (w2, h2) = style::text_block_size(&sub_font, &lines[1..], 1.2);
-            let (bw, bh) = (w1.max(w2), h1 + h2);
+            let (w1, h1) = style::text_block_size(&reg_font, &[l1.to_string()], 1.2);
+            let (w2, h2) = style::text_block_size(&sub_font, &[l2.to_string()], 1.2);
             let g = ctx.px(6.0);
-            let at = placer.place(
-                bw,
-                bh,
-                &[
+            let cands = |bw: i32, bh: i32| {
+                [
                     (c.0 - bw / 2, c.1 - bh / 2),
                     (c.0 - bw / 2, c.1 - bh - g),
                     (c.0 - bw / 2, c.1 + g),
                     (c.0 + g, c.1 - bh / 2),
                     (c.0 - bw - g, c.1 - bh / 2),
-                ],
-            );
+                ]
+            };
+            // The name and its condition; the name alone where both do not fit.
+            let (bw, bh) = (w1.max(w2), h1 + h2);
+            let (at, both) = match placer.try_place(bw, bh, &cands(bw, bh)) {
+                Some(at) => (at, true),
+                // Where even the name does not fit, it goes at the region's centre anyway: an
+                // unnamed region is worse than a tight label.
+                None => match placer.try_place(w1, h1, &cands(w1, h1)) {
+                    Some(at) => (at, false),
+                    None => (placer.place(w1, h1, &cands(w1, h1)[..1]), false),
+                },
+            };
             let top = Pos::new(HPos::Center, VPos::Top);
-            let mid = at.0 + bw / 2;
-            root.draw(&Text::new(lines[0].clone(), (mid, at.1), reg_font.pos(top)))?;
-            root.draw(&Text::new(
-                lines[1].clone(),
-                (mid, at.1 + h1),
-                sub_font.pos(top),
-            ))?;
+            let mid = at.0 + if both { bw / 2 } else { w1 / 2 };
+            root.draw(&Text::new(l1.to_string(), (mid, at.1), reg_font.pos(top)))?;
+            if both {
+                root.draw(&Text::new(
+                    l2.to_string(),
+                    (mid, at.1 + h1),
+                    sub_font.pos(top),
+                ))?;
+            }
         }
         Ok(())
     }

@@ -163,14 +163,14 @@ impl Figure for StateDrawing {
             let rad = t.to_radians();
             let tang = (rad.cos(), -rad.sin());
             let crown_side = if *t >= 0.0 { -1.0 } else { 1.0 };
-            let off = 0.22 * thick.max(0.15);
+            let off = 0.3 * thick.max(0.15);
             let c = at(mid, *t);
             let c = (
                 c.0 + crown_side * off * tang.0,
                 c.1 + crown_side * off * tang.1,
             );
             let dir = if sense == "outward" { 1.0 } else { -1.0 };
-            let len = 0.32 * thick.max(0.15);
+            let len = 0.6 * thick.max(0.15);
             let n = (rad.sin(), rad.cos());
             let a0 = (c.0 - dir * 0.5 * len * n.0, c.1 - dir * 0.5 * len * n.1);
             let a1 = (c.0 + dir * 0.5 * len * n.0, c.1 + dir * 0.5 * len * n.1);
@@ -190,6 +190,26 @@ impl Figure for StateDrawing {
                     piece,
                     palette::RED.stroke_width(ctx.upx(2.4)),
                 ))?;
+            }
+        }
+        // Pressure points at the joints of a discrete arch: only there is the line bound to
+        // the section; within a voussoir it may leave it.
+        if !self.voussoir_joints_deg.is_empty() {
+            for &(x, y) in &self.line_of_thrust {
+                let t = x.atan2(y).to_degrees();
+                if self
+                    .voussoir_joints_deg
+                    .iter()
+                    .any(|j| (j - t).abs() < 1e-6)
+                {
+                    let c = chart.backend_coord(&(x, y));
+                    root.draw(&Circle::new(c, ctx.upx(3.5), WHITE.filled()))?;
+                    root.draw(&Circle::new(
+                        c,
+                        ctx.upx(3.5),
+                        palette::RED.stroke_width(ctx.upx(1.5)),
+                    ))?;
+                }
             }
         }
         // Hinges.
@@ -217,17 +237,14 @@ impl Figure for StateDrawing {
             .sliding
             .iter()
             .all(|(t, _)| self.sliding.iter().any(|(u, _)| (u + t).abs() < 1e-6));
-        let mut labelled: Vec<(f64, f64)> = Vec::new();
+        let mut labelled: Vec<f64> = Vec::new();
         let font = ctx.font(12.5);
         let mut label = |t: f64, radius_out: f64, color: RGBColor| -> DrawResult<(), DB> {
-            if (symmetric && t < -1e-9)
-                || labelled
-                    .iter()
-                    .any(|&(u, r)| (u - t).abs() < 1e-6 && (r - radius_out).abs() < 1e-9)
-            {
+            // One label per joint, on the right half when the state is symmetric.
+            if (symmetric && t < -1e-9) || labelled.iter().any(|&u| (u - t).abs() < 1e-6) {
                 return Ok(());
             }
-            labelled.push((t, radius_out));
+            labelled.push(t);
             let text = format!("{:.1}°", t);
             let (tw, th) = style::text_block_size(&font, std::slice::from_ref(&text), 1.0);
             let p = chart.backend_coord(&at(radius_out, t));
@@ -248,13 +265,13 @@ impl Figure for StateDrawing {
             ))?;
             Ok(())
         };
-        let gap = 0.13 * k;
+        let gap = 0.09 * k;
         for (t, f) in &self.hinges {
             let r = if f == "intrados" { 1.0 - gap } else { k + gap };
             label(*t, r, palette::INK)?;
         }
         for (t, _) in &self.sliding {
-            label(*t, k + 1.6 * gap, palette::SLIDING_LINE)?;
+            label(*t, k + gap, palette::SLIDING_LINE)?;
         }
         if let Some(note) = &self.note {
             let f = ctx.font(14.0).pos(Pos::new(HPos::Center, VPos::Center));
@@ -277,6 +294,12 @@ impl StateDrawing {
                     dashed: false,
                 },
             ));
+            if !self.voussoir_joints_deg.is_empty() {
+                items.push(LegendItem::new(
+                    "its point on a joint",
+                    Mark::Ring(palette::RED),
+                ));
+            }
         }
         if !self.hinges.is_empty() {
             items.push(LegendItem::new(

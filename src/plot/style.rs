@@ -133,6 +133,8 @@ pub enum Mark {
     Dot(RGBColor),
     /// An open diamond.
     Diamond(RGBColor),
+    /// An open circle.
+    Ring(RGBColor),
     /// An arrow.
     Arrow(RGBColor),
 }
@@ -259,6 +261,14 @@ fn draw_mark<DB: DrawingBackend>(
         }
         Mark::Dot(c) => dot(area, ctx, p(x + LEGEND_SAMPLE / 2.0, y), 5.0, *c)?,
         Mark::Diamond(c) => diamond(area, ctx, p(x + LEGEND_SAMPLE / 2.0, y), 6.0, *c)?,
+        Mark::Ring(c) => {
+            let centre = p(x + LEGEND_SAMPLE / 2.0, y);
+            area.draw(&Circle::new(
+                centre,
+                ctx.upx(3.5),
+                c.stroke_width(ctx.upx(1.5)),
+            ))?;
+        }
         Mark::Arrow(c) => arrow(
             area,
             ctx,
@@ -442,6 +452,21 @@ impl LabelPlacer {
         self.taken.push(b);
     }
 
+    /// The first free position among `candidates` (top-left corners) for a `w` × `h` box,
+    /// taken; `None` when every candidate is blocked or out of bounds.
+    pub fn try_place(&mut self, w: i32, h: i32, candidates: &[(i32, i32)]) -> Option<(i32, i32)> {
+        let b = candidates
+            .iter()
+            .map(|&(x, y)| (x, y, x + w, y + h))
+            .find(|b| self.fits(b) && !self.taken.iter().any(|t| overlaps(t, b)))?;
+        self.taken.push(b);
+        Some((b.0, b.1))
+    }
+
+    fn fits(&self, b: &PixelBox) -> bool {
+        b.0 >= self.bounds.0 && b.1 >= self.bounds.1 && b.2 <= self.bounds.2 && b.3 <= self.bounds.3
+    }
+
     /// The top-left corner for a `w` × `h` box among `candidates` (top-left corners), or the
     /// first candidate clamped into the bounds when none is free.
     pub fn place(&mut self, w: i32, h: i32, candidates: &[(i32, i32)]) -> (i32, i32) {
@@ -516,8 +541,24 @@ pub fn draw_text_block<DB: DrawingBackend>(
 
 /// Decimals that resolve ticks over a span of `span`.
 pub fn decimals_for(span: f64) -> usize {
-    let step = nice_step(span, 6);
+    let step = nice_step(span, 12);
     (-step.log10().floor()).max(0.0) as usize
+}
+
+/// Draws a title centred at the top of `area` and returns the area below it.
+pub fn title<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    ctx: &PlotContext,
+    text: &str,
+) -> Result<DrawingArea<DB, Shift>, DrawingAreaErrorKind<DB::ErrorType>> {
+    let (w, _) = area.dim_in_pixel();
+    let f = ctx.font(17.0).pos(Pos::new(HPos::Center, VPos::Top));
+    area.draw(&Text::new(
+        text.to_string(),
+        (w as i32 / 2, ctx.px(10.0)),
+        f,
+    ))?;
+    Ok(area.margin(ctx.px(38.0), 0, 0, 0))
 }
 
 /// A "nice" tick step for a range, giving about `n` ticks.

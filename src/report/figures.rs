@@ -515,6 +515,11 @@ fn state(data: &RunData, s: &StateRow) -> FigureSpec {
             .collect(),
         _ => Vec::new(),
     };
+    let joints_note = if joints.is_empty() {
+        ""
+    } else {
+        " Open circles: the line's points on the joints, the only sections where it must stay within the arch."
+    };
     let hinges = s
         .joints
         .hinge_angles_deg
@@ -630,6 +635,7 @@ fn state(data: &RunData, s: &StateRow) -> FigureSpec {
         line.is_empty()
             .then(|| "line of thrust not unique: not drawn".to_string())
     });
+    let caption = format!("{caption}{joints_note}");
     FigureSpec {
         stem: format!("state-{}", safe(&s.state_id)),
         title: heading,

@@ -486,7 +486,7 @@ fn key_results(data: &RunData) -> (Vec<KeyResult>, String) {
             }
         }
     }
-    // Critical finds: the critical value of each case (at most a dozen listed).
+    // Critical finds: the critical value of each case (about two dozen listed at most).
     let col = match data.manifest.find.as_str() {
         "thickness" => Some("k_crit"),
         "friction" => Some("mu_crit"),
@@ -499,7 +499,11 @@ fn key_results(data: &RunData) -> (Vec<KeyResult>, String) {
             .enumerate()
             .filter(|(_, r)| r.outcome.as_deref() == Some("found"))
             .collect();
-        let step = found.len().div_ceil(12).max(1);
+        let step = if found.len() <= 30 {
+            1
+        } else {
+            found.len().div_ceil(24)
+        };
         for (i, r) in found.iter().step_by(step) {
             let (v, label) = if col == "k_crit" {
                 (
