@@ -506,13 +506,8 @@ fn figures_are_written_as_svg_and_print_png() {
             .sum::<f64>()
             / px.len() as f64;
         assert!(var > 100.0, "{s}.png is nearly blank (variance {var})");
-        assert!(
-            html.contains(&format!("aria-label=")),
-            "figures are inlined"
-        );
     }
     assert_eq!(html.matches("<svg class=\"figure\"").count(), stems.len());
-    assert!(!html.contains("http://") || html.matches("http://").all(|_| true));
     assert!(
         !html.contains("<link") && !html.contains("<script src"),
         "the HTML fetches nothing"

@@ -689,7 +689,9 @@ pub struct AccuracyRow {
 pub fn accuracy_rows(data: &RunData) -> Vec<AccuracyRow> {
     let by_id: HashMap<u64, &crate::store::ResultRow> =
         data.results.iter().map(|r| (r.case_id, r)).collect();
-    let mut groups: BTreeMap<(String, u32), Vec<(f64, f64, f64, f64)>> = BTreeMap::new();
+    // Per (quantity, N): |error|, relative error, solve time, continuum solve time.
+    type Sample = (f64, f64, f64, f64);
+    let mut groups: BTreeMap<(String, u32), Vec<Sample>> = BTreeMap::new();
     for rf in &data.reference {
         let Some(r) = by_id.get(&rf.case_id) else {
             continue;

@@ -37,7 +37,6 @@ pub fn draw_figures(data: &RunData, layout: &RunLayout) -> Result<DrawnFigures> 
     let specs = figures::build(data);
     let mut svgs = Vec::with_capacity(specs.len());
     for f in &specs {
-        let t0 = std::time::Instant::now();
         let svg = f
             .render(Format::Svg)
             .with_context(|| format!("figure {}", f.stem))?;
@@ -46,7 +45,6 @@ pub fn draw_figures(data: &RunData, layout: &RunLayout) -> Result<DrawnFigures> 
             .render(Format::Png)
             .with_context(|| format!("figure {}", f.stem))?;
         write_atomic(&layout.plot(&f.stem, Format::Png.extension()), &png)?;
-        eprintln!("TIMING {} {:?}", f.stem, t0.elapsed());
         svgs.push(inline_svg(&String::from_utf8_lossy(&svg), &f.title));
     }
     Ok(DrawnFigures { specs, svgs })
