@@ -10,6 +10,7 @@ use crate::model::{k_from_t_over_r, t_over_r_from_k};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
+use std::collections::BTreeMap;
 
 /// A run of the collapse curve with one mechanism.
 #[derive(Debug, Clone, PartialEq)]
@@ -191,26 +192,40 @@ impl Figure for RegimeMap {
         let (xr, yr) = chart.plotting_area().get_pixel_range();
         let px_mu = (mu1 - mu0) / f64::from((xr.end - xr.start).max(1));
         let px_k = (k1 - k0) / f64::from((yr.end - yr.start).max(1));
+        // Runs of equal regime along each K row, merged with identical runs of the rows
+        // above into one rectangle (fewer elements, no seams between rows).
         let nx = self.mu.len();
+        let mut open: BTreeMap<(usize, usize, String), usize> = BTreeMap::new();
         let mut rects = Vec::new();
-        for j in 0..self.k.len() {
+        let mut close = |(i0, i1, name): (usize, usize, String), j0: usize, j1: usize| {
+            let x1 = (me[i1] + px_mu).min(mu1);
+            let y1 = (ke[j1] + px_k).min(k1);
+            rects.push(Rectangle::new(
+                [(me[i0], ke[j0]), (x1, y1)],
+                palette::regime(&name).filled(),
+            ));
+        };
+        for j in 0..=self.k.len() {
+            let mut runs = Vec::new();
             let mut i = 0;
-            while i < nx {
-                let r = self.regimes[j * nx + i].clone();
+            while j < self.k.len() && i < nx {
+                let r = &self.regimes[j * nx + i];
                 let start = i;
-                while i < nx && self.regimes[j * nx + i] == r {
+                while i < nx && &self.regimes[j * nx + i] == r {
                     i += 1;
                 }
                 if let Some(name) = r {
-                    let x0 = me[start];
-                    let x1 = (me[i] + px_mu).min(mu1);
-                    let y0 = ke[j];
-                    let y1 = (ke[j + 1] + px_k).min(k1);
-                    rects.push(Rectangle::new(
-                        [(x0, y0), (x1, y1)],
-                        palette::regime(&name).filled(),
-                    ));
+                    runs.push((start, i, name.clone()));
                 }
+            }
+            let ended: Vec<_> = open.keys().filter(|k| !runs.contains(k)).cloned().collect();
+            for key in ended {
+                if let Some(j0) = open.remove(&key) {
+                    close(key, j0, j);
+                }
+            }
+            for run in runs {
+                open.entry(run).or_insert(j);
             }
         }
         chart.draw_series(rects)?;
