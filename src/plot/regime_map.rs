@@ -32,6 +32,19 @@ pub struct BifurcationMark {
     pub lines: Vec<String>,
 }
 
+/// A located regime change on a grid line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Crossing {
+    /// The grid value of the other parameter (K for a change along μ).
+    pub fixed: f64,
+    /// Where the change is.
+    pub at: f64,
+    /// Regime on the smaller side.
+    pub low: String,
+    /// Regime on the larger side.
+    pub high: String,
+}
+
 /// What the regime map shows.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RegimeMap {
@@ -41,8 +54,15 @@ pub struct RegimeMap {
     pub mu: Vec<f64>,
     /// Grid K values, increasing.
     pub k: Vec<f64>,
-    /// Regime names per cell, K-major: `regimes[ik * mu.len() + imu]` (None: no value).
+    /// Regime names per grid point, K-major: `regimes[ik * mu.len() + imu]` (None: no
+    /// value).
     pub regimes: Vec<Option<String>>,
+    /// Located regime changes along μ at a grid K (every boundary point, so that the
+    /// coloured regions meet where the boundaries were located, not half-way between grid
+    /// points).
+    pub crossings_along_mu: Vec<Crossing>,
+    /// Located regime changes along K at a grid μ.
+    pub crossings_along_k: Vec<Crossing>,
     /// The collapse curve, by mechanism.
     pub collapse: Vec<CollapseSegment>,
     /// Other regime boundaries (not on the collapse curve), as polylines (μ, K).
@@ -59,19 +79,8 @@ fn region_label(regime: &str) -> [&'static str; 2] {
         "rotational" => ["ROTATIONAL", "Hʳ = ∅"],
         "mixed" => ["MIXED", "Hʳ ∩ Hˢ = ∅"],
         "sliding" => ["SLIDING", "Hˢ = ∅"],
-        _ => ["NO EQUILIBRIUM", "Hʳ = Hˢ = ∅"],
+        _ => ["NONE", "Hʳ = Hˢ = ∅"],
     }
-}
-
-fn edges(v: &[f64]) -> Vec<f64> {
-    let n = v.len();
-    let mut e = Vec::with_capacity(n + 1);
-    e.push(v[0]);
-    for w in v.windows(2) {
-        e.push(0.5 * (w[0] + w[1]));
-    }
-    e.push(v[n - 1]);
-    e
 }
 
 /// For each regime, the cell farthest (in plot pixels) from any other regime or the border:
@@ -127,12 +136,26 @@ fn label_cells(m: &RegimeMap, dx: f64, dy: f64) -> Vec<(String, usize, usize, f6
             }
         }
     }
+    // Among the cells nearly as deep as the deepest, the one nearest the region's centroid
+    // (a wide region has a whole ridge of deepest cells).
     let mut out = Vec::new();
     for name in REGIME_ORDER {
-        let best = (0..nx * ny)
+        let cells: Vec<usize> = (0..nx * ny)
             .filter(|&c| m.regimes[c].as_deref() == Some(name))
-            .max_by(|&a, &b| d[a].total_cmp(&d[b]));
-        if let Some(c) = best {
+            .collect();
+        if cells.is_empty() {
+            continue;
+        }
+        let n = cells.len() as f64;
+        let cx = cells.iter().map(|&c| (c % nx) as f64).sum::<f64>() / n;
+        let cy = cells.iter().map(|&c| (c / nx) as f64).sum::<f64>() / n;
+        let deepest = cells.iter().map(|&c| d[c]).fold(0.0, f64::max);
+        let off = |c: usize| ((c % nx) as f64 - cx).abs() * dx + ((c / nx) as f64 - cy).abs() * dy;
+        if let Some(&c) = cells
+            .iter()
+            .filter(|&&c| d[c] >= 0.9 * deepest)
+            .min_by(|&&a, &&b| off(a).total_cmp(&off(b)))
+        {
             out.push((name.to_string(), c % nx, c / nx, d[c]));
         }
     }
@@ -187,35 +210,43 @@ impl Figure for RegimeMap {
             .x_label_area_size(ctx.px(50.0))
             .y_label_area_size(ctx.px(72.0))
             .build_cartesian_2d(mu0..mu1, k0..k1)?;
-        // Regions: runs of equal regime along each K row, slightly overlapped to avoid seams.
-        let (me, ke) = (edges(&self.mu), edges(&self.k));
+        // Regions on a raster of about 2 design pixels, as runs of equal regime along each
+        // row merged with identical runs of the rows above into one rectangle (few
+        // elements, no seams between rows).
         let (xr, yr) = chart.plotting_area().get_pixel_range();
+        let nxr = ((f64::from(xr.end - xr.start) / ctx.scale / 2.0).ceil() as usize).max(2);
+        let nyr = ((f64::from(yr.end - yr.start) / ctx.scale / 2.0).ceil() as usize).max(2);
+        let raster = self.raster(nxr, nyr);
+        let me: Vec<f64> = (0..=nxr)
+            .map(|i| mu0 + (mu1 - mu0) * i as f64 / nxr as f64)
+            .collect();
+        let ke: Vec<f64> = (0..=nyr)
+            .map(|j| k0 + (k1 - k0) * j as f64 / nyr as f64)
+            .collect();
         let px_mu = (mu1 - mu0) / f64::from((xr.end - xr.start).max(1));
         let px_k = (k1 - k0) / f64::from((yr.end - yr.start).max(1));
-        // Runs of equal regime along each K row, merged with identical runs of the rows
-        // above into one rectangle (fewer elements, no seams between rows).
-        let nx = self.mu.len();
-        let mut open: BTreeMap<(usize, usize, String), usize> = BTreeMap::new();
+        let nx = nxr;
+        let mut open: BTreeMap<(usize, usize, &str), usize> = BTreeMap::new();
         let mut rects = Vec::new();
-        let mut close = |(i0, i1, name): (usize, usize, String), j0: usize, j1: usize| {
+        let mut close = |(i0, i1, name): (usize, usize, &str), j0: usize, j1: usize| {
             let x1 = (me[i1] + px_mu).min(mu1);
             let y1 = (ke[j1] + px_k).min(k1);
             rects.push(Rectangle::new(
                 [(me[i0], ke[j0]), (x1, y1)],
-                palette::regime(&name).filled(),
+                palette::regime(name).filled(),
             ));
         };
-        for j in 0..=self.k.len() {
+        for j in 0..=nyr {
             let mut runs = Vec::new();
             let mut i = 0;
-            while j < self.k.len() && i < nx {
-                let r = &self.regimes[j * nx + i];
+            while j < nyr && i < nx {
+                let r = raster[j * nx + i];
                 let start = i;
-                while i < nx && &self.regimes[j * nx + i] == r {
+                while i < nx && raster[j * nx + i] == r {
                     i += 1;
                 }
                 if let Some(name) = r {
-                    runs.push((start, i, name.clone()));
+                    runs.push((start, i, name));
                 }
             }
             let ended: Vec<_> = open.keys().filter(|k| !runs.contains(k)).cloned().collect();
@@ -424,25 +455,35 @@ impl Figure for RegimeMap {
                     (c.0 - bw - g, c.1 - bh / 2),
                 ]
             };
-            // The name and its condition; the name alone where both do not fit.
             let (bw, bh) = (w1.max(w2), h1 + h2);
-            let (at, both) = match placer.try_place(bw, bh, &cands(bw, bh)) {
-                Some(at) => (at, true),
-                // Where even the name does not fit, it goes at the region's centre anyway: an
-                // unnamed region is worse than a tight label.
-                None => match placer.try_place(w1, h1, &cands(w1, h1)) {
-                    Some(at) => (at, false),
-                    None => (placer.place(w1, h1, &cands(w1, h1)[..1]), false),
-                },
-            };
+            // The name and its condition; else the name; else the name in a smaller font;
+            // else that at the region's centre anyway (an unnamed region is worse than a
+            // tight label).
+            let small = ctx.font_with(10.5, FontStyle::Bold);
+            let (w3, h3) = style::text_block_size(&small, &[l1.to_string()], 1.2);
             let top = Pos::new(HPos::Center, VPos::Top);
-            let mid = at.0 + if both { bw / 2 } else { w1 / 2 };
-            root.draw(&Text::new(l1.to_string(), (mid, at.1), reg_font.pos(top)))?;
-            if both {
+            if let Some(at) = placer.try_place(bw, bh, &cands(bw, bh)) {
+                let mid = at.0 + bw / 2;
+                root.draw(&Text::new(l1.to_string(), (mid, at.1), reg_font.pos(top)))?;
                 root.draw(&Text::new(
                     l2.to_string(),
                     (mid, at.1 + h1),
                     sub_font.pos(top),
+                ))?;
+            } else if let Some(at) = placer.try_place(w1, h1, &cands(w1, h1)) {
+                root.draw(&Text::new(
+                    l1.to_string(),
+                    (at.0 + w1 / 2, at.1),
+                    reg_font.pos(top),
+                ))?;
+            } else {
+                let at = placer
+                    .try_place(w3, h3, &cands(w3, h3))
+                    .unwrap_or_else(|| placer.place(w3, h3, &cands(w3, h3)[..1]));
+                root.draw(&Text::new(
+                    l1.to_string(),
+                    (at.0 + w3 / 2, at.1),
+                    small.pos(top),
                 ))?;
             }
         }
@@ -450,13 +491,110 @@ impl Figure for RegimeMap {
     }
 }
 
+/// Where regime `r` ends on the edge from grid value `a` (regime `ra`) to `b` (regime `rb`)
+/// at the other parameter's grid value `fixed`, as a fraction of the edge from `a`: the
+/// located change out of `r` nearest to its corner, else half-way.
+fn edge_fraction(
+    located: &[Crossing],
+    r: &str,
+    (fixed, a, b): (f64, f64, f64),
+    (ra, rb): (Option<&str>, Option<&str>),
+) -> f64 {
+    if ra == rb {
+        return 0.5;
+    }
+    let tol = 1e-12 * (1.0 + fixed.abs());
+    let on_edge = located
+        .iter()
+        .filter(|c| (c.fixed - fixed).abs() <= tol && c.at >= a.min(b) && c.at <= a.max(b));
+    let frac = |c: &Crossing| ((c.at - a) / (b - a)).clamp(0.0, 1.0);
+    let found = if ra == Some(r) {
+        on_edge
+            .filter(|c| c.low == r)
+            .map(frac)
+            .fold(None, |m: Option<f64>, f| Some(m.map_or(f, |m| m.min(f))))
+    } else if rb == Some(r) {
+        on_edge
+            .filter(|c| c.high == r)
+            .map(frac)
+            .fold(None, |m: Option<f64>, f| Some(m.map_or(f, |m| m.max(f))))
+    } else {
+        None
+    };
+    found.unwrap_or(0.5)
+}
+
+/// Piecewise-linear map of [0, 1] onto itself sending `c` to 1/2.
+fn warp(x: f64, c: f64) -> f64 {
+    if x <= c {
+        0.5 * x / c.max(1e-12)
+    } else {
+        0.5 + 0.5 * (x - c) / (1.0 - c).max(1e-12)
+    }
+}
+
 impl RegimeMap {
+    /// The regime at every cell centre of an `nx` × `ny` raster over the grid's range, K-major.
+    /// Within a grid cell whose corners differ, each regime gets the bilinear interpolation of
+    /// ±1 at the corners, in coordinates warped so that on every edge the interpolation
+    /// changes sign at the located boundary; the largest wins (marching squares with the
+    /// boundaries where they were found).
+    fn raster(&self, nx: usize, ny: usize) -> Vec<Option<&str>> {
+        let (m, k) = (&self.mu, &self.k);
+        let (mu0, mu1, k0, k1) = (m[0], m[m.len() - 1], k[0], k[k.len() - 1]);
+        let cell = |v: &[f64], x: f64| v.partition_point(|&g| g <= x).clamp(1, v.len() - 1) - 1;
+        let at = |i: usize, j: usize| self.regimes[j * m.len() + i].as_deref();
+        let mut out = Vec::with_capacity(nx * ny);
+        for jr in 0..ny {
+            let kk = k0 + (k1 - k0) * (jr as f64 + 0.5) / ny as f64;
+            let j = cell(k, kk);
+            let t = (kk - k[j]) / (k[j + 1] - k[j]);
+            for ir in 0..nx {
+                let mm = mu0 + (mu1 - mu0) * (ir as f64 + 0.5) / nx as f64;
+                let i = cell(m, mm);
+                let s = (mm - m[i]) / (m[i + 1] - m[i]);
+                let c = [at(i, j), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1)];
+                if c.iter().all(|r| *r == c[0]) {
+                    out.push(c[0]);
+                    continue;
+                }
+                let (xs, ks) = (&self.crossings_along_mu, &self.crossings_along_k);
+                let mut best = (f64::NEG_INFINITY, None);
+                for r in c.iter().flatten() {
+                    // Coordinates warped so that regime r's field changes sign where r ends.
+                    let bottom = edge_fraction(xs, r, (k[j], m[i], m[i + 1]), (c[0], c[1]));
+                    let top = edge_fraction(xs, r, (k[j + 1], m[i], m[i + 1]), (c[2], c[3]));
+                    let left = edge_fraction(ks, r, (m[i], k[j], k[j + 1]), (c[0], c[2]));
+                    let right = edge_fraction(ks, r, (m[i + 1], k[j], k[j + 1]), (c[1], c[3]));
+                    let sw = warp(s, bottom + (top - bottom) * t);
+                    let tw = warp(t, left + (right - left) * s);
+                    let w = [
+                        (1.0 - sw) * (1.0 - tw),
+                        sw * (1.0 - tw),
+                        (1.0 - sw) * tw,
+                        sw * tw,
+                    ];
+                    let f: f64 = c
+                        .iter()
+                        .zip(w)
+                        .map(|(q, wq)| if q == &Some(*r) { wq } else { -wq })
+                        .sum();
+                    if f > best.0 {
+                        best = (f, Some(*r));
+                    }
+                }
+                out.push(best.1);
+            }
+        }
+        out
+    }
+
     fn legend(&self) -> Vec<LegendItem> {
         let mut items = Vec::new();
         for name in REGIME_ORDER {
             if self.regimes.iter().any(|r| r.as_deref() == Some(name)) {
                 let label = match name {
-                    "none" => "no equilibrium",
+                    "none" => "none (no equilibrium)",
                     other => other,
                 };
                 items.push(LegendItem::new(label, Mark::Swatch(palette::regime(name))));

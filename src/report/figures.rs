@@ -8,7 +8,7 @@ use crate::figdata;
 use crate::plot::accuracy::{AccuracyChart, AccuracySeries};
 use crate::plot::critical::{CriticalChart, CriticalPanel, PointMark};
 use crate::plot::domains::{BoundCurve, BoundFamily, DomainsChart};
-use crate::plot::regime_map::{BifurcationMark, CollapseSegment, RegimeMap};
+use crate::plot::regime_map::{BifurcationMark, CollapseSegment, Crossing, RegimeMap};
 use crate::plot::state::StateDrawing;
 use crate::plot::{self, Format};
 use crate::store::{BoundaryRow, StateRow};
@@ -181,6 +181,22 @@ fn regime_map(data: &RunData, lc: &str, on: &str) -> Option<RegimeMap> {
         span,
     );
     let other = other_boundaries(&bounds);
+    let crossing = |b: &&BoundaryRow, fixed: f64, at: f64| Crossing {
+        fixed,
+        at,
+        low: b.regime_low.clone(),
+        high: b.regime_high.clone(),
+    };
+    let crossings_along_mu = bounds
+        .iter()
+        .filter(|b| b.axis == "mu")
+        .map(|b| crossing(b, b.k, b.mu))
+        .collect();
+    let crossings_along_k = bounds
+        .iter()
+        .filter(|b| b.axis == "k")
+        .map(|b| crossing(b, b.mu, b.k))
+        .collect();
     let bifurcations = bifs
         .iter()
         .map(|b| BifurcationMark {
@@ -202,6 +218,8 @@ fn regime_map(data: &RunData, lc: &str, on: &str) -> Option<RegimeMap> {
         mu,
         k,
         regimes,
+        crossings_along_mu,
+        crossings_along_k,
         collapse,
         other_boundaries: other,
         bifurcations,
