@@ -114,12 +114,7 @@ impl Figure for DomainsChart {
         if let Some(s) = self.h_s {
             chart.draw_series([band(s, palette::SKY, S_ALPHA)])?;
         }
-        let both = match (self.h_r, self.h_s) {
-            (Some(r), Some(s)) if r.0.max(s.0) <= r.1.min(s.1) => {
-                Some((r.0.max(s.0), r.1.min(s.1)))
-            }
-            _ => None,
-        };
+        let both = self.intersection();
         if let Some(b) = both {
             chart.draw_series([band(b, palette::GREEN, BOTH_ALPHA)])?;
             for y in [b.0, b.1] {
@@ -210,6 +205,16 @@ impl Figure for DomainsChart {
 }
 
 impl DomainsChart {
+    /// H^r ∩ H^s when not empty.
+    fn intersection(&self) -> Option<(f64, f64)> {
+        match (self.h_r, self.h_s) {
+            (Some(r), Some(s)) if r.0.max(s.0) <= r.1.min(s.1) => {
+                Some((r.0.max(s.0), r.1.min(s.1)))
+            }
+            _ => None,
+        }
+    }
+
     fn legend(&self) -> Vec<LegendItem> {
         let mut items: Vec<LegendItem> = self
             .curves
@@ -234,7 +239,9 @@ impl DomainsChart {
         if self.h_s.is_some() {
             items.push(LegendItem::new("Hˢ", Mark::Swatch(s)));
         }
-        items.push(LegendItem::new("Hʳ ∩ Hˢ", Mark::Swatch(both)));
+        if self.intersection().is_some() {
+            items.push(LegendItem::new("Hʳ ∩ Hˢ", Mark::Swatch(both)));
+        }
         items
     }
 }
