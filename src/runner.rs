@@ -254,6 +254,9 @@ pub fn run_study(opts: &RunOptions) -> Result<RunSummary> {
     store::write_parquet(&mut df, &layout.results())?;
     stages.store_ms = ms(t);
 
+    // The boundaries stage goes here: it writes boundaries.parquet and bifurcations.parquet
+    // and sets stages.boundaries_ms; the figures below read its tables.
+
     let ok = results.iter().filter(|r| r.status == Status::Ok).count() as u64;
     let mut info = RunInfo {
         name: plan.manifest.name.clone(),
@@ -276,9 +279,7 @@ pub fn run_study(opts: &RunOptions) -> Result<RunSummary> {
         stages,
         boundary_refinement_analyses: 0,
     };
-    // The boundaries stage (boundaries.parquet, bifurcations.parquet) runs here, before the
-    // figures, which read its tables.
-
+    // Figure data, figures and reports, from the stored files.
     publish(&plan, &layout, &mut info)?;
     let dir = staged.commit()?;
     Ok(RunSummary {

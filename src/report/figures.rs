@@ -497,7 +497,7 @@ fn domains(data: &RunData, s: &StateRow) -> FigureSpec {
         caption: format!(
             "The paper's Fig. 2 for K = {} (t/R_c = {}) and μ = {}: against the joint angle θ, the crown thrust H/W_half at which the line of thrust through the crown extrados or intrados touches the intrados (eq. 2a, lower bounds) or the extrados (eq. 2b, upper bounds) of joint θ, and the sliding bounds of eqs. 4a/4b. Bands: Hʳ (rotational), Hˢ (sliding) and their intersection, the thrusts of admissible states. Regime: {}.",
             given(s.scene_k),
-            short(s.t_over_r_at_scene()),
+            short(crate::model::t_over_r_from_k(s.scene_k)),
             mu_text(s.scene_mu),
             if regime.is_empty() { "—" } else { regime }
         ),
@@ -509,16 +509,6 @@ fn domains(data: &RunData, s: &StateRow) -> FigureSpec {
             h_s: interval(s.thrust_s_min, s.thrust_s_max, s_exists),
             discrete: s.voussoirs.is_some(),
         }),
-    }
-}
-
-trait SceneThickness {
-    fn t_over_r_at_scene(&self) -> f64;
-}
-
-impl SceneThickness for StateRow {
-    fn t_over_r_at_scene(&self) -> f64 {
-        crate::model::t_over_r_from_k(self.scene_k)
     }
 }
 

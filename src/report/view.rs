@@ -3,7 +3,7 @@
 
 use super::data::RunData;
 use super::figures::{self, FigureSpec};
-use super::format::{self, ANGLE_DECIMALS, diff, given, micros, millis, num, value};
+use super::format::{self, diff, given, micros, millis, num, value};
 use super::paper::{self, Printed};
 use crate::store::BoundaryRow;
 use serde::Serialize;
@@ -634,7 +634,6 @@ fn boundary_tables(data: &RunData) -> (Vec<BoundaryGroup>, Vec<CollapsePoint>, S
     } else {
         format!("All {n} collapse-curve points, in order along the curve.")
     };
-    let _ = ANGLE_DECIMALS;
     (groups, points, note)
 }
 
