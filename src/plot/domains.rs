@@ -101,7 +101,7 @@ impl Figure for DomainsChart {
             .margin(ctx.px(10.0))
             .x_label_area_size(ctx.px(50.0))
             .y_label_area_size(ctx.px(72.0))
-            .margin_right(ctx.px(110.0))
+            .margin_right(ctx.px(120.0))
             .build_cartesian_2d(x0..x1, y0..y1)?;
         let clamp = |v: f64| v.clamp(y0, y1);
         // Bands first, under everything.
@@ -167,11 +167,13 @@ impl Figure for DomainsChart {
         let (xr, yr) = chart.plotting_area().get_pixel_range();
         let mut placer = LabelPlacer::new((xr.end, yr.start, w as i32, yr.end));
         let brackets = [
-            (self.h_r, "Hʳ", palette::ORANGE, 10.0),
-            (self.h_s, "Hˢ", palette::SKY, 30.0),
-            (both, "Hʳ ∩ Hˢ", palette::GREEN, 50.0),
+            (self.h_r, "Hʳ", palette::ORANGE, 12.0),
+            (self.h_s, "Hˢ", palette::SKY, 28.0),
+            (both, "Hʳ ∩ Hˢ", palette::GREEN, 44.0),
         ];
         let font = ctx.font(13.0).pos(Pos::new(HPos::Left, VPos::Center));
+        // Labels in one column right of all brackets, each at its bracket's middle.
+        let label_x = xr.end + ctx.px(60.0);
         for (range, label, color, off) in brackets {
             let Some((a, b)) = range else { continue };
             let ya = chart.backend_coord(&(x1, clamp(a))).1;
@@ -183,15 +185,17 @@ impl Figure for DomainsChart {
                 vec![(x - tick, ya), (x, ya), (x, yb), (x - tick, yb)],
                 st,
             ))?;
-            let (tw, th) = style::text_block_size(&font, &[label.to_string()], 1.0);
+            let (tw, th) = style::text_block_size(&font, &[label.to_string()], 1.5);
             let mid = (ya + yb) / 2;
             let at = placer.place(
                 tw,
                 th,
                 &[
-                    (x + ctx.px(4.0), mid - th / 2),
-                    (x + ctx.px(4.0), mid - th / 2 - th),
-                    (x + ctx.px(4.0), mid + th / 2),
+                    (label_x, mid - th / 2),
+                    (label_x, mid - th / 2 - th),
+                    (label_x, mid + th / 2),
+                    (label_x, mid - th / 2 - 2 * th),
+                    (label_x, mid + th / 2 + th),
                 ],
             );
             root.draw(&Text::new(
