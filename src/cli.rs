@@ -23,10 +23,20 @@ pub enum Command {
     Run(RunArgs),
     /// Validate a study manifest and print its plan without running it.
     Check(CheckArgs),
+    /// Re-render the figures and both reports of a run directory from its stored files.
+    Report(ReportArgs),
     /// Pack a run directory into one .tar.gz with SHA256SUMS, for deposit with a paper.
     Archive(ArchiveArgs),
     /// Check an archive or run directory: checksums, then re-run and compare every result.
     Verify(VerifyArgs),
+}
+
+/// `archstudy report`.
+#[derive(Debug, Args)]
+pub struct ReportArgs {
+    /// The run directory (the `<out>/<name>/` that `archstudy run` wrote).
+    #[arg(value_name = "RUN_DIR")]
+    pub run_dir: PathBuf,
 }
 
 /// `archstudy run`.

@@ -4,5 +4,6 @@
 mod archive;
 mod boundaries;
 mod common;
+mod report;
 mod run;
 mod solve;

@@ -2,11 +2,21 @@
 //! atomically (a temporary file renamed into place) and read back.
 
 mod boundaries;
+mod figures;
 mod results;
+mod rows;
 mod table;
 
 pub use boundaries::{bifurcations_frame, boundaries_frame};
+pub use figures::{
+    CurvePoint, ReferenceRow, StateRow, curves_frame, read_curves, read_reference, read_states,
+    reference_frame, states_frame,
+};
 pub use results::results_frame;
+pub use rows::{
+    BifurcationRow, BoundaryRow, JointLists, ResultRow, read_bifurcations, read_boundaries,
+    read_results,
+};
 pub use table::{ColumnData, Table, TableColumn, read_table, table_from_frame};
 
 use anyhow::Context as _;
@@ -254,4 +264,28 @@ pub fn list_str_column(df: &DataFrame, name: &str) -> Result<Vec<Vec<String>>> {
         });
     }
     Ok(out)
+}
+
+/// A non-null UInt64 column as a vector (nulls are an error).
+pub fn u64_column(df: &DataFrame, name: &str) -> Result<Vec<u64>> {
+    let c = df
+        .column(name)
+        .with_context(|| format!("column `{name}` is missing"))?;
+    let s = c.as_materialized_series().cast(&DataType::UInt64)?;
+    let ca = s.u64()?;
+    (0..ca.len())
+        .map(|i| {
+            ca.get(i)
+                .with_context(|| format!("column `{name}`: row {i} is null"))
+        })
+        .collect()
+}
+
+/// A nullable Boolean column as a vector.
+pub fn bool_column(df: &DataFrame, name: &str) -> Result<Vec<Option<bool>>> {
+    let c = df
+        .column(name)
+        .with_context(|| format!("column `{name}` is missing"))?;
+    let ca = c.as_materialized_series().bool()?;
+    Ok((0..ca.len()).map(|i| ca.get(i)).collect())
 }
