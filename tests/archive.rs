@@ -132,7 +132,6 @@ fn archive_then_verify_passes() {
     archive(&run, &file);
     let o = archstudy(&["verify", file.to_str().unwrap()], tmp.path());
     assert_eq!(o.code, Some(0), "{}\n{}", o.stdout, o.stderr);
-    let n = run_files(&run).len();
     assert!(
         o.stdout.contains(&format!(
             "integrity: all {} files match SHA256SUMS",
