@@ -9,6 +9,7 @@ use crate::figdata;
 use crate::plot::accuracy::{AccuracyChart, AccuracySeries};
 use crate::plot::critical::{CriticalChart, CriticalPanel, PointMark};
 use crate::plot::domains::{BoundCurve, BoundFamily, DomainsChart};
+use crate::plot::mechanisms::{MechanismFigure, MechanismPanels};
 use crate::plot::regime_map::{BifurcationMark, CollapseSegment, Crossing, RegimeMap};
 use crate::plot::state::StateDrawing;
 use crate::plot::{self, Format};
@@ -28,6 +29,8 @@ pub enum Chart {
     Critical(CriticalChart),
     /// Figure 5.
     Accuracy(AccuracyChart),
+    /// Mechanisms at a bifurcation, side by side.
+    Mechanisms(MechanismPanels),
 }
 
 /// A figure of the report.
@@ -52,6 +55,7 @@ impl FigureSpec {
             Chart::State(c) => plot::render(c, format),
             Chart::Critical(c) => plot::render(c, format),
             Chart::Accuracy(c) => plot::render(c, format),
+            Chart::Mechanisms(c) => plot::render(c, format),
         }
     }
 }
@@ -116,6 +120,9 @@ pub fn build(data: &RunData) -> Vec<FigureSpec> {
     }
     for s in &data.states {
         out.push(state(data, s));
+        if let Some(m) = mechanisms(data, s) {
+            out.push(m);
+        }
     }
     if let Some(a) = accuracy(data) {
         out.push(FigureSpec {
@@ -661,6 +668,57 @@ fn state(data: &RunData, s: &StateRow) -> FigureSpec {
             note,
         }),
     }
+}
+
+/// File stem of the mechanisms figure of a bifurcation state.
+pub fn mechanisms_stem(state_id: &str) -> String {
+    format!("mechanisms-{}", safe(state_id))
+}
+
+/// Text of a flow rule column value.
+pub fn flow_rule_text(rule: &str) -> &str {
+    match rule {
+        "non_associative" => "non-associative (pure sliding)",
+        "associative" => "associative (dilatancy tan φ)",
+        other => other,
+    }
+}
+
+fn mechanisms(data: &RunData, s: &StateRow) -> Option<FigureSpec> {
+    let rows: Vec<_> = data
+        .mechanisms
+        .iter()
+        .filter(|m| m.state_id == s.state_id)
+        .collect();
+    let panels: Vec<MechanismFigure> = rows
+        .iter()
+        .filter_map(|m| {
+            let drawing = serde_json::from_str(&m.drawing_json).ok()?;
+            Some(MechanismFigure {
+                title: format!("{} mechanism", m.mechanism),
+                subtitle: format!(
+                    "{}; dL(a) = {}",
+                    flow_rule_text(&m.flow_rule),
+                    super::format::short(m.work_loads)
+                ),
+                drawing,
+            })
+        })
+        .collect();
+    if panels.is_empty() {
+        return None;
+    }
+    let mech = s.mechanism.clone().unwrap_or_default().replace('/', " / ");
+    Some(FigureSpec {
+        stem: mechanisms_stem(&s.state_id),
+        title: format!("Collapse mechanisms at the {mech} bifurcation"),
+        caption: format!(
+            "The mechanisms admissible at the {mech} bifurcation (K = {}, μ = {}): the arch before the virtual displacement (dashed), fixed parts (grey), the displaced blocks (blue; largest displacement 0.08 r), hinges (red dots; hollow where the joint stays closed in that mechanism) and sliding joints (orange arrows: the sense in which the crown-side part moves). Non-associative panels use the paper's rule (pure sliding, no dilatancy); the associative panel uses normality to the Coulomb cone, whose slip opens the joint by tan φ times the slip.",
+            short(s.k),
+            mu_text(s.mu)
+        ),
+        chart: Chart::Mechanisms(MechanismPanels { panels }),
+    })
 }
 
 /// Label of a compared quantity.

@@ -174,6 +174,42 @@ pub struct ConvergenceTable {
     pub monotone: String,
 }
 
+/// One mechanism at a bifurcation, as a table row.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct MechanismTableRow {
+    /// μ of the bifurcation.
+    pub mu: String,
+    /// K of the bifurcation.
+    pub k: String,
+    /// Kind of the mechanism.
+    pub mechanism: String,
+    /// Flow rule at the sliding joints.
+    pub flow_rule: String,
+    /// dL^(a).
+    pub work_loads: String,
+    /// dL^(r,n).
+    pub work_normal: String,
+    /// dL^(r,t).
+    pub work_friction: String,
+    /// Relative residual of the work equation.
+    pub work_residual: String,
+    /// Dilatancy at each sliding joint, as `θ: value`.
+    pub dilatancy: String,
+}
+
+/// The mechanisms at one bifurcation.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct MechanismSection {
+    /// Heading.
+    pub title: String,
+    /// `Figure N`, or empty when the figure is missing.
+    pub figure: String,
+    /// Anchor of the figure.
+    pub anchor: String,
+    /// One row per mechanism and flow rule.
+    pub rows: Vec<MechanismTableRow>,
+}
+
 /// Everything both templates show.
 #[derive(Debug, Clone, Serialize, PartialEq)]
 pub struct ReportView {
@@ -213,6 +249,8 @@ pub struct ReportView {
     pub errors: Vec<ErrorRow>,
     /// Per quantity, when each voussoir count is one case: value, error and time per model.
     pub convergence: Vec<ConvergenceTable>,
+    /// Collapse mechanisms per bifurcation.
+    pub mechanisms: Vec<MechanismSection>,
     /// Reproducibility facts.
     pub reproducibility: Vec<Item>,
     /// Stage timings.
@@ -325,7 +363,7 @@ pub fn build(data: &RunData, figs: &[FigureSpec], svgs: &[String]) -> ReportView
     ];
     cases.extend(by_outcome.into_iter().map(|(k, v)| item(k, v.to_string())));
     let (key_results, note) = key_results(data);
-    let figures = figs
+    let figures: Vec<FigureView> = figs
         .iter()
         .zip(svgs)
         .enumerate()
@@ -340,6 +378,7 @@ pub fn build(data: &RunData, figs: &[FigureSpec], svgs: &[String]) -> ReportView
         })
         .collect();
     let (groups, points, collapse_note) = boundary_tables(data);
+    let mechanisms = mechanism_sections(data, &figures);
     ReportView {
         title: m
             .title
@@ -362,6 +401,7 @@ pub fn build(data: &RunData, figs: &[FigureSpec], svgs: &[String]) -> ReportView
         timing: timing(data),
         errors: errors(data),
         convergence: convergence(data),
+        mechanisms,
         reproducibility: reproducibility(data),
         stages: stages(data),
         files: files(data),
@@ -708,6 +748,54 @@ fn errors(data: &RunData) -> Vec<ErrorRow> {
             continuum_time: micros(r.continuum_median_time_us),
         })
         .collect()
+}
+
+fn mechanism_sections(data: &RunData, figures: &[FigureView]) -> Vec<MechanismSection> {
+    let mut out: Vec<MechanismSection> = Vec::new();
+    for s in data.states.iter().filter(|s| s.source == "bifurcation") {
+        let rows: Vec<MechanismTableRow> = data
+            .mechanisms
+            .iter()
+            .filter(|m| m.state_id == s.state_id)
+            .map(|m| MechanismTableRow {
+                mu: format::value(m.mu),
+                k: format::value(m.k),
+                mechanism: m.mechanism.clone(),
+                flow_rule: figures::flow_rule_text(&m.flow_rule).to_string(),
+                work_loads: format!("{:.6e}", m.work_loads),
+                work_normal: format!("{:.6e}", m.work_normal),
+                work_friction: format!("{:.6e}", m.work_friction),
+                work_residual: format!("{:.1e}", m.work_residual),
+                dilatancy: if m.sliding_angles_deg.is_empty() {
+                    "no sliding joint".into()
+                } else {
+                    m.sliding_angles_deg
+                        .iter()
+                        .zip(&m.dilatancy)
+                        .map(|(a, d)| format!("{a:.2}°: {d:.3e}"))
+                        .collect::<Vec<_>>()
+                        .join("; ")
+                },
+            })
+            .collect();
+        if rows.is_empty() {
+            continue;
+        }
+        let stem = figures::mechanisms_stem(&s.state_id);
+        let fig = figures.iter().find(|f| f.anchor == format!("fig-{stem}"));
+        out.push(MechanismSection {
+            title: format!(
+                "{} bifurcation, μ = {}, K = {}",
+                s.mechanism.clone().unwrap_or_default().replace('/', " / "),
+                format::short(s.mu),
+                format::short(s.k)
+            ),
+            figure: fig.map_or(String::new(), |f| format!("Figure {}", f.number)),
+            anchor: format!("fig-{stem}"),
+            rows,
+        });
+    }
+    out
 }
 
 /// Convergence tables, when the study varies only the voussoir count (one case per N).
