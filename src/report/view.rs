@@ -750,6 +750,18 @@ fn errors(data: &RunData) -> Vec<ErrorRow> {
         .collect()
 }
 
+/// Works, dilatancies and residuals below this are rounding: shown as 0 (or `< 1e-9`), so
+/// that the report does not depend on the last bits of the platform's arithmetic.
+const WORK_ZERO: f64 = 1e-9;
+
+fn work_text(v: f64) -> String {
+    if v.abs() < WORK_ZERO {
+        "0".into()
+    } else {
+        format!("{v:.6}")
+    }
+}
+
 fn mechanism_sections(data: &RunData, figures: &[FigureView]) -> Vec<MechanismSection> {
     let mut out: Vec<MechanismSection> = Vec::new();
     for s in data.states.iter().filter(|s| s.source == "bifurcation") {
@@ -762,17 +774,21 @@ fn mechanism_sections(data: &RunData, figures: &[FigureView]) -> Vec<MechanismSe
                 k: format::value(m.k),
                 mechanism: m.mechanism.clone(),
                 flow_rule: figures::flow_rule_text(&m.flow_rule).to_string(),
-                work_loads: format!("{:.6e}", m.work_loads),
-                work_normal: format!("{:.6e}", m.work_normal),
-                work_friction: format!("{:.6e}", m.work_friction),
-                work_residual: format!("{:.1e}", m.work_residual),
+                work_loads: work_text(m.work_loads),
+                work_normal: work_text(m.work_normal),
+                work_friction: work_text(m.work_friction),
+                work_residual: if m.work_residual < WORK_ZERO {
+                    "< 1e-9".into()
+                } else {
+                    format!("{:.1e}", m.work_residual)
+                },
                 dilatancy: if m.sliding_angles_deg.is_empty() {
                     "no sliding joint".into()
                 } else {
                     m.sliding_angles_deg
                         .iter()
                         .zip(&m.dilatancy)
-                        .map(|(a, d)| format!("{a:.2}°: {d:.3e}"))
+                        .map(|(a, d)| format!("{a:.2}°: {}", work_text(*d)))
                         .collect::<Vec<_>>()
                         .join("; ")
                 },
