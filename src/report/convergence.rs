@@ -72,7 +72,7 @@ mod tests {
             .collect();
         let o = observed_order(&pts).unwrap();
         assert!((o.order - 2.0).abs() < 1e-12, "{o:?}");
-        assert_eq!((o.n_from, o.n_to, o.points), (16, 128, 3));
+        assert_eq!((o.n_from, o.n_to, o.points), (32, 128, 3));
         assert!(o.rises_at.is_empty());
     }
 
