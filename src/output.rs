@@ -43,6 +43,10 @@ impl RunLayout {
     pub fn reference(&self) -> PathBuf {
         self.dir.join("reference.parquet")
     }
+    /// mechanisms.parquet: the mechanisms at each bifurcation (docs/report-files.md).
+    pub fn mechanisms(&self) -> PathBuf {
+        self.dir.join("mechanisms.parquet")
+    }
     /// run.json.
     pub fn run_json(&self) -> PathBuf {
         self.dir.join("run.json")

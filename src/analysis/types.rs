@@ -1,10 +1,10 @@
 //! Outcomes of an analysis: regimes, hinges, sliding joints, mechanisms and intervals.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::fmt;
 
 /// The face of a joint at which a hinge forms.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Face {
     /// Inner surface (radius r).
@@ -34,7 +34,7 @@ pub struct Hinge {
 
 /// The sense of relative sliding at a joint: how the part nearer the crown moves relative to
 /// the part nearer the springing, along the joint (radially for radial joints).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Sense {
     /// The crown-side part moves outward (away from the centre), T = +μN.

@@ -6,6 +6,7 @@
 //! bifurcations.parquet (when present) and uses the manifest for the arch and the scenes.
 
 pub mod curves;
+pub mod mechanisms;
 mod reference;
 
 use crate::analysis::symmetric;
@@ -50,6 +51,8 @@ pub struct FigureDataSummary {
     pub curve_points: usize,
     /// Continuum reference values.
     pub references: usize,
+    /// Mechanisms at the bifurcations.
+    pub mechanisms: usize,
 }
 
 struct Collector {
@@ -279,6 +282,7 @@ pub fn run(manifest: &Manifest, layout: &RunLayout) -> Result<FigureDataSummary>
     };
     let mut out = Collector { points: Vec::new() };
     let mut states = Vec::new();
+    let mut mechs = Vec::new();
     for lc in &manifest.load_cases {
         let sfx = suffix(manifest, &lc.name);
         let bifs: Vec<&BifurcationRow> = bifurcations
@@ -287,6 +291,13 @@ pub fn run(manifest: &Manifest, layout: &RunLayout) -> Result<FigureDataSummary>
             .collect();
         for (i, b) in bifs.iter().enumerate() {
             let id = format!("bifurcation-{}{sfx}", i + 1);
+            let index = u32::try_from(i + 1).unwrap_or(u32::MAX);
+            mechs.extend(mechanisms::bifurcation_mechanisms(
+                &base_arch(manifest, b.k)?,
+                b,
+                &id,
+                index,
+            ));
             states.push(bifurcation_state(manifest, id, b, &mut out)?);
         }
         for (i, s) in manifest.scenes.iter().enumerate() {
@@ -302,10 +313,12 @@ pub fn run(manifest: &Manifest, layout: &RunLayout) -> Result<FigureDataSummary>
     store::write_parquet(&mut store::curves_frame(&out.points)?, &layout.curves())?;
     store::write_parquet(&mut store::states_frame(&states)?, &layout.states())?;
     store::write_parquet(&mut store::reference_frame(&refs)?, &layout.reference())?;
+    store::write_parquet(&mut store::mechanisms_frame(&mechs)?, &layout.mechanisms())?;
     Ok(FigureDataSummary {
         states: states.len(),
         curve_points: out.points.len(),
         references: refs.len(),
+        mechanisms: mechs.len(),
     })
 }
 

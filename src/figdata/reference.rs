@@ -9,14 +9,20 @@ use crate::store::{self, ReferenceRow, ResultRow};
 use anyhow::Result;
 use std::collections::HashMap;
 
-/// The results column compared with the continuum for each find.
-pub fn quantity_of(find: &str) -> Option<&'static str> {
+/// The results columns compared with the continuum for each find.
+pub fn quantities_of(find: &str) -> &'static [&'static str] {
     match find {
-        "thickness" => Some("k_crit"),
-        "friction" => Some("mu_crit"),
-        "thrust" => Some("thrust_min"),
-        "state" => Some("thrust_r_min"),
-        _ => None,
+        "thickness" => &["k_crit"],
+        "friction" => &["mu_crit"],
+        "thrust" => &["thrust_min"],
+        "state" => &["thrust_r_min"],
+        "thresholds" => &[
+            "k_c_rotational",
+            "mu_rotational_mixed",
+            "mu_min",
+            "k_mixed_sliding",
+        ],
+        _ => &[],
     }
 }
 
@@ -26,8 +32,28 @@ fn value_of(s: &Solution, quantity: &str) -> Option<f64> {
         "mu_crit" => s.mu_crit,
         "thrust_min" => s.thrust_min,
         "thrust_r_min" => s.thrust_r_min,
+        "k_c_rotational" => s.k_c_rotational,
+        "mu_rotational_mixed" => s.mu_rotational_mixed,
+        "mu_min" => s.mu_min,
+        "k_mixed_sliding" => s.k_mixed_sliding,
         _ => None,
     }
+}
+
+/// What makes two cases the same scene but for the voussoir count.
+type SceneKey = (String, String, [u64; 3], String);
+
+fn key_of(r: &ResultRow) -> SceneKey {
+    (
+        r.find.clone(),
+        r.load_case.clone(),
+        [
+            r.k.unwrap_or(f64::NAN).to_bits(),
+            r.mu.unwrap_or(f64::INFINITY).to_bits(),
+            r.half_angle_deg.to_bits(),
+        ],
+        r.weight.clone(),
+    )
 }
 
 fn continuum_scene(r: &ResultRow) -> Option<Scene> {
@@ -43,9 +69,11 @@ fn continuum_scene(r: &ResultRow) -> Option<Scene> {
     })
 }
 
-/// The continuum value of the compared quantity for every successful discrete case of the
-/// run (empty when the run has no discrete case). Each distinct continuum scene is solved
-/// once.
+/// The continuum value of each compared quantity for every successful discrete case of the
+/// run (empty when the run has no discrete case). The continuum case of the run itself is
+/// used when it has one (same find, load case, K, μ, half-angle and weight model: the
+/// `continuum` entry of a `voussoirs` axis); otherwise each distinct continuum scene is
+/// solved once here.
 pub fn continuum_references(manifest: &Manifest, layout: &RunLayout) -> Result<Vec<ReferenceRow>> {
     let discrete = manifest.arch.voussoirs != Discretisation::Continuum
         || manifest.grid.iter().any(|a| a.name == AxisName::Voussoirs);
@@ -53,31 +81,37 @@ pub fn continuum_references(manifest: &Manifest, layout: &RunLayout) -> Result<V
         return Ok(Vec::new());
     }
     let rows = store::read_results(&layout.results())?;
-    let mut cache: HashMap<[u64; 4], (Option<f64>, f64)> = HashMap::new();
+    let stored: HashMap<SceneKey, &ResultRow> = rows
+        .iter()
+        .filter(|r| r.voussoirs.is_none() && r.status == "ok")
+        .map(|r| (key_of(r), r))
+        .collect();
+    let mut solved: HashMap<SceneKey, Solution> = HashMap::new();
     let mut out = Vec::new();
     for r in rows
         .iter()
         .filter(|r| r.voussoirs.is_some() && r.status == "ok")
     {
-        let (Some(q), Some(scene)) = (quantity_of(&r.find), continuum_scene(r)) else {
-            continue;
-        };
-        let key = [
-            scene.arch.k.to_bits(),
-            scene.friction.mu().to_bits(),
-            scene.arch.half_angle.to_bits(),
-            u64::from(scene.arch.weight == WeightModel::Centreline),
-        ];
-        let (value, time) = *cache.entry(key).or_insert_with(|| {
-            let s = scene::solve(&scene);
-            (value_of(&s, q), s.solve_time_us)
-        });
-        out.push(ReferenceRow {
-            case_id: r.case_id,
-            quantity: q.to_string(),
-            continuum_value: value,
-            continuum_solve_time_us: time,
-        });
+        let key = key_of(r);
+        for &q in quantities_of(&r.find) {
+            let (value, time) = if let Some(c) = stored.get(&key) {
+                (c.value_of(q), c.solve_time_us)
+            } else {
+                let Some(scene) = continuum_scene(r) else {
+                    continue;
+                };
+                let s = solved
+                    .entry(key.clone())
+                    .or_insert_with(|| scene::solve(&scene));
+                (value_of(s, q), s.solve_time_us)
+            };
+            out.push(ReferenceRow {
+                case_id: r.case_id,
+                quantity: q.to_string(),
+                continuum_value: value,
+                continuum_solve_time_us: time,
+            });
+        }
     }
     Ok(out)
 }

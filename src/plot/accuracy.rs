@@ -73,6 +73,7 @@ fn panel<DB: DrawingBackend>(
     x_desc: &str,
     series: &[(String, Vec<(f64, f64)>)],
     vline: Option<(f64, &str)>,
+    joined: bool,
 ) -> DrawResult<(), DB> {
     let xs = series
         .iter()
@@ -126,7 +127,9 @@ fn panel<DB: DrawingBackend>(
     }
     for (i, (_, pts)) in series.iter().enumerate() {
         let c = COLORS[i % COLORS.len()];
-        chart.draw_series(LineSeries::new(pts.clone(), c.stroke_width(ctx.upx(2.0))))?;
+        if joined {
+            chart.draw_series(LineSeries::new(pts.clone(), c.stroke_width(ctx.upx(2.0))))?;
+        }
         chart.draw_series(
             pts.iter()
                 .map(|&p| Circle::new(p, ctx.upx(3.5), c.filled())),
@@ -173,6 +176,7 @@ impl Figure for AccuracyChart {
             "voussoirs N",
             &by_n,
             None,
+            true,
         )?;
         panel(
             &areas[1],
@@ -181,6 +185,7 @@ impl Figure for AccuracyChart {
             "median solve time per case (µs)",
             &by_t,
             self.continuum_time_us.map(|t| (t, "continuum")),
+            false,
         )?;
         Ok(())
     }

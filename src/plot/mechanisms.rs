@@ -257,6 +257,45 @@ fn draw<DB: DrawingBackend>(
     Ok(())
 }
 
+/// Mechanisms side by side (e.g. the non-associative mechanisms at a bifurcation and the
+/// associative one), one panel each, for the report.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MechanismPanels {
+    /// The panels, left to right.
+    pub panels: Vec<MechanismFigure>,
+}
+
+impl MechanismPanels {
+    /// Rows and columns: one row up to two panels, else two rows (the non-associative
+    /// mechanisms above, the associative ones below).
+    fn grid(&self) -> (usize, usize) {
+        let n = self.panels.len().max(1);
+        if n <= 2 { (1, n) } else { (2, n.div_ceil(2)) }
+    }
+}
+
+/// Design size of one panel, pixels.
+const PANEL_SIZE: (u32, u32) = (440, 290);
+
+impl super::Figure for MechanismPanels {
+    fn size(&self) -> (u32, u32) {
+        let (rows, cols) = self.grid();
+        (PANEL_SIZE.0 * cols as u32, PANEL_SIZE.1 * rows as u32)
+    }
+
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        _ctx: &super::PlotContext,
+    ) -> super::DrawResult<(), DB> {
+        let areas = root.split_evenly(self.grid());
+        for (a, f) in areas.iter().zip(&self.panels) {
+            draw(a, f)?;
+        }
+        Ok(())
+    }
+}
+
 /// Renders a mechanism figure of `size` pixels to `path`: SVG when the extension is `svg`,
 /// PNG otherwise. Writes only that file.
 pub fn render_mechanism(path: &Path, size: (u32, u32), fig: &MechanismFigure) -> Result<()> {

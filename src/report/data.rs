@@ -4,7 +4,7 @@
 use crate::output::RunLayout;
 use crate::runner::RunInfo;
 use crate::store::{
-    self, BifurcationRow, BoundaryRow, CurvePoint, ReferenceRow, ResultRow, StateRow,
+    self, BifurcationRow, BoundaryRow, CurvePoint, MechanismRow, ReferenceRow, ResultRow, StateRow,
 };
 use anyhow::{Context, Result};
 use serde::Deserialize;
@@ -124,6 +124,8 @@ pub struct RunData {
     pub states: Vec<StateRow>,
     /// reference.parquet (empty when absent).
     pub reference: Vec<ReferenceRow>,
+    /// mechanisms.parquet (empty when absent).
+    pub mechanisms: Vec<MechanismRow>,
 }
 
 fn optional<T>(path: &Path, read: impl Fn(&Path) -> Result<T>) -> Result<Option<T>> {
@@ -197,6 +199,7 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
         curves: optional(&layout.curves(), store::read_curves)?.unwrap_or_default(),
         states: optional(&layout.states(), store::read_states)?.unwrap_or_default(),
         reference: optional(&layout.reference(), store::read_reference)?.unwrap_or_default(),
+        mechanisms: optional(&layout.mechanisms(), store::read_mechanisms)?.unwrap_or_default(),
     })
 }
 

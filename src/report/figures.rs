@@ -1,6 +1,7 @@
 //! The figures of a report: what each chart shows, built from the stored data of a run (no
 //! analysis), with a filename stem, a title and a caption.
 
+use super::convergence::{ObservedOrder, observed_order};
 use super::data::RunData;
 use super::format::{given, short};
 use super::paper;
@@ -8,6 +9,7 @@ use crate::figdata;
 use crate::plot::accuracy::{AccuracyChart, AccuracySeries};
 use crate::plot::critical::{CriticalChart, CriticalPanel, PointMark};
 use crate::plot::domains::{BoundCurve, BoundFamily, DomainsChart};
+use crate::plot::mechanisms::{MechanismFigure, MechanismPanels};
 use crate::plot::regime_map::{BifurcationMark, CollapseSegment, Crossing, RegimeMap};
 use crate::plot::state::StateDrawing;
 use crate::plot::{self, Format};
@@ -27,6 +29,8 @@ pub enum Chart {
     Critical(CriticalChart),
     /// Figure 5.
     Accuracy(AccuracyChart),
+    /// Mechanisms at a bifurcation, side by side.
+    Mechanisms(MechanismPanels),
 }
 
 /// A figure of the report.
@@ -51,6 +55,7 @@ impl FigureSpec {
             Chart::State(c) => plot::render(c, format),
             Chart::Critical(c) => plot::render(c, format),
             Chart::Accuracy(c) => plot::render(c, format),
+            Chart::Mechanisms(c) => plot::render(c, format),
         }
     }
 }
@@ -115,6 +120,9 @@ pub fn build(data: &RunData) -> Vec<FigureSpec> {
     }
     for s in &data.states {
         out.push(state(data, s));
+        if let Some(m) = mechanisms(data, s) {
+            out.push(m);
+        }
     }
     if let Some(a) = accuracy(data) {
         out.push(FigureSpec {
@@ -131,7 +139,7 @@ const REGIME_CAPTION: &str = "Regimes over the friction coefficient μ (horizont
 
 const CRITICAL_CAPTION: &str = "The collapse thickness K_c(μ) (the smallest K at which the arch stands at friction μ) and the critical friction μ_c(K) (the smallest μ at which an arch of thickness K stands). Dots: bifurcations located in this run; open diamonds: the values printed in the paper, when the study is the paper's case.";
 
-const ACCURACY_CAPTION: &str = "Error of each critical value of a discrete arch of N voussoirs against the continuum value at the same K, μ and load (largest error over the cases with that N), against N and against the median solve time per case. The dashed line marks the median solve time of the continuum analyses, whose error is zero by definition.";
+const ACCURACY_CAPTION: &str = "Error of each critical value of a discrete arch of N voussoirs against the continuum value at the same K, μ and load (largest error over the cases with that N), against N (points of one quantity joined in order of N) and against the median solve time per case (one point per N; a thresholds case finds all four quantities in one analysis, so they share its time). The legend gives each quantity's observed order of convergence, the least-squares slope of log|error| against log N over the larger counts. The error need not fall monotonically: it depends on how near a joint of the model lies to the continuum's hinge or sliding section, and a count whose joints include those of a smaller one (512, 1024, 2048, ...) can give the same value. The dashed line marks the median solve time of the continuum analyses, whose error is zero by definition.";
 
 fn sorted_distinct(v: impl Iterator<Item = f64>) -> Vec<f64> {
     let mut v: Vec<f64> = v.filter(|x| x.is_finite()).collect();
@@ -662,6 +670,57 @@ fn state(data: &RunData, s: &StateRow) -> FigureSpec {
     }
 }
 
+/// File stem of the mechanisms figure of a bifurcation state.
+pub fn mechanisms_stem(state_id: &str) -> String {
+    format!("mechanisms-{}", safe(state_id))
+}
+
+/// Text of a flow rule column value.
+pub fn flow_rule_text(rule: &str) -> &str {
+    match rule {
+        "non_associative" => "non-associative (pure sliding)",
+        "associative" => "associative (dilatancy tan φ)",
+        other => other,
+    }
+}
+
+fn mechanisms(data: &RunData, s: &StateRow) -> Option<FigureSpec> {
+    let rows: Vec<_> = data
+        .mechanisms
+        .iter()
+        .filter(|m| m.state_id == s.state_id)
+        .collect();
+    let panels: Vec<MechanismFigure> = rows
+        .iter()
+        .filter_map(|m| {
+            let drawing = serde_json::from_str(&m.drawing_json).ok()?;
+            Some(MechanismFigure {
+                title: format!("{} mechanism", m.mechanism),
+                subtitle: format!(
+                    "{}; dL(a) = {}",
+                    flow_rule_text(&m.flow_rule),
+                    super::format::short(m.work_loads)
+                ),
+                drawing,
+            })
+        })
+        .collect();
+    if panels.is_empty() {
+        return None;
+    }
+    let mech = s.mechanism.clone().unwrap_or_default().replace('/', " / ");
+    Some(FigureSpec {
+        stem: mechanisms_stem(&s.state_id),
+        title: format!("Collapse mechanisms at the {mech} bifurcation"),
+        caption: format!(
+            "The mechanisms admissible at the {mech} bifurcation (K = {}, μ = {}): the arch before the virtual displacement (dashed), fixed parts (grey), the displaced blocks (blue; largest displacement 0.08 r), hinges (red dots; hollow where the joint stays closed in that mechanism) and sliding joints (orange arrows: the sense in which the crown-side part moves). Non-associative panels use the paper's rule (pure sliding, no dilatancy); the associative panels use normality to the Coulomb cone, whose slip opens the joint by tan φ times the slip.",
+            short(s.k),
+            short(s.mu)
+        ),
+        chart: Chart::Mechanisms(MechanismPanels { panels }),
+    })
+}
+
 /// Label of a compared quantity.
 pub fn quantity_label(q: &str) -> &'static str {
     match q {
@@ -669,6 +728,10 @@ pub fn quantity_label(q: &str) -> &'static str {
         "mu_crit" => "μ_c",
         "thrust_min" => "H_min/W_half",
         "thrust_r_min" => "min Hʳ/W_half",
+        "k_c_rotational" => "K_c (μ = ∞)",
+        "mu_rotational_mixed" => "μ, rotational/mixed",
+        "mu_min" => "μ_min",
+        "k_mixed_sliding" => "K, mixed/sliding",
         _ => "value",
     }
 }
@@ -687,6 +750,10 @@ pub struct AccuracyRow {
     pub max_abs_error: f64,
     /// Largest |discrete − continuum| / |continuum|.
     pub max_rel_error: f64,
+    /// The discrete value when one case has this N (NaN otherwise).
+    pub value: f64,
+    /// The continuum value when one case has this N (NaN otherwise).
+    pub continuum_value: f64,
     /// Median solve time of the discrete cases, µs.
     pub median_time_us: f64,
     /// Median solve time of the continuum references, µs.
@@ -697,7 +764,7 @@ pub struct AccuracyRow {
 pub fn accuracy_rows(data: &RunData) -> Vec<AccuracyRow> {
     let by_id: HashMap<u64, &crate::store::ResultRow> =
         data.results.iter().map(|r| (r.case_id, r)).collect();
-    // Per (quantity, N): |error|, relative error, solve time, continuum solve time.
+    // Per (quantity, N): value, continuum value, solve time, continuum solve time.
     type Sample = (f64, f64, f64, f64);
     let mut groups: BTreeMap<(String, u32), Vec<Sample>> = BTreeMap::new();
     for rf in &data.reference {
@@ -707,17 +774,12 @@ pub fn accuracy_rows(data: &RunData) -> Vec<AccuracyRow> {
         let (Some(n), Some(cont)) = (r.voussoirs, rf.continuum_value) else {
             continue;
         };
-        let v = match rf.quantity.as_str() {
-            "k_crit" => r.k_crit,
-            "mu_crit" => r.mu_crit,
-            "thrust_min" => r.thrust_min,
-            "thrust_r_min" => r.thrust_r_min,
-            _ => None,
+        let Some(v) = r.value_of(&rf.quantity) else {
+            continue;
         };
-        let Some(v) = v else { continue };
         groups.entry((rf.quantity.clone(), n)).or_default().push((
-            (v - cont).abs(),
-            (v - cont).abs() / cont.abs(),
+            v,
+            cont,
             r.solve_time_us,
             rf.continuum_solve_time_us,
         ));
@@ -725,8 +787,15 @@ pub fn accuracy_rows(data: &RunData) -> Vec<AccuracyRow> {
     groups
         .into_iter()
         .map(|((q, n), v)| {
-            let max_abs = v.iter().map(|x| x.0).fold(0.0, f64::max);
-            let max_rel = v.iter().map(|x| x.1).fold(0.0, f64::max);
+            let max_abs = v.iter().map(|x| (x.0 - x.1).abs()).fold(0.0, f64::max);
+            let max_rel = v
+                .iter()
+                .map(|x| (x.0 - x.1).abs() / x.1.abs())
+                .fold(0.0, f64::max);
+            let (value, continuum_value) = match v.as_slice() {
+                [one] => (one.0, one.1),
+                _ => (f64::NAN, f64::NAN),
+            };
             let mut t: Vec<f64> = v.iter().map(|x| x.2).collect();
             let mut tc: Vec<f64> = v.iter().map(|x| x.3).collect();
             t.sort_by(f64::total_cmp);
@@ -737,10 +806,42 @@ pub fn accuracy_rows(data: &RunData) -> Vec<AccuracyRow> {
                 cases: v.len(),
                 max_abs_error: max_abs,
                 max_rel_error: max_rel,
+                value,
+                continuum_value,
                 median_time_us: super::format::quantile(&t, 0.5),
                 continuum_median_time_us: super::format::quantile(&tc, 0.5),
             }
         })
+        .collect()
+}
+
+/// Position of a quantity in tables and legends: the order of the find's columns.
+pub fn quantity_rank(q: &str) -> usize {
+    [
+        "k_crit",
+        "mu_crit",
+        "thrust_min",
+        "thrust_r_min",
+        "k_c_rotational",
+        "mu_rotational_mixed",
+        "mu_min",
+        "k_mixed_sliding",
+    ]
+    .iter()
+    .position(|c| *c == q)
+    .unwrap_or(usize::MAX)
+}
+
+/// The observed order of convergence of each quantity, from its largest error per N.
+pub fn orders(rows: &[AccuracyRow]) -> BTreeMap<String, Option<ObservedOrder>> {
+    let mut pts: BTreeMap<String, Vec<(u32, f64)>> = BTreeMap::new();
+    for r in rows {
+        pts.entry(r.quantity.clone())
+            .or_default()
+            .push((r.voussoirs, r.max_abs_error));
+    }
+    pts.into_iter()
+        .map(|(q, p)| (q, observed_order(&p)))
         .collect()
 }
 
@@ -749,13 +850,23 @@ fn accuracy(data: &RunData) -> Option<AccuracyChart> {
     if rows.is_empty() {
         return None;
     }
-    let mut by_q: BTreeMap<String, AccuracySeries> = BTreeMap::new();
+    let orders = orders(&rows);
+    let mut by_q: BTreeMap<(usize, String), AccuracySeries> = BTreeMap::new();
     let mut cont_times = Vec::new();
     for r in &rows {
         let s = by_q
-            .entry(r.quantity.clone())
+            .entry((quantity_rank(&r.quantity), r.quantity.clone()))
             .or_insert_with(|| AccuracySeries {
-                label: quantity_label(&r.quantity).to_string(),
+                label: match orders.get(&r.quantity).and_then(Option::as_ref) {
+                    Some(o) => format!(
+                        "{}: order {:.2} (N = {}–{})",
+                        quantity_label(&r.quantity),
+                        o.order,
+                        o.n_from,
+                        o.n_to
+                    ),
+                    None => quantity_label(&r.quantity).to_string(),
+                },
                 by_count: Vec::new(),
                 by_time: Vec::new(),
             });

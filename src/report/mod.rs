@@ -3,6 +3,7 @@
 //! stored files of the run directory ([`data::load`]); nothing is recomputed. Templates are
 //! embedded and rendered in strict mode; the view model holds formatted text only.
 
+pub mod convergence;
 pub mod data;
 pub mod figures;
 pub mod format;

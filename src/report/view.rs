@@ -146,6 +146,70 @@ pub struct ErrorRow {
     pub continuum_time: String,
 }
 
+/// One model of a convergence table.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct ConvergenceRow {
+    /// Voussoir count, or `continuum`.
+    pub voussoirs: String,
+    /// The value.
+    pub value: String,
+    /// |value − continuum value| (`0` for the continuum).
+    pub abs_error: String,
+    /// Solve time of the case.
+    pub time: String,
+}
+
+/// The convergence of one quantity to its continuum value.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct ConvergenceTable {
+    /// Quantity, as in the paper.
+    pub quantity: String,
+    /// The results column it comes from.
+    pub column: String,
+    /// One row per model, by N, then the continuum.
+    pub rows: Vec<ConvergenceRow>,
+    /// The observed order of convergence and the N range of its fit, or why there is none.
+    pub order: String,
+    /// Whether the error falls monotonically with N, and where it does not.
+    pub monotone: String,
+}
+
+/// One mechanism at a bifurcation, as a table row.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct MechanismTableRow {
+    /// μ of the bifurcation.
+    pub mu: String,
+    /// K of the bifurcation.
+    pub k: String,
+    /// Kind of the mechanism.
+    pub mechanism: String,
+    /// Flow rule at the sliding joints.
+    pub flow_rule: String,
+    /// dL^(a).
+    pub work_loads: String,
+    /// dL^(r,n).
+    pub work_normal: String,
+    /// dL^(r,t).
+    pub work_friction: String,
+    /// Relative residual of the work equation.
+    pub work_residual: String,
+    /// Dilatancy at each sliding joint, as `θ: value`.
+    pub dilatancy: String,
+}
+
+/// The mechanisms at one bifurcation.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct MechanismSection {
+    /// Heading.
+    pub title: String,
+    /// `Figure N`, or empty when the figure is missing.
+    pub figure: String,
+    /// Anchor of the figure.
+    pub anchor: String,
+    /// One row per mechanism and flow rule.
+    pub rows: Vec<MechanismTableRow>,
+}
+
 /// Everything both templates show.
 #[derive(Debug, Clone, Serialize, PartialEq)]
 pub struct ReportView {
@@ -183,6 +247,10 @@ pub struct ReportView {
     pub timing: Vec<TimingRow>,
     /// Accuracy against the continuum.
     pub errors: Vec<ErrorRow>,
+    /// Per quantity, when each voussoir count is one case: value, error and time per model.
+    pub convergence: Vec<ConvergenceTable>,
+    /// Collapse mechanisms per bifurcation.
+    pub mechanisms: Vec<MechanismSection>,
     /// Reproducibility facts.
     pub reproducibility: Vec<Item>,
     /// Stage timings.
@@ -295,7 +363,7 @@ pub fn build(data: &RunData, figs: &[FigureSpec], svgs: &[String]) -> ReportView
     ];
     cases.extend(by_outcome.into_iter().map(|(k, v)| item(k, v.to_string())));
     let (key_results, note) = key_results(data);
-    let figures = figs
+    let figures: Vec<FigureView> = figs
         .iter()
         .zip(svgs)
         .enumerate()
@@ -310,6 +378,7 @@ pub fn build(data: &RunData, figs: &[FigureSpec], svgs: &[String]) -> ReportView
         })
         .collect();
     let (groups, points, collapse_note) = boundary_tables(data);
+    let mechanisms = mechanism_sections(data, &figures);
     ReportView {
         title: m
             .title
@@ -331,6 +400,8 @@ pub fn build(data: &RunData, figs: &[FigureSpec], svgs: &[String]) -> ReportView
         collapse_note,
         timing: timing(data),
         errors: errors(data),
+        convergence: convergence(data),
+        mechanisms,
         reproducibility: reproducibility(data),
         stages: stages(data),
         files: files(data),
@@ -675,6 +746,136 @@ fn errors(data: &RunData) -> Vec<ErrorRow> {
             max_rel_error: format!("{:.3e}", r.max_rel_error),
             median_time: micros(r.median_time_us),
             continuum_time: micros(r.continuum_median_time_us),
+        })
+        .collect()
+}
+
+/// Works, dilatancies and residuals below this are rounding: shown as 0 (or `< 1e-9`), so
+/// that the report does not depend on the last bits of the platform's arithmetic.
+const WORK_ZERO: f64 = 1e-9;
+
+fn work_text(v: f64) -> String {
+    if v.abs() < WORK_ZERO {
+        "0".into()
+    } else {
+        format!("{v:.6}")
+    }
+}
+
+fn mechanism_sections(data: &RunData, figures: &[FigureView]) -> Vec<MechanismSection> {
+    let mut out: Vec<MechanismSection> = Vec::new();
+    for s in data.states.iter().filter(|s| s.source == "bifurcation") {
+        let rows: Vec<MechanismTableRow> = data
+            .mechanisms
+            .iter()
+            .filter(|m| m.state_id == s.state_id)
+            .map(|m| MechanismTableRow {
+                mu: format::value(m.mu),
+                k: format::value(m.k),
+                mechanism: m.mechanism.clone(),
+                flow_rule: figures::flow_rule_text(&m.flow_rule).to_string(),
+                work_loads: work_text(m.work_loads),
+                work_normal: work_text(m.work_normal),
+                work_friction: work_text(m.work_friction),
+                work_residual: if m.work_residual < WORK_ZERO {
+                    "< 1e-9".into()
+                } else {
+                    format!("{:.1e}", m.work_residual)
+                },
+                dilatancy: if m.sliding_angles_deg.is_empty() {
+                    "no sliding joint".into()
+                } else {
+                    m.sliding_angles_deg
+                        .iter()
+                        .zip(&m.dilatancy)
+                        .map(|(a, d)| format!("{a:.2}°: {}", work_text(*d)))
+                        .collect::<Vec<_>>()
+                        .join("; ")
+                },
+            })
+            .collect();
+        if rows.is_empty() {
+            continue;
+        }
+        let stem = figures::mechanisms_stem(&s.state_id);
+        let fig = figures.iter().find(|f| f.anchor == format!("fig-{stem}"));
+        out.push(MechanismSection {
+            title: format!(
+                "{} bifurcation, μ = {}, K = {}",
+                s.mechanism.clone().unwrap_or_default().replace('/', " / "),
+                format::short(s.mu),
+                format::short(s.k)
+            ),
+            figure: fig.map_or(String::new(), |f| format!("Figure {}", f.number)),
+            anchor: format!("fig-{stem}"),
+            rows,
+        });
+    }
+    out
+}
+
+/// Convergence tables, when the study varies only the voussoir count (one case per N).
+fn convergence(data: &RunData) -> Vec<ConvergenceTable> {
+    let rows = figures::accuracy_rows(data);
+    if rows.is_empty() || rows.iter().any(|r| r.cases != 1) {
+        return Vec::new();
+    }
+    let orders = figures::orders(&rows);
+    let mut by_q: BTreeMap<(usize, String), Vec<&figures::AccuracyRow>> = BTreeMap::new();
+    for r in &rows {
+        by_q.entry((figures::quantity_rank(&r.quantity), r.quantity.clone()))
+            .or_default()
+            .push(r);
+    }
+    by_q.into_iter()
+        .map(|((_, q), mut rs)| {
+            rs.sort_by_key(|r| r.voussoirs);
+            let mut out: Vec<ConvergenceRow> = rs
+                .iter()
+                .map(|r| ConvergenceRow {
+                    voussoirs: r.voussoirs.to_string(),
+                    value: format::value(r.value),
+                    abs_error: format!("{:.3e}", r.max_abs_error),
+                    time: micros(r.median_time_us),
+                })
+                .collect();
+            if let Some(last) = rs.last() {
+                out.push(ConvergenceRow {
+                    voussoirs: "continuum".into(),
+                    value: format::value(last.continuum_value),
+                    abs_error: "0".into(),
+                    time: micros(last.continuum_median_time_us),
+                });
+            }
+            let o = orders.get(&q).and_then(Option::as_ref);
+            let order = o.map_or(
+                "not available: fewer than three non-zero errors".to_string(),
+                |o| {
+                    format!(
+                        "{:.2} (least-squares slope of log|error| against log N over the {} largest counts, N = {} to {})",
+                        o.order, o.points, o.n_from, o.n_to
+                    )
+                },
+            );
+            let monotone = match o {
+                Some(o) if !o.rises_at.is_empty() => format!(
+                    "not monotone: the error grows from the previous count at N = {}",
+                    o.rises_at
+                        .iter()
+                        .map(u32::to_string)
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+                Some(_) => "the error falls monotonically with N".into(),
+                None => String::new(),
+            };
+            ConvergenceTable {
+                quantity: figures::quantity_label(&q).to_string(),
+                column: q,
+                rows: out,
+                order,
+                monotone,
+            }
         })
         .collect()
 }

@@ -84,6 +84,141 @@ pub struct ReferenceRow {
     pub continuum_solve_time_us: f64,
 }
 
+/// One row of mechanisms.parquet: one mechanism at one bifurcation under one flow rule.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MechanismRow {
+    /// The drawn state of the bifurcation in states.parquet (`bifurcation-1`, ...).
+    pub state_id: String,
+    /// Load case.
+    pub load_case: String,
+    /// Index of the bifurcation in bifurcations.parquet among those of its load case, from 1.
+    pub bifurcation: u32,
+    /// K and μ of the bifurcation.
+    pub k: f64,
+    /// μ of the bifurcation.
+    pub mu: f64,
+    /// `rotational`, `mixed` or `sliding` (of the velocity field), or `none`.
+    pub mechanism: String,
+    /// `non_associative` (pure sliding, the paper's) or `associative` (dilatancy tan φ).
+    pub flow_rule: String,
+    /// dL^(a) over W_half·r.
+    pub work_loads: f64,
+    /// dL^(r,n) over W_half·r: zero for pure sliding, μ R^n |dr^t| summed under the
+    /// associative rule.
+    pub work_normal: f64,
+    /// dL^(r,t) over W_half·r.
+    pub work_friction: f64,
+    /// Relative residual of the virtual-work balance dL^(a) + dL^(r,n) + dL^(r,t) = 0
+    /// (eq. 11; dL^(r,n) = 0 for the non-associative rule).
+    pub work_residual: f64,
+    /// Degrees of freedom of the compatibility system at the state.
+    pub dof: u32,
+    /// Sliding joints of the mechanism: angle from the crown, degrees.
+    pub sliding_angles_deg: Vec<f64>,
+    /// Their slip δr^t (normalised field).
+    pub slip: Vec<f64>,
+    /// Their normal separation (zero for pure sliding).
+    pub dilatancy: Vec<f64>,
+    /// The drawing (blocks before and after, hinges, slides, supports) as JSON.
+    pub drawing_json: String,
+}
+
+/// The mechanisms table.
+pub fn mechanisms_frame(rows: &[MechanismRow]) -> Result<DataFrame> {
+    TableBuilder::new()
+        .str(
+            "state_id",
+            rows.iter().map(|r| r.state_id.clone()).collect(),
+        )
+        .str(
+            "load_case",
+            rows.iter().map(|r| r.load_case.clone()).collect(),
+        )
+        .u64(
+            "bifurcation",
+            rows.iter().map(|r| u64::from(r.bifurcation)).collect(),
+        )
+        .f64("k", rows.iter().map(|r| r.k).collect())
+        .f64("mu", rows.iter().map(|r| r.mu).collect())
+        .str(
+            "mechanism",
+            rows.iter().map(|r| r.mechanism.clone()).collect(),
+        )
+        .str(
+            "flow_rule",
+            rows.iter().map(|r| r.flow_rule.clone()).collect(),
+        )
+        .f64("work_loads", rows.iter().map(|r| r.work_loads).collect())
+        .f64("work_normal", rows.iter().map(|r| r.work_normal).collect())
+        .f64(
+            "work_friction",
+            rows.iter().map(|r| r.work_friction).collect(),
+        )
+        .f64(
+            "work_residual",
+            rows.iter().map(|r| r.work_residual).collect(),
+        )
+        .u64("dof", rows.iter().map(|r| u64::from(r.dof)).collect())
+        .list_f64(
+            "sliding_angles_deg",
+            rows.iter().map(|r| r.sliding_angles_deg.clone()).collect(),
+        )
+        .list_f64("slip", rows.iter().map(|r| r.slip.clone()).collect())
+        .list_f64(
+            "dilatancy",
+            rows.iter().map(|r| r.dilatancy.clone()).collect(),
+        )
+        .str(
+            "drawing_json",
+            rows.iter().map(|r| r.drawing_json.clone()).collect(),
+        )
+        .finish()
+}
+
+/// Reads mechanisms.parquet.
+pub fn read_mechanisms(path: &Path) -> Result<Vec<MechanismRow>> {
+    let df = read_parquet(path)?;
+    let cx = || format!("in {}", path.display());
+    let f = |name: &str| f64_column(&df, name).with_context(cx);
+    let s = |name: &str| str_column(&df, name).with_context(cx);
+    let (id, lc, mech, rule, json) = (
+        s("state_id")?,
+        s("load_case")?,
+        s("mechanism")?,
+        s("flow_rule")?,
+        s("drawing_json")?,
+    );
+    let bif = u64_column(&df, "bifurcation").with_context(cx)?;
+    let dof = u64_column(&df, "dof").with_context(cx)?;
+    let (k, mu) = (f("k")?, f("mu")?);
+    let (wl, wf, wr) = (f("work_loads")?, f("work_friction")?, f("work_residual")?);
+    let wn = f("work_normal")?;
+    let sa = list_f64_column(&df, "sliding_angles_deg").with_context(cx)?;
+    let slip = list_f64_column(&df, "slip").with_context(cx)?;
+    let dil = list_f64_column(&df, "dilatancy").with_context(cx)?;
+    let nan = |v: Option<f64>| v.unwrap_or(f64::NAN);
+    Ok((0..id.len())
+        .map(|i| MechanismRow {
+            state_id: id[i].clone().unwrap_or_default(),
+            load_case: lc[i].clone().unwrap_or_default(),
+            bifurcation: u32::try_from(bif[i]).unwrap_or(u32::MAX),
+            k: nan(k[i]),
+            mu: nan(mu[i]),
+            mechanism: mech[i].clone().unwrap_or_default(),
+            flow_rule: rule[i].clone().unwrap_or_default(),
+            work_loads: nan(wl[i]),
+            work_normal: nan(wn[i]),
+            work_friction: nan(wf[i]),
+            work_residual: nan(wr[i]),
+            dof: u32::try_from(dof[i]).unwrap_or(u32::MAX),
+            sliding_angles_deg: sa[i].clone(),
+            slip: slip[i].clone(),
+            dilatancy: dil[i].clone(),
+            drawing_json: json[i].clone().unwrap_or_default(),
+        })
+        .collect())
+}
+
 /// The curves table.
 pub fn curves_frame(rows: &[CurvePoint]) -> Result<DataFrame> {
     TableBuilder::new()

@@ -72,10 +72,36 @@ pub struct ResultRow {
     pub thrust_min: Option<f64>,
     /// Maximum admissible thrust over W_half (thrust find).
     pub thrust_max: Option<f64>,
+    /// Collapse thickness at infinite friction (thresholds find).
+    pub k_c_rotational: Option<f64>,
+    /// μ of the rotational/mixed bifurcation (thresholds find).
+    pub mu_rotational_mixed: Option<f64>,
+    /// Sliding threshold μ_min (thresholds find).
+    pub mu_min: Option<f64>,
+    /// K of the mixed/sliding bifurcation (thresholds find).
+    pub k_mixed_sliding: Option<f64>,
     /// `ok` or `error`.
     pub status: String,
     /// Wall time of the analysis, µs.
     pub solve_time_us: f64,
+}
+
+impl ResultRow {
+    /// The value of a numeric results column of this row by its name (the critical values
+    /// compared with the continuum); `None` when the column is not one of them or is null.
+    pub fn value_of(&self, column: &str) -> Option<f64> {
+        match column {
+            "k_crit" => self.k_crit,
+            "mu_crit" => self.mu_crit,
+            "thrust_min" => self.thrust_min,
+            "thrust_r_min" => self.thrust_r_min,
+            "k_c_rotational" => self.k_c_rotational,
+            "mu_rotational_mixed" => self.mu_rotational_mixed,
+            "mu_min" => self.mu_min,
+            "k_mixed_sliding" => self.k_mixed_sliding,
+            _ => None,
+        }
+    }
 }
 
 /// One row of boundaries.parquet: a point where the regime changes along a grid line.
@@ -187,6 +213,8 @@ pub fn read_results(path: &Path) -> Result<Vec<ResultRow>> {
     let (thrust, moment) = (f("thrust_over_half_weight")?, f("crown_moment")?);
     let joints = joint_lists(&df).with_context(cx)?;
     let (tmin, tmax) = (f("thrust_min")?, f("thrust_max")?);
+    let (kcr, murm) = (f("k_c_rotational")?, f("mu_rotational_mixed")?);
+    let (mumin, kms) = (f("mu_min")?, f("k_mixed_sliding")?);
     let status = required(s("status")?, "status", path)?;
     let time = f("solve_time_us")?;
     let mut out = Vec::with_capacity(case_id.len());
@@ -216,6 +244,10 @@ pub fn read_results(path: &Path) -> Result<Vec<ResultRow>> {
             joints,
             thrust_min: tmin[i],
             thrust_max: tmax[i],
+            k_c_rotational: kcr[i],
+            mu_rotational_mixed: murm[i],
+            mu_min: mumin[i],
+            k_mixed_sliding: kms[i],
             status: status[i].clone(),
             solve_time_us: time[i].unwrap_or(f64::NAN),
         });

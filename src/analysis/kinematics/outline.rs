@@ -10,9 +10,10 @@
 use super::{RigidVelocity, VelocityField};
 use crate::analysis::statics::{ArchGeometry, Point};
 use crate::analysis::types::{Face, Sense};
+use serde::{Deserialize, Serialize};
 
 /// The outline of one part of the arch.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct BlockOutline {
     /// Joint parameter of the left end (radians).
     pub theta_from: f64,
@@ -27,7 +28,7 @@ pub struct BlockOutline {
 }
 
 /// A hinge to mark.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct HingeMark {
     /// Hinge point before the displacement.
     pub point: Point,
@@ -40,7 +41,7 @@ pub struct HingeMark {
 }
 
 /// A sliding joint to mark.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct SlideMark {
     /// Joint centre before the displacement.
     pub centre: Point,
@@ -55,7 +56,7 @@ pub struct SlideMark {
 }
 
 /// A support: the springing joint and the side the ground lies on.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct SupportMark {
     /// Intrados end of the springing joint.
     pub intrados: Point,
@@ -66,7 +67,7 @@ pub struct SupportMark {
 }
 
 /// Everything needed to draw a mechanism.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct MechanismDrawing {
     /// All parts, left to right (fixed ones unmoved).
     pub outlines: Vec<BlockOutline>,
