@@ -31,6 +31,9 @@ use std::f64::consts::FRAC_PI_2;
 /// The objective of every programme here: maximise the fourth unknown (τ or λ).
 pub const OBJECTIVE: [f64; 4] = [0.0, 0.0, 0.0, 1.0];
 
+/// The auxiliary row −λ ≤ 0 of a load-factor programme.
+const LAMBDA_NON_NEGATIVE: [f64; 4] = [0.0, 0.0, 0.0, -1.0];
+
 /// Largest K − 1 explored when bracketing a critical thickness.
 const FAR: f64 = 1e9;
 
@@ -288,14 +291,14 @@ impl LinearRows {
         rows
     }
 
-    /// The load-factor programme at the given joints: rows a·x + a_λ λ ≤ b.
+    /// The load-factor programme at the given joints: rows a·x + a_λ λ ≤ b, and λ ≥ 0.
     pub fn load_factor<G: ArchGeometry + ?Sized>(
         geom: &G,
         thetas: &[f64],
         phi: f64,
         set: RowSet,
     ) -> Self {
-        let mut rows = LinearRows::default();
+        let mut rows = LinearRows::new(Objective::LoadFactor);
         for &t in thetas {
             rows.push_joint(geom, t, phi, set, Objective::LoadFactor);
         }
@@ -309,7 +312,12 @@ impl LinearRows {
                 b: vec![cap],
                 joints: Vec::new(),
             },
-            Objective::LoadFactor => LinearRows::default(),
+            // λ ≥ 0: the live load acts in its own sense.
+            Objective::LoadFactor => LinearRows {
+                a: vec![LAMBDA_NON_NEGATIVE],
+                b: vec![0.0],
+                joints: Vec::new(),
+            },
         }
     }
 }
@@ -434,17 +442,59 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
         }
     }
 
-    /// The refined local maxima over [−α, α] of the violation of each condition at z.
+    /// The refined local maxima of the violation of each condition at z over every family
+    /// of joints ([`ArchGeometry::families`]), and the violations at the isolated joints.
     fn scan(&self, z: &[f64; 4], homogeneous: bool, settings: &Settings) -> Vec<Candidate> {
+        let families = self.geom.families();
+        let total: f64 = families.iter().map(|f| (f[1] - f[0]).max(0.0)).sum();
+        let samples = settings.exchange_samples.max(2);
+        let mut out = Vec::new();
+        let mut points = self.geom.isolated_joints();
+        for &[lo, hi] in &families {
+            if hi > lo && total > 0.0 {
+                let n = ((samples as f64 * (hi - lo) / total).ceil() as usize).max(2);
+                self.scan_family(lo, hi, n, z, homogeneous, settings, &mut out);
+            } else {
+                points.push(lo);
+            }
+        }
+        for t in points {
+            let rows = joint_rows(self.geom, t, self.phi);
+            for (ci, condition) in Condition::ALL.into_iter().enumerate() {
+                if self.set.includes(condition) {
+                    out.push(Candidate {
+                        theta: t,
+                        condition,
+                        violation: violation(&rows[ci], self.objective, z, homogeneous),
+                    });
+                }
+            }
+        }
+        out
+    }
+
+    /// The refined local maxima over [lo, hi] (n sampling intervals) of the violation of each
+    /// condition at z.
+    #[allow(clippy::too_many_arguments)]
+    fn scan_family(
+        &self,
+        lo: f64,
+        hi: f64,
+        n: usize,
+        z: &[f64; 4],
+        homogeneous: bool,
+        settings: &Settings,
+        out: &mut Vec<Candidate>,
+    ) {
         let alpha = self.geom.half_angle();
-        let n = settings.exchange_samples.max(2);
-        let step = 2.0 * alpha / n as f64;
-        let thetas: Vec<f64> = (0..=n).map(|i| -alpha + step * i as f64).collect();
+        let step = (hi - lo) / n as f64;
+        let thetas: Vec<f64> = (0..=n)
+            .map(|i| if i == n { hi } else { lo + step * i as f64 })
+            .collect();
         let samples: Vec<[Row; 4]> = thetas
             .iter()
             .map(|&t| joint_rows(self.geom, t, self.phi))
             .collect();
-        let mut out = Vec::new();
         for condition in self.conditions() {
             let ci = Condition::ALL
                 .iter()
@@ -460,10 +510,10 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
             maxima.sort_by(|&i, &j| v[j].total_cmp(&v[i]));
             maxima.truncate(settings.exchange_maxima.max(1));
             for i in maxima {
-                let lo = thetas[i.saturating_sub(1)];
-                let hi = thetas[(i + 1).min(n)];
+                let a = thetas[i.saturating_sub(1)];
+                let b = thetas[(i + 1).min(n)];
                 let f = |t: f64| violation(&self.row(t, condition), self.objective, z, homogeneous);
-                let (mut t, mut fv) = maximise_1d(f, lo, hi, 1e-10 * alpha.max(1e-3));
+                let (mut t, mut fv) = maximise_1d(f, a, b, 1e-10 * alpha.max(1e-3));
                 // Brent never evaluates the ends of its bracket: the sample may be better.
                 if v[i] >= fv {
                     (t, fv) = (thetas[i], v[i]);
@@ -475,7 +525,6 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
                 });
             }
         }
-        out
     }
 
     fn lp(&self, rows: &LinearRows, settings: &Settings) -> lp::Solution<4> {
@@ -540,7 +589,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
             max_violation = max_violation.max(v);
             if outcome == Outcome::Solved && v >= -tol {
                 active.push(ActiveRow {
-                    angle_deg: j.theta.to_degrees(),
+                    angle_deg: self.geom.angle_deg(j.theta),
                     condition: j.condition,
                     slack: (-v).max(0.0),
                 });
@@ -557,11 +606,26 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
     }
 
     fn solve_continuum(&self, settings: &Settings) -> Solved {
-        let alpha = self.geom.half_angle();
         let n0 = settings.exchange_initial_joints.max(2);
         let mut rows = LinearRows::new(self.objective);
-        for i in 0..n0 {
-            let t = -alpha + 2.0 * alpha * i as f64 / (n0 - 1) as f64;
+        let families = self.geom.families();
+        let total: f64 = families.iter().map(|f| (f[1] - f[0]).max(0.0)).sum();
+        for &[lo, hi] in &families {
+            if hi > lo && total > 0.0 {
+                let n = ((n0 as f64 * (hi - lo) / total).ceil() as usize).max(2);
+                for i in 0..n {
+                    let t = if i + 1 == n {
+                        hi
+                    } else {
+                        lo + (hi - lo) * i as f64 / (n - 1) as f64
+                    };
+                    rows.push_joint(self.geom, t, self.phi, self.set, self.objective);
+                }
+            } else {
+                rows.push_joint(self.geom, lo, self.phi, self.set, self.objective);
+            }
+        }
+        for t in self.geom.isolated_joints() {
             rows.push_joint(self.geom, t, self.phi, self.set, self.objective);
         }
         let mut iterations = 0;
@@ -604,7 +668,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
                         .iter()
                         .filter(|c| c.violation >= vmax.max(0.0) - atol)
                         .map(|c| ActiveRow {
-                            angle_deg: c.theta.to_degrees(),
+                            angle_deg: self.geom.angle_deg(c.theta),
                             condition: c.condition,
                             slack: (vmax.max(0.0) - c.violation).max(0.0),
                         })
@@ -867,11 +931,24 @@ fn reference(m: &MarginSolution, settings: &Settings) -> Result<f64, Stop> {
 }
 
 /// The smallest p in [lo, hi] with psi(p) ≥ 0, for psi whose sign is non-decreasing; `hi`
-/// doubles away from `lo` while psi(hi) < 0 when `grow_hi`.
+/// doubles away from `lo` (up to `cap`) while psi(hi) < 0 when `grow_hi`.
 fn search(
     psi: impl Fn(f64) -> f64,
     lo: f64,
     hi: f64,
+    tol: f64,
+    grow_hi: bool,
+    failed: &Cell<Option<Outcome>>,
+) -> Result<f64, Stop> {
+    search_capped(psi, lo, hi, f64::INFINITY, tol, grow_hi, failed)
+}
+
+/// [`search`] with `hi` never beyond `cap`.
+fn search_capped(
+    psi: impl Fn(f64) -> f64,
+    lo: f64,
+    hi: f64,
+    cap: f64,
     tol: f64,
     grow_hi: bool,
     failed: &Cell<Option<Outcome>>,
@@ -883,12 +960,12 @@ fn search(
     if check(psi(lo))? >= 0.0 {
         return Err(Stop::Always);
     }
-    let mut hi = hi;
+    let mut hi = hi.min(cap);
     while check(psi(hi))? < 0.0 {
-        if !grow_hi {
+        if !grow_hi || hi >= cap {
             return Err(Stop::Never);
         }
-        hi = lo + 2.0 * (hi - lo);
+        hi = (lo + 2.0 * (hi - lo)).min(cap);
         if hi - lo > FAR {
             return Err(Stop::Never);
         }
@@ -909,15 +986,36 @@ fn search(
 /// search measures the thickness against what sliding allows instead of against noise.
 /// Invariant: τ_all ≥ τ_ref − `margin_tol` ≥ −2 `margin_tol` at the returned K.
 pub fn thickness(arch: &Arch, friction: Friction, settings: &Settings) -> Critical {
-    let phi = friction.angle();
-    let at = |k: f64| CircularArch::new(arch.with_k(k));
-    let failed = Cell::new(None);
-    let tau_ref = match reference(
-        &margin(&at(arch.k), phi, RowSet::Sliding, settings),
+    thickness_with(
+        |k| CircularArch::new(arch.with_k(k)),
+        f64::INFINITY,
+        Some(arch.k),
+        friction,
         settings,
-    ) {
-        Ok(r) => r,
-        Err(c) => return c.into(),
+    )
+}
+
+/// The collapse thickness of any family of arches K ↦ `at(K)`, K ∈ (1, `k_max`), at
+/// friction μ and the load factor `settings.lambda`: as [`thickness`].
+///
+/// `sliding_reference` is a K at which to take τ_ref when the sliding rows do not depend on
+/// K (circular arches with radial joints: the loads over W_half are the same at every K);
+/// `None` takes τ_ref = 0. A family that does not stand up to `k_max` never stands.
+pub fn thickness_with<G: ArchGeometry, F: Fn(f64) -> G>(
+    at: F,
+    k_max: f64,
+    sliding_reference: Option<f64>,
+    friction: Friction,
+    settings: &Settings,
+) -> Critical {
+    let phi = friction.angle();
+    let failed = Cell::new(None);
+    let tau_ref = match sliding_reference {
+        Some(k) => match reference(&margin(&at(k), phi, RowSet::Sliding, settings), settings) {
+            Ok(r) => r,
+            Err(c) => return c.into(),
+        },
+        None => 0.0,
     };
     let psi = |k: f64| {
         shifted_margin(
@@ -927,7 +1025,13 @@ pub fn thickness(arch: &Arch, friction: Friction, settings: &Settings) -> Critic
             &failed,
         )
     };
-    let k = match search(psi, 1.0 + 1e-12, 1.5, 1e-15, true, &failed) {
+    // Stay clear of the end of the family, where it degenerates.
+    let cap = if k_max.is_finite() {
+        1.0 + (k_max - 1.0) * (1.0 - 1e-9)
+    } else {
+        f64::INFINITY
+    };
+    let k = match search_capped(psi, 1.0 + 1e-12, 1.5, cap, 1e-15, true, &failed) {
         Ok(k) => k,
         Err(c) => return c.into(),
     };
@@ -1009,7 +1113,9 @@ pub struct LoadFactor {
     pub iterations: usize,
 }
 
-/// Maximises λ subject to all rows (the static theorem for a proportional live load).
+/// Maximises λ ≥ 0 subject to all rows (the static theorem for a proportional live load):
+/// the collapse load factor of the live load of `geom` on top of its dead load. Infeasible
+/// when no λ ≥ 0 admits a state, unbounded when every λ ≥ 0 does.
 pub fn load_factor<G: ArchGeometry + ?Sized>(
     geom: &G,
     phi: f64,
