@@ -15,7 +15,8 @@
 //! - radial joints are the radii at ψ = |θ|;
 //! - vertical joints run from the intrados point at ψ = |θ| straight up to the extrados
 //!   (so their extrados end is at sin ψ_E = sin ψ/K); the supports stay radial at ψ = α and
-//!   carry the parameters ±α⁺ (the float just beyond α), reported as ±α;
+//!   carry the parameters ±α⁺ (the float just beyond α), reported as ±α; on a pointed arch
+//!   the vertical joints at ±ψ₁ are the crown joint and are reported as 0;
 //! - the crown joint is the segment of x = 0 between the intrados apex (ψ₁ = asin d) and the
 //!   extrados apex (ψ_e = asin(d/K)), named 0. Joints with 0 < |θ| < ψ₁ do not exist: the
 //!   radius through them would leave the half arch.
@@ -520,6 +521,9 @@ impl ArchGeometry for ArchModel {
         let a = self.arch.half_angle;
         if theta.abs() > a {
             a.to_degrees().copysign(theta)
+        } else if self.form.joints == JointOrientation::Vertical && theta.abs() == self.psi_1 {
+            // The vertical joints through the intrados apex are the crown joint.
+            0.0
         } else {
             theta.to_degrees()
         }
@@ -735,6 +739,21 @@ mod tests {
             ),
             Err(FormError::LoadInsideKeystone { .. })
         ));
+    }
+
+    #[test]
+    fn pointed_margins_converge_even_without_friction() {
+        // At φ = 0 the sliding rows pin the tangential force to zero; the programme solver's
+        // residual on rows it already holds must not read as a missing joint.
+        use crate::analysis::general::{self, Outcome, RowSet, Settings};
+        let a = arch(1.3, 90.0, WeightModel::Annular, Discretisation::Continuum);
+        let m = ArchModel::new(a, form(0.5, JointOrientation::Radial), Load::SelfWeight).unwrap();
+        for phi in [0.0, 0.1, 0.6, FRAC_PI_2] {
+            for set in [RowSet::Rotational, RowSet::Sliding, RowSet::All] {
+                let r = general::margin(&m, phi, set, &Settings::default());
+                assert_eq!(r.outcome, Outcome::Solved, "φ = {phi}, {set:?}");
+            }
+        }
     }
 
     #[test]

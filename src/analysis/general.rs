@@ -709,7 +709,21 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
                 }
             }
             if added == 0 {
-                return done(Outcome::NotConverged, rows);
+                // Every violated joint is already a row: the residual is what the programme
+                // solver accepted (its tolerance also scales with t), not a missing joint.
+                let lp_tol = 10.0
+                    * settings.lp.tol_feas
+                    * (1.0 + z.iter().fold(0.0, |m: f64, v| m.max(v.abs())));
+                let outcome = if vmax <= lp_tol {
+                    if homogeneous {
+                        Outcome::Unbounded
+                    } else {
+                        Outcome::Solved
+                    }
+                } else {
+                    Outcome::NotConverged
+                };
+                return done(outcome, rows);
             }
         }
     }
@@ -827,6 +841,12 @@ pub fn mechanism_of(active: &[ActiveRow]) -> Option<Mechanism> {
             }
         }
     }
+    // Both sides of a point load are joints at (nearly) the same angle: one joint each.
+    let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * (1.0 + a.abs());
+    hinges.sort_by(|a, b| a.angle_deg.total_cmp(&b.angle_deg));
+    hinges.dedup_by(|a, b| a.face == b.face && same(a.angle_deg, b.angle_deg));
+    sliding.sort_by(|a, b| a.angle_deg.total_cmp(&b.angle_deg));
+    sliding.dedup_by(|a, b| a.sense == b.sense && same(a.angle_deg, b.angle_deg));
     Mechanism::from_parts(hinges, sliding)
 }
 
@@ -987,7 +1007,7 @@ fn search_capped(
 /// Invariant: τ_all ≥ τ_ref − `margin_tol` ≥ −2 `margin_tol` at the returned K.
 pub fn thickness(arch: &Arch, friction: Friction, settings: &Settings) -> Critical {
     thickness_with(
-        |k| CircularArch::new(arch.with_k(k)),
+        |k| Some(CircularArch::new(arch.with_k(k))),
         f64::INFINITY,
         Some(arch.k),
         friction,
@@ -998,10 +1018,11 @@ pub fn thickness(arch: &Arch, friction: Friction, settings: &Settings) -> Critic
 /// The collapse thickness of any family of arches K ↦ `at(K)`, K ∈ (1, `k_max`), at
 /// friction μ and the load factor `settings.lambda`: as [`thickness`].
 ///
+/// `at(K)` is `None` where the family does not exist (it counts as not standing there).
 /// `sliding_reference` is a K at which to take τ_ref when the sliding rows do not depend on
 /// K (circular arches with radial joints: the loads over W_half are the same at every K);
 /// `None` takes τ_ref = 0. A family that does not stand up to `k_max` never stands.
-pub fn thickness_with<G: ArchGeometry, F: Fn(f64) -> G>(
+pub fn thickness_with<G: ArchGeometry, F: Fn(f64) -> Option<G>>(
     at: F,
     k_max: f64,
     sliding_reference: Option<f64>,
@@ -1011,19 +1032,23 @@ pub fn thickness_with<G: ArchGeometry, F: Fn(f64) -> G>(
     let phi = friction.angle();
     let failed = Cell::new(None);
     let tau_ref = match sliding_reference {
-        Some(k) => match reference(&margin(&at(k), phi, RowSet::Sliding, settings), settings) {
-            Ok(r) => r,
-            Err(c) => return c.into(),
+        Some(k) => match at(k).map(|g| margin(&g, phi, RowSet::Sliding, settings)) {
+            Some(m) => match reference(&m, settings) {
+                Ok(r) => r,
+                Err(c) => return c.into(),
+            },
+            None => 0.0,
         },
         None => 0.0,
     };
-    let psi = |k: f64| {
-        shifted_margin(
-            &margin(&at(k), phi, RowSet::All, settings),
+    let psi = |k: f64| match at(k) {
+        Some(g) => shifted_margin(
+            &margin(&g, phi, RowSet::All, settings),
             tau_ref,
             settings,
             &failed,
-        )
+        ),
+        None => -1.0,
     };
     // Stay clear of the end of the family, where it degenerates.
     let cap = if k_max.is_finite() {
@@ -1035,7 +1060,10 @@ pub fn thickness_with<G: ArchGeometry, F: Fn(f64) -> G>(
         Ok(k) => k,
         Err(c) => return c.into(),
     };
-    let state = margin(&at(k), phi, RowSet::All, settings);
+    let Some(g) = at(k) else {
+        return Critical::NeverStands;
+    };
+    let state = margin(&g, phi, RowSet::All, settings);
     Critical::Found(LimitState {
         k: Some(k),
         mu: friction.mu(),

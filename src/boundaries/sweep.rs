@@ -151,7 +151,7 @@ fn changes(
 }
 
 /// The state with every joint of two states (the one on the lower-μ side first).
-fn union(a: &CriticalState, b: &CriticalState) -> CriticalState {
+pub(super) fn union(a: &CriticalState, b: &CriticalState) -> CriticalState {
     let mut hinges = a.mechanism.hinges.clone();
     for h in &b.mechanism.hinges {
         if !hinges
@@ -247,6 +247,9 @@ fn sweep(
                     load_case: grid.load_case,
                     half_angle_deg: grid.arch.half_angle_deg(),
                     voussoirs: grid.arch.joints.voussoirs(),
+                    at_deg: grid.scene.load.at_deg(),
+                    axis: None,
+                    load_factor: None,
                     k: state.k,
                     mu: state.mu,
                     mechanism_a: ma,

@@ -67,6 +67,22 @@ pub fn results_frame(plan: &Plan, rows: &[CaseResult]) -> Result<DataFrame> {
             "voussoirs",
             rows.iter().map(|r| r.solution.voussoirs).collect(),
         )
+        // Form and load case (docs/loads-and-geometries.md).
+        .str(
+            "shape",
+            rows.iter().map(|r| r.solution.shape.to_string()).collect(),
+        )
+        .opt_f64("eccentricity", col(&|r| r.solution.eccentricity))
+        .str(
+            "joints",
+            rows.iter().map(|r| r.solution.joints.to_string()).collect(),
+        )
+        .str(
+            "load",
+            rows.iter().map(|r| r.solution.load.to_string()).collect(),
+        )
+        .opt_f64("at_deg", col(&|r| r.solution.at_deg))
+        .opt_f64("lambda", col(&|r| r.solution.lambda))
         .opt_str("outcome", scol(&|r| r.solution.outcome.map(str::to_string)))
         .opt_str("regime", scol(&|r| r.solution.regime.map(str::to_string)))
         .opt_f64("thrust_r_min", col(&|r| r.solution.thrust_r_min))
@@ -85,6 +101,14 @@ pub fn results_frame(plan: &Plan, rows: &[CaseResult]) -> Result<DataFrame> {
             col(&|r| r.solution.thrust_over_half_weight),
         )
         .opt_f64("crown_moment", col(&|r| r.solution.crown_moment))
+        .opt_f64("crown_shear", col(&|r| r.solution.crown_shear))
+        .opt_f64("load_factor", col(&|r| r.solution.load_factor))
+        .bool(
+            "load_factor_unbounded",
+            rows.iter()
+                .map(|r| r.solution.load_factor_unbounded)
+                .collect(),
+        )
         .list_f64(
             "hinge_angles_deg",
             rows.iter()
