@@ -27,6 +27,7 @@ pub enum Find {
     /// The minimum and maximum thrust states at (K, μ).
     Thrust,
     /// The largest load factor λ of the live load at (K, μ), with its mechanism.
+    #[serde(rename = "load_factor")]
     LoadFactor,
 }
 

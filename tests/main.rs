@@ -4,5 +4,6 @@
 mod archive;
 mod boundaries;
 mod common;
+mod loads;
 mod run;
 mod solve;

@@ -424,6 +424,8 @@ struct Solved {
     /// Largest violation over all joints at z.
     max_violation: f64,
     active: Vec<ActiveRow>,
+    /// The joint and condition of each active row.
+    active_joints: Vec<JointRow>,
     iterations: usize,
 }
 
@@ -556,10 +558,90 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
     }
 
     fn solve(&self, settings: &Settings) -> Solved {
-        match self.geom.discrete_joints() {
+        let mut s = match self.geom.discrete_joints() {
             Some(thetas) => self.solve_discrete(&thetas, settings),
             None => self.solve_continuum(settings),
+        };
+        // Only a limit state names a mechanism: τ ≈ 0 for a margin, any λ_max.
+        let limit = match self.objective {
+            Objective::Margin { .. } => s.z[3].abs() <= 1e-6 * Self::scale(&s.z),
+            Objective::LoadFactor => true,
+        };
+        if s.outcome == Outcome::Solved && limit && !s.active.is_empty() {
+            self.keep_necessary(&mut s, settings);
         }
+        s
+    }
+
+    /// Keeps the active rows that name the mechanism: those that hold with equality in
+    /// every optimal state, at joints that transmit a force.
+    ///
+    /// The programme's optimum may be a face rather than a point (at μ_min, say, the crown
+    /// moment M₀ is free within a range): the vertex returned touches rows that other
+    /// optimal states leave slack. With the fourth unknown fixed at its optimum, a row is
+    /// kept iff the largest distance x can take from its plane over the optimal face is
+    /// within `active_tol` (one small programme per active row, over the programme's rows
+    /// and the active ones). A joint without normal force (a support that lifts off) holds
+    /// its rows with 0 = 0 but neither hinges nor slides: it is open, and left out.
+    fn keep_necessary(&self, s: &mut Solved, settings: &Settings) {
+        let t = s.z[3];
+        let scale = Self::scale(&s.z);
+        let tol = self.active_tol(&s.z, settings);
+        // x = z[..3] violates no row by more than the residual: relax every row by it.
+        let relax = s.max_violation.max(0.0) + 1e-14 * scale;
+        let mut a3: Vec<[f64; 3]> = Vec::with_capacity(s.rows.a.len() + s.active.len());
+        let mut b3: Vec<f64> = Vec::with_capacity(a3.capacity());
+        let mut push = |a: [f64; 4], b: f64| {
+            let n = norm3(&[a[0], a[1], a[2]]);
+            if n > 0.0 {
+                a3.push([a[0], a[1], a[2]]);
+                b3.push(b - a[3] * t + relax * n);
+            }
+        };
+        for (a, b) in s.rows.a.iter().zip(&s.rows.b) {
+            push(*a, *b);
+        }
+        let active: Vec<([f64; 4], f64)> = s
+            .active_joints
+            .iter()
+            .map(|j| lp_row(&self.row(j.theta, j.condition), self.objective))
+            .collect();
+        for (a, b) in &active {
+            push(*a, *b);
+        }
+        let lp_settings = lp::Settings {
+            max_iter: settings.lp.max_iter.max(10_000 + 4 * a3.len()),
+            ..settings.lp
+        };
+        let lambda = match self.objective {
+            Objective::Margin { lambda, .. } => lambda,
+            Objective::LoadFactor => t,
+        };
+        let mut keep = Vec::with_capacity(active.len());
+        for ((a, b), j) in active.iter().zip(&s.active_joints) {
+            let n = norm3(&[a[0], a[1], a[2]]);
+            let c = [-a[0] / n, -a[1] / n, -a[2] / n];
+            let necessary = match lp::maximise(&c, &a3, &b3, &lp_settings) {
+                Ok(sol) if sol.status == lp::Status::Optimal => {
+                    // Largest distance from the plane (t fixed) over the optimal face.
+                    let d = (b - a[3] * t) / n + sol.objective;
+                    d <= tol + relax
+                }
+                Ok(sol) if sol.status == lp::Status::Unbounded => false,
+                _ => true,
+            };
+            // The normal force N = F·t at the joint (compression > 0).
+            let d = self.geom.dead_load(j.theta);
+            let l = self.geom.live_load(j.theta);
+            let normal = self.geom.joint(j.theta).normal();
+            let f = [s.z[0] + d.fx + lambda * l.fx, s.z[1] + d.fy + lambda * l.fy];
+            let n_force = f[0] * normal[0] + f[1] * normal[1];
+            keep.push(necessary && n_force > tol);
+        }
+        let mut k = keep.iter();
+        s.active.retain(|_| *k.next().unwrap_or(&true));
+        let mut k = keep.iter();
+        s.active_joints.retain(|_| *k.next().unwrap_or(&true));
     }
 
     fn solve_discrete(&self, thetas: &[f64], settings: &Settings) -> Solved {
@@ -581,6 +663,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
         };
         let mut max_violation = f64::NEG_INFINITY;
         let mut active = Vec::new();
+        let mut active_joints = Vec::new();
         let tol = self.active_tol(&z, settings);
         for (a, (b, j)) in rows.a.iter().zip(rows.b.iter().zip(&rows.joints)) {
             let n = norm3(&[a[0], a[1], a[2]]);
@@ -593,6 +676,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
                     condition: j.condition,
                     slack: (-v).max(0.0),
                 });
+                active_joints.push(*j);
             }
         }
         Solved {
@@ -601,6 +685,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
             rows,
             max_violation,
             active,
+            active_joints,
             iterations: 1,
         }
     }
@@ -642,6 +727,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
                         rows,
                         max_violation: f64::INFINITY,
                         active: Vec::new(),
+                        active_joints: Vec::new(),
                         iterations,
                     };
                 }
@@ -652,6 +738,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
                         rows,
                         max_violation: f64::INFINITY,
                         active: Vec::new(),
+                        active_joints: Vec::new(),
                         iterations,
                     };
                 }
@@ -663,26 +750,37 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
             let tol = settings.exchange_tol * Self::scale(&z);
             let done = |outcome: Outcome, rows: LinearRows| {
                 let atol = self.active_tol(&z, settings);
-                let mut active: Vec<ActiveRow> = if outcome == Outcome::Solved {
+                let mut pairs: Vec<(ActiveRow, JointRow)> = if outcome == Outcome::Solved {
                     candidates
                         .iter()
                         .filter(|c| c.violation >= vmax.max(0.0) - atol)
-                        .map(|c| ActiveRow {
-                            angle_deg: self.geom.angle_deg(c.theta),
-                            condition: c.condition,
-                            slack: (vmax.max(0.0) - c.violation).max(0.0),
+                        .map(|c| {
+                            (
+                                ActiveRow {
+                                    angle_deg: self.geom.angle_deg(c.theta),
+                                    condition: c.condition,
+                                    slack: (vmax.max(0.0) - c.violation).max(0.0),
+                                },
+                                JointRow {
+                                    theta: c.theta,
+                                    condition: c.condition,
+                                },
+                            )
                         })
                         .collect()
                 } else {
                     Vec::new()
                 };
-                active.sort_by(|a, b| a.angle_deg.total_cmp(&b.angle_deg));
+                pairs.sort_by(|a, b| a.0.angle_deg.total_cmp(&b.0.angle_deg));
+                let (active, active_joints): (Vec<ActiveRow>, Vec<JointRow>) =
+                    pairs.into_iter().unzip();
                 Solved {
                     outcome,
                     z,
                     rows,
                     max_violation: vmax,
                     active,
+                    active_joints,
                     iterations,
                 }
             };

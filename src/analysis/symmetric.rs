@@ -266,19 +266,19 @@ fn stability_margin(sym: &SymmetricCircular, sd: &Interval) -> (f64, f64) {
     if sd.hi.is_finite() && (hp.is_infinite() || sd.hi - hp < g) {
         let top = if hp.is_finite() { hp } else { sd.hi };
         let f = |h: f64| phi(h) + h - sd.hi;
-        if let Some(lo) = bracket_below(&f, top) {
-            if let Some(h) = brent(&f, lo, top, 1e-15) {
-                consider(h);
-            }
+        if let Some(lo) = bracket_below(&f, top)
+            && let Some(h) = brent(&f, lo, top, 1e-15)
+        {
+            consider(h);
         }
     }
     // Φ(h) = h − h_s,min right of the peak (Φ − h falls there).
     if sd.lo.is_finite() && hp.is_finite() && hp - sd.lo < g {
         let f = |h: f64| phi(h) - h + sd.lo;
-        if let Some(hi) = bracket_above(&f, hp) {
-            if let Some(h) = brent(&f, hi, hp, 1e-15) {
-                consider(h);
-            }
+        if let Some(hi) = bracket_above(&f, hp)
+            && let Some(h) = brent(&f, hi, hp, 1e-15)
+        {
+            consider(h);
         }
     }
     if hp.is_infinite() && sd.hi.is_infinite() {

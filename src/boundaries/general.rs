@@ -106,6 +106,12 @@ fn to_x(axis: EdgeAxis, t: f64) -> f64 {
     }
 }
 
+/// An answer at one end of an edge: its label and the stored or computed solution.
+type Answer = (Label, Solution);
+
+/// A grid edge whose ends differ: its axis, the fixed coordinate and both ends.
+type Edge = (EdgeAxis, f64, (f64, Answer), (f64, Answer));
+
 /// One located change: a bracket no wider than the tolerance and the answers at its ends.
 struct Change {
     lo: f64,
@@ -311,12 +317,7 @@ pub(crate) fn locate(
         let s = &ok_result(results, grid, i, j)?.solution;
         Some((label(find, s)?, s.clone()))
     };
-    let mut edges: Vec<(
-        EdgeAxis,
-        f64,
-        (f64, (Label, Solution)),
-        (f64, (Label, Solution)),
-    )> = Vec::new();
+    let mut edges: Vec<Edge> = Vec::new();
     for j in 0..grid.mus.len() {
         for i in 1..grid.ks.len() {
             if let (Some(a), Some(b)) = (stored(i - 1, j), stored(i, j))

@@ -91,9 +91,11 @@ pub(super) fn solve(scene: &Scene, out: &mut Solution) {
     };
     if scene.find == Find::Thickness {
         let make = |k: f64| ArchModel::new(scene.arch.with_k(k), scene.form, scene.load).ok();
-        // Over W_half the sliding rows of a circular arch with radial joints do not depend
-        // on K; those of other forms do.
-        let reference = scene.form.is_circular_radial().then_some(scene.arch.k);
+        // Over W_half the sliding rows of a circular arch with radial joints (a pointed one
+        // with e = 0 included) do not depend on K; those of other forms do.
+        let circular_radial = scene.form.joints == crate::model::JointOrientation::Radial
+            && scene.form.shape.eccentricity() == 0.0;
+        let reference = circular_radial.then_some(scene.arch.k);
         let c = general::thickness_with(make, k_max(scene), reference, scene.friction, &settings);
         if let Some(s) = set_critical(out, &c)
             && let Some(k) = s.k
