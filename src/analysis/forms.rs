@@ -757,6 +757,67 @@ mod tests {
     }
 
     #[test]
+    fn load_factor_programmes_agree_with_clarabel() {
+        use crate::analysis::general::{self, LinearRows, OBJECTIVE, RowSet, Settings};
+        use crate::analysis::lp;
+        use clarabel::algebra::CscMatrix;
+        use clarabel::solver::{
+            DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus,
+        };
+        let a = arch(
+            1.3,
+            90.0,
+            WeightModel::Annular,
+            Discretisation::Voussoirs(64),
+        );
+        for (f, load, phi) in [
+            (ArchForm::default(), Load::Horizontal, 0.6f64.atan()),
+            (ArchForm::default(), Load::Point { at_deg: 22.5 }, FRAC_PI_2),
+            (form(0.3, JointOrientation::Vertical), Load::Horizontal, 1.4),
+            (
+                form(0.3, JointOrientation::Radial),
+                Load::Point { at_deg: -45.0 },
+                0.7,
+            ),
+        ] {
+            let g = ArchModel::new(a, f, load).unwrap();
+            let thetas = g.discrete_joints().unwrap();
+            let rows = LinearRows::load_factor(&g, &thetas, phi, RowSet::All);
+            let ours =
+                lp::maximise(&OBJECTIVE, &rows.a, &rows.b, &lp::Settings::default()).unwrap();
+            assert_eq!(ours.status, lp::Status::Optimal, "{f:?} {load:?}");
+            let p = CscMatrix::<f64>::zeros((4, 4));
+            let q = OBJECTIVE.map(|c| -c);
+            let am = CscMatrix::from(rows.a.iter());
+            let cones = [NonnegativeConeT(rows.b.len())];
+            let settings = DefaultSettingsBuilder::default()
+                .verbose(false)
+                .tol_gap_abs(1e-11)
+                .tol_gap_rel(1e-11)
+                .tol_feas(1e-11)
+                .build()
+                .unwrap();
+            let mut solver = DefaultSolver::new(&p, &q, &am, &rows.b, &cones, settings).unwrap();
+            solver.solve();
+            assert_eq!(solver.solution.status, SolverStatus::Solved);
+            let oracle = solver.solution.x[3];
+            assert!(
+                (ours.x[3] - oracle).abs() < 1e-7 * (1.0 + oracle.abs()),
+                "{f:?} {load:?}: {} vs {oracle}",
+                ours.x[3]
+            );
+            // The analysis solves the same programme.
+            let lf = general::load_factor(&g, phi, &Settings::default());
+            assert!(
+                (lf.lambda - ours.x[3]).abs() < 1e-12,
+                "{} vs {}",
+                lf.lambda,
+                ours.x[3]
+            );
+        }
+    }
+
+    #[test]
     fn discrete_joints_of_each_form() {
         let a = arch(
             1.2,
