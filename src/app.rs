@@ -1,6 +1,6 @@
 //! What each subcommand does, callable from Rust; the binary only parses and reports.
 
-use crate::cli::{Cli, Command, SolveArgs, UsageError};
+use crate::cli::{Cli, Command, ReportArgs, SolveArgs, UsageError};
 use crate::scene;
 use anyhow::Result;
 use std::io::Write;
@@ -12,6 +12,7 @@ pub fn exit_code(err: &anyhow::Error) -> u8 {
         c.is::<UsageError>()
             || c.is::<crate::manifest::ManifestError>()
             || c.is::<crate::plan::PlanTooLarge>()
+            || c.is::<crate::report::data::RunDirError>()
     }) {
         2
     } else {
@@ -25,9 +26,21 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Solve(args) => solve(&args),
         Command::Run(args) => crate::runner::run_command(&args),
         Command::Check(args) => crate::runner::check_command(&args),
+        Command::Report(args) => report(&args),
         Command::Archive(args) => crate::archive::archive_command(&args),
         Command::Verify(args) => crate::verify::verify_command(&args),
     }
+}
+
+fn report(args: &ReportArgs) -> Result<ExitCode> {
+    let s = crate::report::render_run(&args.run_dir)?;
+    eprintln!(
+        "{} figures; wrote {} and {}",
+        s.figures,
+        s.html.display(),
+        s.markdown.display()
+    );
+    Ok(ExitCode::SUCCESS)
 }
 
 fn solve(args: &SolveArgs) -> Result<ExitCode> {

@@ -27,10 +27,20 @@ pub enum Command {
     Run(RunArgs),
     /// Validate a study manifest and print its plan without running it.
     Check(CheckArgs),
+    /// Re-render the figures and both reports of a run directory from its stored files.
+    Report(ReportArgs),
     /// Pack a run directory into one .tar.gz with SHA256SUMS, for deposit with a paper.
     Archive(ArchiveArgs),
     /// Check an archive or run directory: checksums, then re-run and compare every result.
     Verify(VerifyArgs),
+}
+
+/// `archstudy report`.
+#[derive(Debug, Args)]
+pub struct ReportArgs {
+    /// The run directory (the `<out>/<name>/` that `archstudy run` wrote).
+    #[arg(value_name = "RUN_DIR")]
+    pub run_dir: PathBuf,
 }
 
 /// `archstudy run`.
@@ -114,7 +124,7 @@ pub struct SolveArgs {
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub voussoirs: Option<i64>,
     /// What to compute.
-    #[arg(long, value_name = "WHAT", default_value = "state", value_parser = ["state", "thickness", "friction", "thrust", "load-factor", "load_factor"])]
+    #[arg(long, value_name = "WHAT", default_value = "state", value_parser = ["state", "thickness", "friction", "thrust", "thresholds", "load-factor", "load_factor"])]
     pub find: String,
     /// Outline: circular, or pointed (two arcs meeting at the crown; needs --eccentricity).
     #[arg(long, value_name = "SHAPE", default_value = "circular", value_parser = ["circular", "pointed"])]
@@ -178,7 +188,7 @@ impl SolveArgs {
             usage(
                 "--find",
                 &self.find,
-                "one of state, thickness, friction, thrust, load-factor",
+                "one of state, thickness, friction, thrust, thresholds, load-factor",
             )
         })?;
         let k = match (self.k, self.t_over_r) {
@@ -226,14 +236,18 @@ impl SolveArgs {
         })?;
         let form = self.form()?;
         let load = self.load()?;
-        let lambda = self.lambda(find, load)?;
-        if find == Find::Thrust && !(load == Load::SelfWeight && form.is_circular_radial()) {
+        if matches!(find, Find::Thrust | Find::Thresholds)
+            && !(load == Load::SelfWeight && form.is_circular_radial())
+        {
             return Err(usage(
                 "--find",
                 &self.find,
-                "thrust is defined for self-weight on a circular arch with radial joints only",
+                format!(
+                    "{find} is defined for self-weight on a circular arch with radial joints only"
+                ),
             ));
         }
+        let lambda = self.lambda(find, load)?;
         if find == Find::LoadFactor && load == Load::SelfWeight {
             return Err(usage(
                 "--find",

@@ -64,7 +64,8 @@ impl<'de> Deserialize<'de> for Number {
             }
             fn visit_str<E: de::Error>(self, v: &str) -> Result<Number, E> {
                 match v.trim() {
-                    "inf" | "+inf" | ".inf" | "infinity" | "Inf" | "INF" => {
+                    // `continuum` is the voussoir count N → ∞.
+                    "inf" | "+inf" | ".inf" | "infinity" | "Inf" | "INF" | "continuum" => {
                         Ok(Number(f64::INFINITY))
                     }
                     other => other.parse::<f64>().map(Number).map_err(|_| {
@@ -463,7 +464,7 @@ fn validate(raw: RawManifest, cx: &Ctx) -> Result<Manifest, ManifestError> {
                 Some(f.referenced),
                 "find",
                 format!(
-                    "value {:?} is not allowed: use state, thickness, friction, thrust or load_factor",
+                    "value {:?} is not allowed: use state, thickness, friction, thrust, thresholds or load_factor",
                     f.value
                 ),
             )
@@ -765,7 +766,9 @@ fn check_value(
         AxisName::TOverR => v > 0.0 && v < 2.0,
         AxisName::Mu => v >= 0.0,
         AxisName::HalfAngleDeg => v > 0.0 && v < 180.0,
-        AxisName::Voussoirs => v.fract() == 0.0 && (1.0..=1e7).contains(&v),
+        AxisName::Voussoirs => {
+            v.is_infinite() && v > 0.0 || v.fract() == 0.0 && (1.0..=1e7).contains(&v)
+        }
         AxisName::AtDeg => v.is_finite() && v.abs() < 180.0,
     };
     if ok {
@@ -776,7 +779,9 @@ fn check_value(
         AxisName::TOverR => "t/R_c must lie in (0, 2)",
         AxisName::Mu => "μ must be a number ≥ 0 or inf (NaN and negative values are not allowed)",
         AxisName::HalfAngleDeg => "the half-angle must lie in (0, 180) degrees",
-        AxisName::Voussoirs => "the voussoir count must be an integer in [1, 10000000]",
+        AxisName::Voussoirs => {
+            "the voussoir count must be an integer in [1, 10000000], or `continuum`"
+        }
         AxisName::AtDeg => "the position of a point load must lie in (−180, 180) degrees",
     };
     Err(cx.err(
@@ -807,6 +812,15 @@ fn validate_grid(
             Some(a.referenced),
             "grid.k",
             "a `thickness` study finds K itself: remove the k / t_over_r axis",
+        ));
+    }
+    if find == Find::Thresholds
+        && let Some(a) = g.k.as_ref().or(g.t_over_r.as_ref()).or(g.mu.as_ref())
+    {
+        return Err(cx.err(
+            Some(a.referenced),
+            "grid",
+            "a `thresholds` study finds K and μ itself: remove the k, t_over_r and mu axes",
         ));
     }
     if find == Find::Friction
@@ -1004,12 +1018,12 @@ fn check_loads(
                 ),
             ));
         }
-        if find == Find::Thrust && live {
+        if matches!(find, Find::Thrust | Find::Thresholds) && live {
             return Err(cx.err(
                 kind_at(i),
                 "load_cases.kind",
                 format!(
-                    "load case {:?} is {}: a thrust study is defined for self_weight only",
+                    "load case {:?} is {}: a {find} study is defined for self_weight only",
                     lc.name,
                     lc.kind.as_str()
                 ),
@@ -1084,7 +1098,7 @@ fn check_loads(
             _ => {}
         }
     }
-    if find == Find::Thrust && !form.is_circular_radial() {
+    if matches!(find, Find::Thrust | Find::Thresholds) && !form.is_circular_radial() {
         return Err(cx.err(
             raw.arch
                 .shape
@@ -1092,7 +1106,7 @@ fn check_loads(
                 .or(raw.arch.joints.as_ref())
                 .map(|s| s.referenced),
             "find",
-            "a thrust study is defined for the circular arch with radial joints only",
+            format!("a {find} study is defined for the circular arch with radial joints only"),
         ));
     }
     if form.joints == JointOrientation::Vertical && alpha_max > 90.0 {

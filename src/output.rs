@@ -31,6 +31,18 @@ impl RunLayout {
     pub fn bifurcations(&self) -> PathBuf {
         self.dir.join("bifurcations.parquet")
     }
+    /// curves.parquet: the curves of the figures that need the statics (docs/report-files.md).
+    pub fn curves(&self) -> PathBuf {
+        self.dir.join("curves.parquet")
+    }
+    /// states.parquet: the states the figures draw (docs/report-files.md).
+    pub fn states(&self) -> PathBuf {
+        self.dir.join("states.parquet")
+    }
+    /// reference.parquet: continuum values of discrete cases (docs/report-files.md).
+    pub fn reference(&self) -> PathBuf {
+        self.dir.join("reference.parquet")
+    }
     /// run.json.
     pub fn run_json(&self) -> PathBuf {
         self.dir.join("run.json")

@@ -95,7 +95,13 @@ fn scene_at(m: &Manifest, lc: usize, idx: &[usize]) -> Scene {
             AxisName::TOverR => k = k_from_t_over_r(v),
             AxisName::Mu => mu = v,
             AxisName::HalfAngleDeg => half = v,
-            AxisName::Voussoirs => joints = Discretisation::Voussoirs(v as u32),
+            AxisName::Voussoirs => {
+                joints = if v.is_infinite() {
+                    Discretisation::Continuum
+                } else {
+                    Discretisation::Voussoirs(v as u32)
+                }
+            }
             AxisName::AtDeg => at_deg = Some(v),
         }
     }

@@ -5,9 +5,10 @@ use crate::boundaries;
 use crate::cli::{CheckArgs, RunArgs, UsageError};
 use crate::engine::{self, CaseResult, Progress, Status};
 use crate::manifest::{self, Manifest};
-use crate::output::{StagedRun, write_atomic};
+use crate::output::{RunLayout, StagedRun, write_atomic};
 use crate::plan::{self, Plan};
 use crate::store;
+use crate::{figdata, report};
 use anyhow::{Context, Result};
 use serde::Serialize;
 use sha2::{Digest, Sha256};
@@ -198,6 +199,31 @@ fn ms(t: Instant) -> f64 {
     t.elapsed().as_secs_f64() * 1e3
 }
 
+fn write_run_json(layout: &RunLayout, info: &RunInfo) -> Result<()> {
+    write_atomic(
+        &layout.run_json(),
+        serde_json::to_string_pretty(info)?.as_bytes(),
+    )
+}
+
+/// Figure data, figures and both reports, from the stored files of the run; run.json is
+/// written first (the reports read it) and again with the figure and report timings.
+fn publish(plan: &Plan, layout: &RunLayout, info: &mut RunInfo) -> Result<()> {
+    write_run_json(layout, info)?;
+    let t = Instant::now();
+    figdata::run(&plan.manifest, layout)?;
+    let mut data = report::data::load(layout)?;
+    let figs = report::draw_figures(&data, layout)?;
+    info.stages.plots_ms = ms(t);
+    write_run_json(layout, info)?;
+    let t = Instant::now();
+    data.info = report::data::load_info(layout)?;
+    report::write_reports(&data, &figs, layout)?;
+    info.stages.report_ms = ms(t);
+    info.finished_at = chrono::Utc::now().to_rfc3339_opts(chrono::SecondsFormat::Millis, true);
+    write_run_json(layout, info)
+}
+
 /// Runs a study end to end and moves the complete run directory into place.
 pub fn run_study(opts: &RunOptions) -> Result<RunSummary> {
     let t0 = Instant::now();
@@ -263,11 +289,8 @@ pub fn run_study(opts: &RunOptions) -> Result<RunSummary> {
         stages,
         boundary_refinement_analyses: located.refinement_analyses,
     };
-    info.finished_at = chrono::Utc::now().to_rfc3339_opts(chrono::SecondsFormat::Millis, true);
-    write_atomic(
-        &layout.run_json(),
-        serde_json::to_string_pretty(&info)?.as_bytes(),
-    )?;
+    // Figure data, figures and reports, from the stored files.
+    publish(&plan, &layout, &mut info)?;
     let dir = staged.commit()?;
     Ok(RunSummary {
         dir,

@@ -2,6 +2,7 @@
 //! about it: the record shared by `archstudy solve --json` and the rows of results.parquet.
 
 use crate::analysis::forms::{ArchModel, FormError};
+use crate::analysis::kinematics::collapse_mechanism;
 use crate::analysis::symmetric::{
     self, Critical, CriticalState, RotationalDomain, SlidingDomain, ThrustState,
 };
@@ -26,6 +27,9 @@ pub enum Find {
     Friction,
     /// The minimum and maximum thrust states at (K, μ).
     Thrust,
+    /// The critical values of the arch under self-weight: K_c at μ = ∞, the μ of the
+    /// rotational/mixed bifurcation, μ_min and the K of the mixed/sliding bifurcation.
+    Thresholds,
     /// The largest load factor λ of the live load at (K, μ), with its mechanism.
     #[serde(rename = "load_factor")]
     LoadFactor,
@@ -33,21 +37,23 @@ pub enum Find {
 
 impl Find {
     /// All finds.
-    pub const ALL: [Find; 5] = [
+    pub const ALL: [Find; 6] = [
         Find::State,
         Find::Thickness,
         Find::Friction,
         Find::Thrust,
+        Find::Thresholds,
         Find::LoadFactor,
     ];
 
-    /// `state`, `thickness`, `friction`, `thrust` or `load_factor`.
+    /// `state`, `thickness`, `friction`, `thrust`, `thresholds` or `load_factor`.
     pub fn as_str(self) -> &'static str {
         match self {
             Find::State => "state",
             Find::Thickness => "thickness",
             Find::Friction => "friction",
             Find::Thrust => "thrust",
+            Find::Thresholds => "thresholds",
             Find::LoadFactor => "load_factor",
         }
     }
@@ -60,12 +66,12 @@ impl Find {
 
     /// True when the find needs K as an input.
     pub fn needs_k(self) -> bool {
-        self != Find::Thickness
+        !matches!(self, Find::Thickness | Find::Thresholds)
     }
 
     /// True when the find needs μ as an input.
     pub fn needs_mu(self) -> bool {
-        self != Find::Friction
+        !matches!(self, Find::Friction | Find::Thresholds)
     }
 }
 
@@ -234,6 +240,25 @@ pub struct Solution {
     pub hinges: Vec<HingeRecord>,
     /// Sliding joints of the critical state.
     pub sliding_joints: Vec<SlidingRecord>,
+    /// dL^(a): work of the loads on the collapse mechanism of the critical state (eq. 11),
+    /// over W_half·r for a field whose largest block-corner speed is 1.
+    pub work_loads: Option<f64>,
+    /// dL^(r,t) = −μ Σ R^n |dr^t| over the sliding joints of that mechanism (eq. 11), same units.
+    pub work_friction: Option<f64>,
+    /// |dL^(a) + dL^(r,t)| over the scale of the block works: about 0 when the state and its
+    /// mechanism satisfy eq. (11).
+    pub work_residual: Option<f64>,
+    /// Degrees of freedom of the blocks between the active joints of the critical state (2 for
+    /// a symmetric five-joint state: the collapse mechanism is its symmetric mode).
+    pub mechanism_dof: Option<u32>,
+    /// Collapse thickness at μ = ∞ (thresholds find).
+    pub k_c_rotational: Option<f64>,
+    /// μ of the rotational/mixed bifurcation: the critical friction at K_c (thresholds find).
+    pub mu_rotational_mixed: Option<f64>,
+    /// μ_min: below it H^s is empty for every K (thresholds find).
+    pub mu_min: Option<f64>,
+    /// K of the mixed/sliding bifurcation: the collapse thickness at μ_min (thresholds find).
+    pub k_mixed_sliding: Option<f64>,
     /// Minimum admissible thrust over W_half (thrust find).
     pub thrust_min: Option<f64>,
     /// Maximum admissible thrust over W_half (null when unbounded).
@@ -303,6 +328,14 @@ impl Solution {
             load_factor_unbounded: false,
             hinges: Vec::new(),
             sliding_joints: Vec::new(),
+            work_loads: None,
+            work_friction: None,
+            work_residual: None,
+            mechanism_dof: None,
+            k_c_rotational: None,
+            mu_rotational_mixed: None,
+            mu_min: None,
+            k_mixed_sliding: None,
             thrust_min: None,
             thrust_max: None,
             hinges_min: Vec::new(),
@@ -322,6 +355,17 @@ impl Solution {
         self.hinges = hinge_records(&s.mechanism.hinges);
         self.sliding_joints = sliding_records(&s.mechanism.sliding_joints);
         Some(s)
+    }
+
+    /// The collapse mechanism of a found critical state and its work equation.
+    fn set_mechanism(&mut self, arch: &Arch, s: &CriticalState) {
+        let m = collapse_mechanism(arch, s);
+        self.mechanism_dof = Some(m.mechanism_dof);
+        if let Some(w) = m.work {
+            self.work_loads = finite(w.work_loads);
+            self.work_friction = finite(w.work_friction);
+            self.work_residual = finite(w.work_residual);
+        }
     }
 
     /// The regime, parsed back.
@@ -368,6 +412,7 @@ pub fn solve(scene: &Scene) -> Solution {
         Find::Thickness => {
             let c = symmetric::thickness(&scene.arch, scene.friction);
             if let Some(s) = out.set_critical(&c) {
+                out.set_mechanism(&scene.arch, &s);
                 out.k_crit = Some(s.k);
                 out.t_over_r_crit = Some(t_over_r_from_k(s.k));
             }
@@ -375,7 +420,22 @@ pub fn solve(scene: &Scene) -> Solution {
         Find::Friction => {
             let c = symmetric::friction(&scene.arch);
             if let Some(s) = out.set_critical(&c) {
+                out.set_mechanism(&scene.arch, &s);
                 out.mu_crit = Some(s.mu);
+            }
+        }
+        Find::Thresholds => {
+            let a = &scene.arch;
+            let kc = symmetric::thickness(a, Friction::INFINITE);
+            out.outcome = Some(kc.outcome_str());
+            if let Some(s) = kc.found() {
+                out.k_c_rotational = Some(s.k);
+                out.mu_rotational_mixed = symmetric::friction(&a.with_k(s.k)).found().map(|f| f.mu);
+            }
+            if let Some(m) = symmetric::sliding_threshold(a).found() {
+                out.mu_min = Some(m.mu);
+                out.k_mixed_sliding = Friction::new(m.mu)
+                    .and_then(|f| symmetric::thickness(a, f).found().map(|s| s.k));
             }
         }
         Find::Thrust => {
@@ -515,6 +575,20 @@ pub fn summary(s: &Solution) -> String {
                 }
                 _ => {}
             }
+            if s.find == "thresholds" {
+                let _ = writeln!(o, "K_c (μ = ∞) = {}", opt(s.k_c_rotational));
+                let _ = writeln!(
+                    o,
+                    "μ at the rotational/mixed bifurcation = {}",
+                    opt(s.mu_rotational_mixed)
+                );
+                let _ = writeln!(o, "μ_min = {}", opt(s.mu_min));
+                let _ = writeln!(
+                    o,
+                    "K at the mixed/sliding bifurcation = {}",
+                    opt(s.k_mixed_sliding)
+                );
+            }
             if let Some(k) = s.k_crit {
                 let _ = writeln!(
                     o,
@@ -547,6 +621,18 @@ pub fn summary(s: &Solution) -> String {
             }
             if !s.sliding_joints.is_empty() {
                 let _ = writeln!(o, "sliding joints: {}", sliding(&s.sliding_joints));
+            }
+            if let (Some(dof), Some(a), Some(f), Some(r)) = (
+                s.mechanism_dof,
+                s.work_loads,
+                s.work_friction,
+                s.work_residual,
+            ) {
+                let _ = writeln!(
+                    o,
+                    "work equation: dL(a) = {a:.6e}, dL(r,t) = {f:.6e}, residual {r:.1e} \
+                     (mechanism dof {dof})"
+                );
             }
             if s.find == "thrust" {
                 if s.outcome == Some("never_stands") {

@@ -5,5 +5,6 @@ mod archive;
 mod boundaries;
 mod common;
 mod loads;
+mod report;
 mod run;
 mod solve;

@@ -146,6 +146,10 @@ fn parquet_schema_reads_back_with_documented_names_and_types() {
             DataType::List(Box::new(DataType::Float64)),
         ),
         ("sliding_senses", DataType::List(Box::new(DataType::String))),
+        ("work_loads", DataType::Float64),
+        ("work_friction", DataType::Float64),
+        ("work_residual", DataType::Float64),
+        ("mechanism_dof", DataType::UInt32),
         ("thrust_min", DataType::Float64),
         ("thrust_max", DataType::Float64),
         (
@@ -283,4 +287,47 @@ fn a_rerun_replaces_the_earlier_run_and_leaves_no_staging_directory() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     assert_eq!(entries, vec!["small".to_string()]);
+}
+
+#[test]
+fn convergence_study_thresholds_approach_the_continuum() {
+    let dir = scratch("convergence");
+    let out = dir.join("out");
+    let o = archstudy(&[
+        "run",
+        "studies/convergence.yaml",
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let df = store::read_parquet(&out.join("convergence/results.parquet")).unwrap();
+    let n = store::f64_column(&df, "voussoirs").unwrap();
+    let kc = store::f64_column(&df, "k_c_rotational").unwrap();
+    let mu_rm = store::f64_column(&df, "mu_rotational_mixed").unwrap();
+    let mu_min = store::f64_column(&df, "mu_min").unwrap();
+    let k_ms = store::f64_column(&df, "k_mixed_sliding").unwrap();
+    let last = df.height() - 1;
+    assert!(n[last].is_none(), "the continuum is the last row");
+    assert!((kc[last].unwrap() - 1.113581813339).abs() < 1e-9);
+    assert!((mu_rm[last].unwrap() - 0.395265252140).abs() < 1e-9);
+    assert!((mu_min[last].unwrap() - 0.309215444330).abs() < 1e-9);
+    assert!((k_ms[last].unwrap() - 1.220507754643).abs() < 1e-8);
+    // Every discrete arch collapses no later than the continuum, and 4096 voussoirs are
+    // within 1e-6 of it.
+    for i in 0..last {
+        if let Some(k) = kc[i] {
+            assert!(k <= kc[last].unwrap() + 1e-12, "N = {:?}: {k}", n[i]);
+        }
+    }
+    let i4096 = n.iter().position(|x| *x == Some(4096.0)).unwrap();
+    for (col, name) in [
+        (&kc, "K_c"),
+        (&mu_rm, "μ rot/mixed"),
+        (&mu_min, "μ_min"),
+        (&k_ms, "K mixed/sliding"),
+    ] {
+        let e = (col[i4096].unwrap() - col[last].unwrap()).abs();
+        assert!(e < 1e-6, "{name}: error {e} at N = 4096");
+    }
 }

@@ -23,6 +23,10 @@ fn reference_values_of_the_semicircular_arch() {
         .find(|h| h["face"] == "intrados")
         .unwrap();
     assert!((haunch["angle_deg"].as_f64().unwrap().abs() - 54.48397403).abs() < 1e-6);
+    // Eq. (9): the rotational mechanism does no work; its five joints leave two modes.
+    assert_eq!(t["mechanism_dof"], 2);
+    assert!(f(&t, "work_residual") < 1e-9);
+    assert_eq!(f(&t, "work_friction"), 0.0);
 
     let m = solve_json(&["--find", "friction", "--k", "1.4"]);
     assert!((f(&m, "mu_crit") - 0.309215444330).abs() < 1e-9);
@@ -37,6 +41,9 @@ fn reference_values_of_the_semicircular_arch() {
         (angles[2] - 28.63619468).abs() < 1e-6 && (angles[3] - 90.0).abs() < 1e-9,
         "{angles:?}"
     );
+    // Eq. (11): the loads do positive work, all dissipated by friction.
+    assert!(f(&m, "work_loads") > 0.0 && f(&m, "work_residual") < 1e-9);
+    assert!((f(&m, "work_loads") + f(&m, "work_friction")).abs() < 1e-9);
 
     let b = solve_json(&["--find", "thickness", "--mu", "0.309215444331"]);
     assert!((f(&b, "k_crit") - 1.220507754643).abs() < 1e-8);
@@ -101,6 +108,10 @@ fn json_has_the_documented_keys() {
                 "thrust_over_half_weight",
                 "hinges",
                 "sliding_joints",
+                "work_loads",
+                "work_friction",
+                "work_residual",
+                "mechanism_dof",
             ],
         ),
         (
@@ -111,6 +122,10 @@ fn json_has_the_documented_keys() {
                 "thrust_over_half_weight",
                 "hinges",
                 "sliding_joints",
+                "work_loads",
+                "work_friction",
+                "work_residual",
+                "mechanism_dof",
             ],
         ),
         (

@@ -6,6 +6,7 @@
 pub mod circular;
 pub mod forms;
 pub mod general;
+pub mod kinematics;
 pub mod lp;
 pub mod roots;
 pub mod statics;

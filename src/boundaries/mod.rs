@@ -195,7 +195,8 @@ pub fn locate(plan: &Plan, results: &[CaseResult]) -> Located {
                     Vec::new(),
                     sweep::locate(one, results, sweep::Swept::K, tol, &counter),
                 ),
-                Find::Thrust | Find::LoadFactor => (Vec::new(), Vec::new()),
+                // Thresholds are the bifurcations themselves, one set per row.
+                Find::Thrust | Find::Thresholds | Find::LoadFactor => (Vec::new(), Vec::new()),
             }
         };
         boundaries.extend(b);

@@ -131,8 +131,9 @@ pub(super) fn solve(scene: &Scene, out: &mut Solution) {
                 _ => {}
             }
         }
-        // The minimum and maximum thrust states are defined for symmetric self-weight only.
-        Find::Thrust => out.outcome = Some("unsupported"),
+        // The extreme thrust states and the thresholds are defined for symmetric self-weight
+        // on the circular arch with radial joints only.
+        Find::Thrust | Find::Thresholds => out.outcome = Some("unsupported"),
         Find::Thickness => {}
     }
 }

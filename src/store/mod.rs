@@ -2,19 +2,29 @@
 //! atomically (a temporary file renamed into place) and read back.
 
 mod boundaries;
+mod figures;
 mod results;
+mod rows;
 mod table;
 
 pub use boundaries::{bifurcations_frame, boundaries_frame};
+pub use figures::{
+    CurvePoint, ReferenceRow, StateRow, curves_frame, read_curves, read_reference, read_states,
+    reference_frame, states_frame,
+};
 pub use results::results_frame;
+pub use rows::{
+    BifurcationRow, BoundaryRow, JointLists, ResultRow, read_bifurcations, read_boundaries,
+    read_results,
+};
 pub use table::{ColumnData, Table, TableColumn, read_table, table_from_frame};
 
 use anyhow::Context as _;
 use anyhow::Result;
 use polars::prelude::{
-    Column, DataFrame, DataType, Float64Type, IntoSeries, ListBuilderTrait,
+    AnyValue, Column, DataFrame, DataType, Float64Type, IntoSeries, ListBuilderTrait,
     ListPrimitiveChunkedBuilder, ListStringChunkedBuilder, ParquetCompression, ParquetReader,
-    ParquetWriter, SerReader,
+    ParquetWriter, Scalar, SerReader,
 };
 use std::fs::File;
 use std::path::Path;
@@ -39,6 +49,11 @@ impl TableBuilder {
 
     /// A nullable UInt32 column.
     pub fn opt_u32(mut self, name: &str, v: Vec<Option<u32>>) -> Self {
+        if v.iter().all(Option::is_none) {
+            self.columns
+                .push(Column::full_null(name.into(), v.len(), &DataType::UInt32));
+            return self;
+        }
         self.columns.push(Column::new(name.into(), v));
         self
     }
@@ -51,18 +66,40 @@ impl TableBuilder {
 
     /// A nullable Float64 column.
     pub fn opt_f64(mut self, name: &str, v: Vec<Option<f64>>) -> Self {
+        if v.iter().all(Option::is_none) {
+            self.columns
+                .push(Column::full_null(name.into(), v.len(), &DataType::Float64));
+            return self;
+        }
         self.columns.push(Column::new(name.into(), v));
         self
     }
 
     /// A String column.
-    pub fn str(mut self, name: &str, v: Vec<String>) -> Self {
+    pub fn str<S: AsRef<str>>(mut self, name: &str, v: Vec<S>) -> Self {
+        if let Some(first) = v.first()
+            && v.iter().all(|x| x.as_ref() == first.as_ref())
+        {
+            // One value in every row (a load case, a status): a constant column.
+            let value = AnyValue::StringOwned(first.as_ref().into());
+            let scalar = Scalar::new(DataType::String, value);
+            self.columns
+                .push(Column::new_scalar(name.into(), scalar, v.len()));
+            return self;
+        }
+        let v: Vec<&str> = v.iter().map(AsRef::as_ref).collect();
         self.columns.push(Column::new(name.into(), v));
         self
     }
 
     /// A nullable String column.
-    pub fn opt_str(mut self, name: &str, v: Vec<Option<String>>) -> Self {
+    pub fn opt_str<S: AsRef<str>>(mut self, name: &str, v: Vec<Option<S>>) -> Self {
+        if v.iter().all(Option::is_none) {
+            self.columns
+                .push(Column::full_null(name.into(), v.len(), &DataType::String));
+            return self;
+        }
+        let v: Vec<Option<&str>> = v.iter().map(|s| s.as_ref().map(AsRef::as_ref)).collect();
         self.columns.push(Column::new(name.into(), v));
         self
     }
@@ -76,6 +113,13 @@ impl TableBuilder {
     /// A List(Float64) column.
     pub fn list_f64(mut self, name: &str, v: Vec<Vec<f64>>) -> Self {
         let values: usize = v.iter().map(Vec::len).sum();
+        if values == 0 {
+            // No row has a list (e.g. hinges of a state grid): a null column, built at once.
+            let dtype = DataType::List(Box::new(DataType::Float64));
+            self.columns
+                .push(Column::full_null(name.into(), v.len(), &dtype));
+            return self;
+        }
         let mut b = ListPrimitiveChunkedBuilder::<Float64Type>::new(
             name.into(),
             v.len(),
@@ -90,11 +134,17 @@ impl TableBuilder {
     }
 
     /// A List(String) column.
-    pub fn list_str(mut self, name: &str, v: Vec<Vec<String>>) -> Self {
+    pub fn list_str<S: AsRef<str>>(mut self, name: &str, v: Vec<Vec<S>>) -> Self {
         let values: usize = v.iter().map(Vec::len).sum();
+        if values == 0 {
+            let dtype = DataType::List(Box::new(DataType::String));
+            self.columns
+                .push(Column::full_null(name.into(), v.len(), &dtype));
+            return self;
+        }
         let mut b = ListStringChunkedBuilder::new(name.into(), v.len(), values);
         for x in &v {
-            b.append_values_iter(x.iter().map(String::as_str));
+            b.append_values_iter(x.iter().map(AsRef::as_ref));
         }
         self.columns.push(b.finish().into_series().into());
         self
@@ -114,7 +164,7 @@ pub fn write_parquet(df: &mut DataFrame, path: &Path) -> Result<()> {
         let file =
             File::create(&tmp).with_context(|| format!("cannot create {}", tmp.display()))?;
         ParquetWriter::new(file)
-            .with_compression(ParquetCompression::Zstd(None))
+            .with_compression(ParquetCompression::Lz4Raw)
             .finish(df)
             .with_context(|| format!("cannot write {}", tmp.display()))?;
         std::fs::rename(&tmp, path)
@@ -214,4 +264,28 @@ pub fn list_str_column(df: &DataFrame, name: &str) -> Result<Vec<Vec<String>>> {
         });
     }
     Ok(out)
+}
+
+/// A non-null UInt64 column as a vector (nulls are an error).
+pub fn u64_column(df: &DataFrame, name: &str) -> Result<Vec<u64>> {
+    let c = df
+        .column(name)
+        .with_context(|| format!("column `{name}` is missing"))?;
+    let s = c.as_materialized_series().cast(&DataType::UInt64)?;
+    let ca = s.u64()?;
+    (0..ca.len())
+        .map(|i| {
+            ca.get(i)
+                .with_context(|| format!("column `{name}`: row {i} is null"))
+        })
+        .collect()
+}
+
+/// A nullable Boolean column as a vector.
+pub fn bool_column(df: &DataFrame, name: &str) -> Result<Vec<Option<bool>>> {
+    let c = df
+        .column(name)
+        .with_context(|| format!("column `{name}` is missing"))?;
+    let ca = c.as_materialized_series().bool()?;
+    Ok((0..ca.len()).map(|i| ca.get(i)).collect())
 }

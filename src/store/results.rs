@@ -10,163 +10,348 @@ use polars::prelude::DataFrame;
 pub(crate) fn hinge_angles(h: &[HingeRecord]) -> Vec<f64> {
     h.iter().map(|h| h.angle_deg).collect()
 }
-pub(crate) fn hinge_faces(h: &[HingeRecord]) -> Vec<String> {
-    h.iter().map(|h| h.face.to_string()).collect()
+pub(crate) fn hinge_faces(h: &[HingeRecord]) -> Vec<&'static str> {
+    h.iter().map(|h| h.face).collect()
 }
 pub(crate) fn sliding_angles(s: &[SlidingRecord]) -> Vec<f64> {
     s.iter().map(|s| s.angle_deg).collect()
 }
-pub(crate) fn sliding_senses(s: &[SlidingRecord]) -> Vec<String> {
-    s.iter().map(|s| s.sense.to_string()).collect()
+pub(crate) fn sliding_senses(s: &[SlidingRecord]) -> Vec<&'static str> {
+    s.iter().map(|s| s.sense).collect()
+}
+
+/// One column: its name, its values so far and how to read a value from a row.
+type Get<'a, T> = Box<dyn Fn(&'a CaseResult) -> T + 'a>;
+
+enum Spec<'a> {
+    U64(&'static str, Vec<u64>, Get<'a, u64>),
+    F64(&'static str, Vec<f64>, Get<'a, f64>),
+    OptF64(&'static str, Vec<Option<f64>>, Get<'a, Option<f64>>),
+    OptU32(&'static str, Vec<Option<u32>>, Get<'a, Option<u32>>),
+    Bool(&'static str, Vec<bool>, Get<'a, bool>),
+    Str(&'static str, Vec<&'a str>, Get<'a, &'a str>),
+    OptStr(&'static str, Vec<Option<&'a str>>, Get<'a, Option<&'a str>>),
+    ListF64(&'static str, Vec<Vec<f64>>, Get<'a, Vec<f64>>),
+    ListStr(
+        &'static str,
+        Vec<Vec<&'static str>>,
+        Get<'a, Vec<&'static str>>,
+    ),
+}
+
+impl<'a> Spec<'a> {
+    fn push(&mut self, r: &'a CaseResult) {
+        match self {
+            Spec::U64(_, v, g) => v.push(g(r)),
+            Spec::F64(_, v, g) => v.push(g(r)),
+            Spec::OptF64(_, v, g) => v.push(g(r)),
+            Spec::OptU32(_, v, g) => v.push(g(r)),
+            Spec::Bool(_, v, g) => v.push(g(r)),
+            Spec::Str(_, v, g) => v.push(g(r)),
+            Spec::OptStr(_, v, g) => v.push(g(r)),
+            Spec::ListF64(_, v, g) => v.push(g(r)),
+            Spec::ListStr(_, v, g) => v.push(g(r)),
+        }
+    }
+
+    fn add_to(self, t: TableBuilder) -> TableBuilder {
+        match self {
+            Spec::U64(n, v, _) => t.u64(n, v),
+            Spec::F64(n, v, _) => t.f64(n, v),
+            Spec::OptF64(n, v, _) => t.opt_f64(n, v),
+            Spec::OptU32(n, v, _) => t.opt_u32(n, v),
+            Spec::Bool(n, v, _) => t.bool(n, v),
+            Spec::Str(n, v, _) => t.str(n, v),
+            Spec::OptStr(n, v, _) => t.opt_str(n, v),
+            Spec::ListF64(n, v, _) => t.list_f64(n, v),
+            Spec::ListStr(n, v, _) => t.list_str(n, v),
+        }
+    }
 }
 
 /// The results table: one row per case (schema in the README).
-pub fn results_frame(plan: &Plan, rows: &[CaseResult]) -> Result<DataFrame> {
-    let col = |f: &dyn Fn(&CaseResult) -> Option<f64>| rows.iter().map(f).collect::<Vec<_>>();
-    let scol = |f: &dyn Fn(&CaseResult) -> Option<String>| rows.iter().map(f).collect::<Vec<_>>();
+///
+/// Built in one pass over the rows (every column of a row is read while the row is in
+/// cache): a million-row state grid is read once, not once per column.
+pub fn results_frame<'a>(plan: &'a Plan, rows: &'a [CaseResult]) -> Result<DataFrame> {
     let m = &plan.manifest;
-    TableBuilder::new()
-        .u64("case_id", rows.iter().map(|r| r.case_id).collect())
-        .str(
+    let n = rows.len();
+    let mut specs: Vec<Spec<'a>> = vec![
+        Spec::U64(
+            "case_id",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.case_id),
+        ),
+        Spec::Str(
             "load_case",
-            rows.iter()
-                .map(|r| m.load_cases[r.load_case].name.clone())
-                .collect(),
-        )
-        .str(
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| m.load_cases[r.load_case].name.as_str()),
+        ),
+        Spec::Str(
             "load_kind",
-            rows.iter()
-                .map(|r| m.load_cases[r.load_case].kind.as_str().to_string())
-                .collect(),
-        )
-        .str(
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| m.load_cases[r.load_case].kind.as_str()),
+        ),
+        Spec::Str(
             "find",
-            rows.iter().map(|r| r.solution.find.to_string()).collect(),
-        )
-        .opt_f64("k", col(&|r| r.solution.k))
-        .opt_f64("t_over_r", col(&|r| r.solution.t_over_r))
-        .opt_f64(
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.find),
+        ),
+        Spec::OptF64(
+            "k",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.k),
+        ),
+        Spec::OptF64(
+            "t_over_r",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.t_over_r),
+        ),
+        Spec::OptF64(
             "mu",
-            col(&|r| {
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| {
                 if r.solution.mu_infinite {
                     Some(f64::INFINITY)
                 } else {
                     r.solution.mu
                 }
             }),
-        )
-        .f64(
+        ),
+        Spec::F64(
             "half_angle_deg",
-            rows.iter().map(|r| r.solution.half_angle_deg).collect(),
-        )
-        .str(
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.half_angle_deg),
+        ),
+        Spec::Str(
             "weight",
-            rows.iter().map(|r| r.solution.weight.to_string()).collect(),
-        )
-        .opt_u32(
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.weight),
+        ),
+        Spec::OptU32(
             "voussoirs",
-            rows.iter().map(|r| r.solution.voussoirs).collect(),
-        )
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.voussoirs),
+        ),
         // Form and load case (docs/loads-and-geometries.md).
-        .str(
+        Spec::Str(
             "shape",
-            rows.iter().map(|r| r.solution.shape.to_string()).collect(),
-        )
-        .opt_f64("eccentricity", col(&|r| r.solution.eccentricity))
-        .str(
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.shape),
+        ),
+        Spec::OptF64(
+            "eccentricity",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.eccentricity),
+        ),
+        Spec::Str(
             "joints",
-            rows.iter().map(|r| r.solution.joints.to_string()).collect(),
-        )
-        .str(
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.joints),
+        ),
+        Spec::Str(
             "load",
-            rows.iter().map(|r| r.solution.load.to_string()).collect(),
-        )
-        .opt_f64("at_deg", col(&|r| r.solution.at_deg))
-        .opt_f64("lambda", col(&|r| r.solution.lambda))
-        .opt_str("outcome", scol(&|r| r.solution.outcome.map(str::to_string)))
-        .opt_str("regime", scol(&|r| r.solution.regime.map(str::to_string)))
-        .opt_f64("thrust_r_min", col(&|r| r.solution.thrust_r_min))
-        .opt_f64("thrust_r_max", col(&|r| r.solution.thrust_r_max))
-        .opt_f64("thrust_s_min", col(&|r| r.solution.thrust_s_min))
-        .opt_f64("thrust_s_max", col(&|r| r.solution.thrust_s_max))
-        .opt_f64("k_crit", col(&|r| r.solution.k_crit))
-        .opt_f64("t_over_r_crit", col(&|r| r.solution.t_over_r_crit))
-        .opt_f64("mu_crit", col(&|r| r.solution.mu_crit))
-        .opt_str(
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.load),
+        ),
+        Spec::OptF64(
+            "at_deg",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.at_deg),
+        ),
+        Spec::OptF64(
+            "lambda",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.lambda),
+        ),
+        Spec::OptStr(
+            "outcome",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.outcome),
+        ),
+        Spec::OptStr(
+            "regime",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.regime),
+        ),
+        Spec::OptF64(
+            "thrust_r_min",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.thrust_r_min),
+        ),
+        Spec::OptF64(
+            "thrust_r_max",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.thrust_r_max),
+        ),
+        Spec::OptF64(
+            "thrust_s_min",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.thrust_s_min),
+        ),
+        Spec::OptF64(
+            "thrust_s_max",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.thrust_s_max),
+        ),
+        Spec::OptF64(
+            "k_crit",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.k_crit),
+        ),
+        Spec::OptF64(
+            "t_over_r_crit",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.t_over_r_crit),
+        ),
+        Spec::OptF64(
+            "mu_crit",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.mu_crit),
+        ),
+        Spec::OptStr(
             "mechanism",
-            scol(&|r| r.solution.mechanism.map(str::to_string)),
-        )
-        .opt_f64(
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.mechanism),
+        ),
+        Spec::OptF64(
             "thrust_over_half_weight",
-            col(&|r| r.solution.thrust_over_half_weight),
-        )
-        .opt_f64("crown_moment", col(&|r| r.solution.crown_moment))
-        .opt_f64("crown_shear", col(&|r| r.solution.crown_shear))
-        .opt_f64("load_factor", col(&|r| r.solution.load_factor))
-        .bool(
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.thrust_over_half_weight),
+        ),
+        Spec::OptF64(
+            "crown_moment",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.crown_moment),
+        ),
+        Spec::OptF64(
+            "crown_shear",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.crown_shear),
+        ),
+        Spec::OptF64(
+            "load_factor",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.load_factor),
+        ),
+        Spec::Bool(
             "load_factor_unbounded",
-            rows.iter()
-                .map(|r| r.solution.load_factor_unbounded)
-                .collect(),
-        )
-        .list_f64(
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.load_factor_unbounded),
+        ),
+        Spec::ListF64(
             "hinge_angles_deg",
-            rows.iter()
-                .map(|r| hinge_angles(&r.solution.hinges))
-                .collect(),
-        )
-        .list_str(
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| hinge_angles(&r.solution.hinges)),
+        ),
+        Spec::ListStr(
             "hinge_faces",
-            rows.iter()
-                .map(|r| hinge_faces(&r.solution.hinges))
-                .collect(),
-        )
-        .list_f64(
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| hinge_faces(&r.solution.hinges)),
+        ),
+        Spec::ListF64(
             "sliding_angles_deg",
-            rows.iter()
-                .map(|r| sliding_angles(&r.solution.sliding_joints))
-                .collect(),
-        )
-        .list_str(
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| sliding_angles(&r.solution.sliding_joints)),
+        ),
+        Spec::ListStr(
             "sliding_senses",
-            rows.iter()
-                .map(|r| sliding_senses(&r.solution.sliding_joints))
-                .collect(),
-        )
-        .opt_f64("thrust_min", col(&|r| r.solution.thrust_min))
-        .opt_f64("thrust_max", col(&|r| r.solution.thrust_max))
-        .list_f64(
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| sliding_senses(&r.solution.sliding_joints)),
+        ),
+        Spec::OptF64(
+            "work_loads",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.work_loads),
+        ),
+        Spec::OptF64(
+            "work_friction",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.work_friction),
+        ),
+        Spec::OptF64(
+            "work_residual",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.work_residual),
+        ),
+        Spec::OptU32(
+            "mechanism_dof",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.mechanism_dof),
+        ),
+        Spec::OptF64(
+            "k_c_rotational",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.k_c_rotational),
+        ),
+        Spec::OptF64(
+            "mu_rotational_mixed",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.mu_rotational_mixed),
+        ),
+        Spec::OptF64(
+            "mu_min",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.mu_min),
+        ),
+        Spec::OptF64(
+            "k_mixed_sliding",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.k_mixed_sliding),
+        ),
+        Spec::OptF64(
+            "thrust_min",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.thrust_min),
+        ),
+        Spec::OptF64(
+            "thrust_max",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.thrust_max),
+        ),
+        Spec::ListF64(
             "hinges_min_angles_deg",
-            rows.iter()
-                .map(|r| hinge_angles(&r.solution.hinges_min))
-                .collect(),
-        )
-        .list_str(
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| hinge_angles(&r.solution.hinges_min)),
+        ),
+        Spec::ListStr(
             "hinges_min_faces",
-            rows.iter()
-                .map(|r| hinge_faces(&r.solution.hinges_min))
-                .collect(),
-        )
-        .list_f64(
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| hinge_faces(&r.solution.hinges_min)),
+        ),
+        Spec::ListF64(
             "hinges_max_angles_deg",
-            rows.iter()
-                .map(|r| hinge_angles(&r.solution.hinges_max))
-                .collect(),
-        )
-        .list_str(
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| hinge_angles(&r.solution.hinges_max)),
+        ),
+        Spec::ListStr(
             "hinges_max_faces",
-            rows.iter()
-                .map(|r| hinge_faces(&r.solution.hinges_max))
-                .collect(),
-        )
-        .str(
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| hinge_faces(&r.solution.hinges_max)),
+        ),
+        Spec::Str(
             "status",
-            rows.iter().map(|r| r.status.as_str().to_string()).collect(),
-        )
-        .opt_str("message", rows.iter().map(|r| r.message.clone()).collect())
-        .f64(
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.status.as_str()),
+        ),
+        Spec::OptStr(
+            "message",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.message.as_deref()),
+        ),
+        Spec::F64(
             "solve_time_us",
-            rows.iter().map(|r| r.solution.solve_time_us).collect(),
-        )
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.solve_time_us),
+        ),
+    ];
+    for r in rows {
+        for s in specs.iter_mut() {
+            s.push(r);
+        }
+    }
+    specs
+        .into_iter()
+        .fold(TableBuilder::new(), |t, s| s.add_to(t))
         .finish()
 }

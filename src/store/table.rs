@@ -151,9 +151,9 @@ mod tests {
         let df = TableBuilder::new()
             .u64("id", vec![1, 2])
             .opt_f64("x", vec![Some(1.5), None])
-            .str("s", vec!["a".into(), "b".into()])
+            .str("s", vec!["a", "b"])
             .list_f64("xs", vec![vec![1.0, 2.0], vec![]])
-            .list_str("ss", vec![vec!["p".into(), "q".into()], vec![]])
+            .list_str("ss", vec![vec!["p", "q"], vec![]])
             .bool("b", vec![true, false])
             .finish()
             .unwrap();

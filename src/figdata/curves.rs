@@ -1,0 +1,214 @@
+//! The curves the figures need that come from evaluating the statics: the thrust bounds of
+//! the paper's Fig. 2 against the joint angle, the line of thrust of a state and the
+//! critical curves K_c(μ), μ_c(K). Pure functions of the analysis; no I/O.
+
+use crate::analysis::circular::{SlidingBound, SymmetricCircular};
+use crate::analysis::symmetric;
+use crate::model::{Arch, Friction};
+
+/// A sampled curve: (x, y) pairs, NaN in y where the curve does not exist.
+pub type Samples = Vec<(f64, f64)>;
+
+/// The six bounds of the paper's Fig. 2 against the joint angle θ (degrees), over W_half.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct DomainCurves {
+    /// Eq. (2a) with the crown thrust at the crown extrados: H^{r,e}_min(θ).
+    pub h_min_r_extrados: Samples,
+    /// Eq. (2b) with the crown thrust at the crown extrados: H^{r,e}_max(θ).
+    pub h_max_r_extrados: Samples,
+    /// Eq. (2a) with the crown thrust at the crown intrados: H^{r,i}_min(θ).
+    pub h_min_r_intrados: Samples,
+    /// Eq. (2b) with the crown thrust at the crown intrados: H^{r,i}_max(θ) (where it is an
+    /// upper bound: beyond cos θ = 1/K).
+    pub h_max_r_intrados: Samples,
+    /// Eq. (4a): H^s_min(θ) = W/tan(θ + φ).
+    pub h_min_s: Samples,
+    /// Eq. (4b): H^s_max(θ) = W/tan(θ − φ), where θ > φ.
+    pub h_max_s: Samples,
+}
+
+/// The joint angles (radians) at which a figure samples the right half: every joint of a
+/// discrete arch, or 361 points of the continuum.
+pub fn sample_angles(sym: &SymmetricCircular) -> Vec<f64> {
+    match sym.voussoirs {
+        Some(_) => sym.half_joints(),
+        None => (0..=360)
+            .map(|i| sym.alpha * f64::from(i) / 360.0)
+            .collect(),
+    }
+}
+
+/// The thrust h at which the line of thrust through the crown point at height `y_p` (over r)
+/// touches the intrados (`lower`) and the extrados (`upper`) of joint θ: the linear forms of
+/// eqs. (2a, 2b) solved for h. `None` where the row does not bound h from that side.
+fn rotational_bounds(sym: &SymmetricCircular, theta: f64, y_p: f64) -> (Option<f64>, Option<f64>) {
+    // L(θ, h) = a + h·c_l ≤ m = h·y_p  and  m ≤ U(θ, h) = b + h·c_u.
+    let a = sym.intrados(theta, 0.0);
+    let c_l = sym.intrados(theta, 1.0) - a;
+    let b = sym.extrados(theta, 0.0);
+    let c_u = sym.extrados(theta, 1.0) - b;
+    let eps = 1e-12;
+    let lower = (y_p - c_l > eps).then(|| a / (y_p - c_l));
+    let upper = (y_p - c_u > eps).then(|| b / (y_p - c_u));
+    (lower, upper)
+}
+
+/// The curves of Fig. 2 for an arch and friction.
+pub fn domain_curves(arch: &Arch, friction: Friction) -> DomainCurves {
+    let sym = SymmetricCircular::new(arch);
+    let phi = friction.angle();
+    let mut out = DomainCurves::default();
+    let nan = f64::NAN;
+    for theta in sample_angles(&sym) {
+        let deg = theta.to_degrees();
+        let (lo_e, hi_e) = rotational_bounds(&sym, theta, sym.k);
+        let (lo_i, hi_i) = rotational_bounds(&sym, theta, 1.0);
+        out.h_min_r_extrados.push((deg, lo_e.unwrap_or(nan)));
+        out.h_max_r_extrados.push((deg, hi_e.unwrap_or(nan)));
+        out.h_min_r_intrados.push((deg, lo_i.unwrap_or(nan)));
+        out.h_max_r_intrados.push((deg, hi_i.unwrap_or(nan)));
+        let [outward, inward] = sym.sliding_bounds(theta, phi);
+        let max_s = match outward {
+            SlidingBound::Upper(v) => v,
+            _ => nan,
+        };
+        let min_s = match inward {
+            SlidingBound::Lower(v) if theta > 0.0 || phi > 0.0 => v,
+            _ => nan,
+        };
+        out.h_max_s.push((deg, max_s));
+        out.h_min_s.push((deg, min_s));
+    }
+    out
+}
+
+/// The line of thrust of a symmetric state with crown thrust h and crown moment m (over
+/// W_half and W_half·r): the point where it crosses each radial section, in units of r, from
+/// the left springing to the right one. It crosses joint θ at radius ρ = −M/N with M = −m − s(θ) and
+/// N = h cos θ + w(θ) sin θ; joints where N ≤ 0 give NaN (no compressive resultant).
+pub fn line_of_thrust(arch: &Arch, h: f64, m: f64) -> Samples {
+    let sym = SymmetricCircular::new(arch);
+    // Every section, not only the joints: the weight is distributed, so the line is curved
+    // within a voussoir too (a polygon through the joint points would cut the intrados).
+    let mut half: Vec<f64> = (0..=360)
+        .map(|i| sym.alpha * f64::from(i) / 360.0)
+        .collect();
+    if sym.voussoirs.is_some() {
+        half.extend(sym.half_joints());
+        half.sort_by(f64::total_cmp);
+        half.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
+    }
+    let rho = |t: f64| {
+        let n = h * t.cos() + sym.w(t) * t.sin();
+        if n > 0.0 {
+            (m + sym.s(t)) / n
+        } else {
+            f64::NAN
+        }
+    };
+    let mut out: Samples = half
+        .iter()
+        .rev()
+        .filter(|&&t| t > 0.0)
+        .map(|&t| {
+            let r = rho(t);
+            (-r * t.sin(), r * t.cos())
+        })
+        .collect();
+    for &t in &half {
+        let r = rho(t);
+        out.push((r * t.sin(), r * t.cos()));
+    }
+    out
+}
+
+/// K_c(μ) at the given friction values: NaN where the arch never stands (or always does).
+pub fn critical_thickness_curve(arch: &Arch, mus: &[f64]) -> Samples {
+    mus.iter()
+        .map(|&mu| {
+            let k = Friction::new(mu)
+                .and_then(|f| symmetric::thickness(arch, f).found().map(|s| s.k))
+                .unwrap_or(f64::NAN);
+            (mu, k)
+        })
+        .collect()
+}
+
+/// μ_c(K) at the given thickness ratios: NaN where no friction lets the arch stand.
+pub fn critical_friction_curve(arch: &Arch, ks: &[f64]) -> Samples {
+    ks.iter()
+        .map(|&k| {
+            let c = symmetric::friction(&arch.with_k(k));
+            let mu = match &c {
+                symmetric::Critical::Found(s) => s.mu,
+                symmetric::Critical::AlwaysStands => 0.0,
+                symmetric::Critical::NeverStands => f64::NAN,
+            };
+            (k, mu)
+        })
+        .collect()
+}
+
+/// `n` values from `lo` to `hi` inclusive, with `extra` values inside the range merged in
+/// (so that corners of a curve, e.g. bifurcations, are sampled exactly).
+pub fn linspace_with(lo: f64, hi: f64, n: usize, extra: &[f64]) -> Vec<f64> {
+    let mut v: Vec<f64> = (0..n)
+        .map(|i| lo + (hi - lo) * i as f64 / (n.max(2) - 1) as f64)
+        .collect();
+    v.extend(extra.iter().copied().filter(|x| *x > lo && *x < hi));
+    v.sort_by(f64::total_cmp);
+    v.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * (1.0 + b.abs()));
+    v
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_of_thrust_passes_the_hinges_of_the_collapse_state() {
+        let arch = Arch::semicircular(1.5).unwrap();
+        let c = symmetric::thickness(&arch, Friction::INFINITE);
+        let s = c.found().unwrap();
+        let a = arch.with_k(s.k);
+        let line = line_of_thrust(&a, s.thrust_over_half_weight, s.crown_moment);
+        // Crown at the extrados, springings at the extrados.
+        let mid = line[line.len() / 2];
+        assert!(mid.0.abs() < 1e-12 && (mid.1 - s.k).abs() < 1e-9, "{mid:?}");
+        let end = line[line.len() - 1];
+        assert!((end.0.hypot(end.1) - s.k).abs() < 1e-9, "{end:?}");
+        // Inside the arch everywhere.
+        for (x, y) in line {
+            let r = x.hypot(y);
+            assert!(r > 1.0 - 1e-9 && r < s.k + 1e-9, "r = {r}");
+        }
+    }
+
+    #[test]
+    fn fig2_bounds_give_the_domain_ends() {
+        // H^r = [max H^{r,e}_min, min H^{r,i}_max] at K = 1.35 (paper §2.1).
+        let arch = Arch::semicircular(1.35).unwrap();
+        let f = Friction::new(0.4).unwrap();
+        let c = domain_curves(&arch, f);
+        let d = symmetric::domains(&arch, f);
+        let max_lo = c
+            .h_min_r_extrados
+            .iter()
+            .map(|p| p.1)
+            .filter(|y| y.is_finite())
+            .fold(f64::NEG_INFINITY, f64::max);
+        let min_hi = c
+            .h_max_r_intrados
+            .iter()
+            .map(|p| p.1)
+            .filter(|y| y.is_finite())
+            .fold(f64::INFINITY, f64::min);
+        assert!((max_lo - d.rotational.interval.lo).abs() < 1e-4, "{max_lo}");
+        assert!((min_hi - d.rotational.interval.hi).abs() < 1e-9, "{min_hi}");
+        let s_hi = c.h_max_s.last().unwrap().1;
+        assert!(
+            (s_hi - 0.4).abs() < 1e-12,
+            "at the springing H^s_max = μ W_half"
+        );
+    }
+}

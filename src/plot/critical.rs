@@ -1,0 +1,239 @@
+//! Figure 4: the critical curves K_c(μ) and μ_c(K), side by side, with the bifurcation
+//! points and, for the paper's case, the paper's printed values as markers.
+
+use super::style::{self, LabelPlacer, LegendItem, Mark, clip_polyline, decimals_for, palette};
+use super::{Figure, PlotContext};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+
+/// A marked point with a short label.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointMark {
+    /// x.
+    pub x: f64,
+    /// y.
+    pub y: f64,
+    /// Label (already formatted), may be empty.
+    pub label: String,
+}
+
+/// One panel: a curve against one parameter.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CriticalPanel {
+    /// Panel title.
+    pub title: String,
+    /// x-axis description with unit or normalisation.
+    pub x_desc: String,
+    /// y-axis description.
+    pub y_desc: String,
+    /// The curve; NaN breaks it.
+    pub curve: Vec<(f64, f64)>,
+    /// Computed bifurcation points.
+    pub bifurcations: Vec<PointMark>,
+    /// The paper's printed values.
+    pub paper: Vec<PointMark>,
+}
+
+/// What the critical-curves figure shows.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CriticalChart {
+    /// Title.
+    pub title: String,
+    /// One or two panels.
+    pub panels: Vec<CriticalPanel>,
+}
+
+fn range(vals: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
+    let (lo, hi) = vals
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        });
+    if lo > hi {
+        None
+    } else if lo == hi {
+        Some((lo - 0.5 * lo.abs().max(1e-3), hi + 0.5 * hi.abs().max(1e-3)))
+    } else {
+        Some((lo, hi))
+    }
+}
+
+fn panel_ranges(p: &CriticalPanel) -> Option<((f64, f64), (f64, f64))> {
+    let marks = || p.bifurcations.iter().chain(&p.paper);
+    let xs = p
+        .curve
+        .iter()
+        .filter(|q| q.1.is_finite())
+        .map(|q| q.0)
+        .chain(marks().map(|m| m.x));
+    let all_x = p.curve.iter().map(|q| q.0).chain(marks().map(|m| m.x));
+    let ys = p.curve.iter().map(|q| q.1).chain(marks().map(|m| m.y));
+    let (x0, x1) = range(all_x).or_else(|| range(xs))?;
+    let (y0, y1) = range(ys)?;
+    let pad = 0.08 * (y1 - y0);
+    Some(((x0, x1), (y0 - pad, y1 + pad)))
+}
+
+fn draw_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    root: &DrawingArea<DB, Shift>,
+    ctx: &PlotContext,
+    p: &CriticalPanel,
+) -> DrawResult<(), DB> {
+    let Some(((x0, x1), (y0, y1))) = panel_ranges(p) else {
+        area.draw(&Text::new(
+            "no critical values in this study".to_string(),
+            (ctx.px(30.0), ctx.px(60.0)),
+            ctx.font(14.0),
+        ))?;
+        return Ok(());
+    };
+    let mut chart = ChartBuilder::on(area)
+        .caption(&p.title, ctx.font(15.0))
+        .margin(ctx.px(10.0))
+        .margin_right(ctx.px(24.0))
+        .x_label_area_size(ctx.px(48.0))
+        .y_label_area_size(ctx.px(66.0))
+        .build_cartesian_2d(x0..x1, y0..y1)?;
+    let fx = |v: &f64| format!("{:.*}", decimals_for(x1 - x0), v);
+    let fy = |v: &f64| format!("{:.*}", decimals_for(y1 - y0), v);
+    chart
+        .configure_mesh()
+        .x_desc(p.x_desc.clone())
+        .y_desc(p.y_desc.clone())
+        .x_label_formatter(&fx)
+        .y_label_formatter(&fy)
+        .x_labels(6)
+        .y_labels(7)
+        .label_style(ctx.font(12.5))
+        .axis_desc_style(ctx.font(13.5))
+        .set_all_tick_mark_size(ctx.px(5.0))
+        .light_line_style(TRANSPARENT)
+        .bold_line_style(BLACK.mix(0.08).stroke_width(1))
+        .draw()?;
+    for piece in clip_polyline(&p.curve, (x0, x1), (y0, y1)) {
+        chart.draw_series(LineSeries::new(
+            piece,
+            palette::INK.stroke_width(ctx.upx(2.2)),
+        ))?;
+    }
+    let (xr, yr) = chart.plotting_area().get_pixel_range();
+    let mut placer = LabelPlacer::new((
+        xr.start + ctx.px(3.0),
+        yr.start + ctx.px(3.0),
+        xr.end - ctx.px(3.0),
+        yr.end - ctx.px(3.0),
+    ));
+    let all: Vec<(&PointMark, bool)> = p
+        .bifurcations
+        .iter()
+        .map(|m| (m, false))
+        .chain(p.paper.iter().map(|m| (m, true)))
+        .collect();
+    for (m, _) in &all {
+        let c = chart.backend_coord(&(m.x, m.y));
+        let r = ctx.px(8.0);
+        placer.block((c.0 - r, c.1 - r, c.0 + r, c.1 + r));
+    }
+    let font = ctx.font(12.0);
+    for (m, paper) in &all {
+        let c = chart.backend_coord(&(m.x, m.y));
+        if *paper {
+            style::diamond(root, ctx, c, 7.0, palette::RED)?;
+        } else {
+            style::dot(root, ctx, c, 4.5, palette::INK)?;
+        }
+        if m.label.is_empty() {
+            continue;
+        }
+        let (tw, th) = style::text_block_size(&font, std::slice::from_ref(&m.label), 1.0);
+        let g = ctx.px(10.0);
+        let cands = if *paper {
+            [
+                (c.0 + g, c.1 + g / 2),
+                (c.0 - tw - g, c.1 + g / 2),
+                (c.0 + g, c.1 - th - g / 2),
+                (c.0 - tw - g, c.1 - th - g / 2),
+                (c.0 + g, c.1 + 2 * g),
+                (c.0 - tw / 2, c.1 + 2 * g),
+            ]
+        } else {
+            [
+                (c.0 + g, c.1 - th - g / 2),
+                (c.0 - tw - g, c.1 - th - g / 2),
+                (c.0 + g, c.1 + g / 2),
+                (c.0 - tw - g, c.1 + g / 2),
+                (c.0 + g, c.1 - th - 2 * g),
+                (c.0 - tw / 2, c.1 - th - 2 * g),
+            ]
+        };
+        let at = placer.place(tw, th, &cands);
+        let color = if *paper { palette::RED } else { palette::INK };
+        root.draw(&Text::new(
+            m.label.clone(),
+            at,
+            font.color(&color).pos(Pos::new(HPos::Left, VPos::Top)),
+        ))?;
+    }
+    Ok(())
+}
+
+impl Figure for CriticalChart {
+    fn size(&self) -> (u32, u32) {
+        if self.panels.len() > 1 {
+            (1000, 520)
+        } else {
+            (820, 560)
+        }
+    }
+
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        ctx: &PlotContext,
+    ) -> DrawResult<(), DB> {
+        let legend = self.legend();
+        let (w, h) = ctx.pixels();
+        let lh = ctx.px(style::legend_height(
+            ctx,
+            &legend,
+            f64::from(w) / ctx.scale - 20.0,
+        ));
+        let (upper, lower) = root.split_vertically(h as i32 - lh);
+        style::draw_legend(&lower, ctx, &legend)?;
+        let upper = style::title(&upper, ctx, &self.title)?;
+        let n = self.panels.len().max(1);
+        let areas = upper.split_evenly((1, n));
+        for (a, p) in areas.iter().zip(&self.panels) {
+            draw_panel(a, root, ctx, p)?;
+        }
+        Ok(())
+    }
+}
+
+impl CriticalChart {
+    fn legend(&self) -> Vec<LegendItem> {
+        let mut items = vec![LegendItem::new(
+            "critical curve",
+            Mark::Line {
+                color: palette::INK,
+                width: 2.2,
+                dashed: false,
+            },
+        )];
+        if self.panels.iter().any(|p| !p.bifurcations.is_empty()) {
+            items.push(LegendItem::new(
+                "bifurcation (this run)",
+                Mark::Dot(palette::INK),
+            ));
+        }
+        if self.panels.iter().any(|p| !p.paper.is_empty()) {
+            items.push(LegendItem::new(
+                "value printed in the paper",
+                Mark::Diamond(palette::RED),
+            ));
+        }
+        items
+    }
+}

@@ -1,0 +1,318 @@
+//! Mechanism figures (paper Figs. 3–7): the arch to scale, the displaced blocks over it,
+//! hinges as dots and sliding joints as arrows giving the sense of the crown-side part.
+//!
+//! The figure data ([`MechanismFigure`]) comes from the pure geometry of
+//! [`crate::analysis::kinematics::outline`]; this file only maps it to pixels (1:1 aspect)
+//! and draws it, to PNG or SVG by the extension of the path it is given.
+
+use crate::analysis::Sense;
+use crate::analysis::kinematics::{ACTIVE_TOL, MechanismDrawing};
+use crate::analysis::statics::Point;
+use anyhow::{Result, anyhow};
+use plotters::coord::Shift;
+use plotters::element::DashedPathElement;
+use plotters::prelude::*;
+use plotters::style::{FontStyle, register_font};
+use std::path::Path;
+use std::sync::OnceLock;
+
+/// Name under which the bundled DejaVu Sans is registered with plotters.
+const FONT: &str = "dejavu-sans";
+
+/// Registers the bundled font once; false when it could not be parsed.
+fn font_ready() -> bool {
+    static READY: OnceLock<bool> = OnceLock::new();
+    *READY.get_or_init(|| register_font(FONT, FontStyle::Normal, dejavu::sans::regular()).is_ok())
+}
+
+/// What a mechanism figure shows.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MechanismFigure {
+    /// Title line (e.g. the family or the state).
+    pub title: String,
+    /// A second, smaller line (e.g. the hinge pattern, K, μ).
+    pub subtitle: String,
+    /// The geometry to draw.
+    pub drawing: MechanismDrawing,
+}
+
+/// Colours of the figure.
+const ORIGINAL: RGBColor = RGBColor(150, 150, 150);
+const FIXED_FILL: RGBColor = RGBColor(215, 215, 215);
+const BLOCK_FILL: RGBAColor = RGBAColor(70, 130, 200, 0.35);
+const BLOCK_EDGE: RGBColor = RGBColor(25, 70, 140);
+const HINGE: RGBColor = RGBColor(200, 30, 30);
+const SLIDE: RGBColor = RGBColor(230, 120, 0);
+const GROUND: RGBColor = RGBColor(90, 90, 90);
+
+/// The map from arch coordinates (over r) to pixels, with equal scales on both axes.
+#[derive(Debug, Clone, Copy)]
+struct Frame {
+    scale: f64,
+    x0: f64,
+    y0: f64,
+    px0: f64,
+    py0: f64,
+}
+
+impl Frame {
+    /// Fits `bounds` (x_min, x_max, y_min, y_max) into the pixel box (left, top, w, h).
+    fn fit(bounds: [f64; 4], left: f64, top: f64, w: f64, h: f64) -> Self {
+        let bw = (bounds[1] - bounds[0]).max(1e-9);
+        let bh = (bounds[3] - bounds[2]).max(1e-9);
+        let scale = (w / bw).min(h / bh);
+        Frame {
+            scale,
+            x0: 0.5 * (bounds[0] + bounds[1]),
+            y0: 0.5 * (bounds[2] + bounds[3]),
+            px0: left + 0.5 * w,
+            py0: top + 0.5 * h,
+        }
+    }
+
+    fn px(&self, p: Point) -> (i32, i32) {
+        (
+            (self.px0 + self.scale * (p[0] - self.x0)).round() as i32,
+            (self.py0 - self.scale * (p[1] - self.y0)).round() as i32,
+        )
+    }
+
+    fn path(&self, pts: &[Point], close: bool) -> Vec<(i32, i32)> {
+        let mut v: Vec<(i32, i32)> = pts.iter().map(|&p| self.px(p)).collect();
+        if close && let Some(&first) = v.first() {
+            v.push(first);
+        }
+        v
+    }
+}
+
+/// Draws the figure into a drawing area.
+fn draw<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    fig: &MechanismFigure,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    root.fill(&WHITE)?;
+    let (w, h) = root.dim_in_pixel();
+    let (w, h) = (f64::from(w), f64::from(h));
+    let text = font_ready();
+    let title_h = if text { 0.11 * h } else { 0.0 };
+    let d = &fig.drawing;
+    let mut b = d.bounds();
+    // Room for the ground hatching below the springings and for the arrows.
+    let pad = 0.06 * (b[1] - b[0]).max(b[3] - b[2]);
+    b = [b[0] - pad, b[1] + pad, b[2] - pad, b[3] + 0.5 * pad];
+    let margin = 0.03 * w.min(h);
+    let frame = Frame::fit(
+        b,
+        margin,
+        title_h + margin,
+        w - 2.0 * margin,
+        h - title_h - 2.0 * margin,
+    );
+
+    let size = (b[1] - b[0]).max(b[3] - b[2]);
+    // Supports: a ground line along each springing joint, hatched on the ground side.
+    for sup in &d.supports {
+        let (i, e) = (sup.intrados, sup.extrados);
+        let along = [e[0] - i[0], e[1] - i[1]];
+        let len = along[0].hypot(along[1]).max(1e-12);
+        let t = [along[0] / len, along[1] / len];
+        let g = sup.into_ground;
+        let ext = 0.3 * len + 0.02 * size;
+        let a = [i[0] - ext * t[0], i[1] - ext * t[1]];
+        let z = [e[0] + ext * t[0], e[1] + ext * t[1]];
+        root.draw(&PathElement::new(
+            vec![frame.px(a), frame.px(z)],
+            GROUND.stroke_width(2),
+        ))?;
+        let ticks = 8;
+        let tick = 0.1 * (z[0] - a[0]).hypot(z[1] - a[1]);
+        for k in 0..=ticks {
+            let s = f64::from(k) / f64::from(ticks);
+            let p = [a[0] + s * (z[0] - a[0]), a[1] + s * (z[1] - a[1])];
+            let q = [
+                p[0] + tick * (g[0] - 0.6 * t[0]),
+                p[1] + tick * (g[1] - 0.6 * t[1]),
+            ];
+            root.draw(&PathElement::new(
+                vec![frame.px(p), frame.px(q)],
+                GROUND.stroke_width(1),
+            ))?;
+        }
+    }
+
+    // The arch before the displacement (dashed), then the fixed parts, then the blocks.
+    for o in &d.outlines {
+        root.draw(&DashedPathElement::new(
+            frame.path(&o.original, true),
+            6,
+            4,
+            ORIGINAL.stroke_width(1),
+        ))?;
+    }
+    for o in d.outlines.iter().filter(|o| o.fixed) {
+        root.draw(&Polygon::new(
+            frame.path(&o.original, false),
+            FIXED_FILL.filled(),
+        ))?;
+        root.draw(&PathElement::new(
+            frame.path(&o.original, true),
+            GROUND.stroke_width(1),
+        ))?;
+    }
+    for o in d.outlines.iter().filter(|o| !o.fixed) {
+        root.draw(&Polygon::new(
+            frame.path(&o.displaced, false),
+            BLOCK_FILL.filled(),
+        ))?;
+        root.draw(&PathElement::new(
+            frame.path(&o.displaced, true),
+            BLOCK_EDGE.stroke_width(2),
+        ))?;
+    }
+
+    for [i, e] in &d.voussoir_joints {
+        root.draw(&PathElement::new(
+            vec![frame.px(*i), frame.px(*e)],
+            BLOCK_EDGE.stroke_width(1),
+        ))?;
+    }
+
+    // Sliding joints: an arrow along the joint on the crown side, in the direction the
+    // crown-side part moves relative to the springing-side part.
+    for s in &d.slides {
+        // No arrow where the joint does not slip in this mode.
+        let dir = match s.sense {
+            Some(Sense::Outward) => 1.0,
+            Some(Sense::Inward) => -1.0,
+            None => 0.0,
+        };
+        let len = 0.16 * size;
+        // Crown side: left of the joint for θ ≥ 0, i.e. against the normal (cos θ, −sin θ).
+        let nrm = [s.along[1], -s.along[0]];
+        let off = 0.045 * size * s.crown_side;
+        let c = [s.centre[0] - off * nrm[0], s.centre[1] - off * nrm[1]];
+        let (t0, t1) = if dir == 0.0 {
+            (c, c)
+        } else {
+            (
+                [
+                    c[0] - 0.5 * len * dir * s.along[0],
+                    c[1] - 0.5 * len * dir * s.along[1],
+                ],
+                [
+                    c[0] + 0.5 * len * dir * s.along[0],
+                    c[1] + 0.5 * len * dir * s.along[1],
+                ],
+            )
+        };
+        root.draw(&PathElement::new(
+            vec![frame.px(t0), frame.px(t1)],
+            SLIDE.stroke_width(3),
+        ))?;
+        if dir != 0.0 {
+            let head = 0.35 * len;
+            let u = [dir * s.along[0], dir * s.along[1]];
+            for side in [1.0, -1.0] {
+                let (ca, sa) = (0.94_f64, 0.34_f64 * side);
+                let back = [-(ca * u[0] - sa * u[1]), -(sa * u[0] + ca * u[1])];
+                let q = [t1[0] + head * back[0], t1[1] + head * back[1]];
+                root.draw(&PathElement::new(
+                    vec![frame.px(t1), frame.px(q)],
+                    SLIDE.stroke_width(3),
+                ))?;
+            }
+        }
+        // The joint itself, drawn on the arch.
+        root.draw(&Circle::new(frame.px(s.centre), 3, SLIDE.filled()))?;
+    }
+
+    // Hinges: filled where the joint rotates, hollow where it stays closed in this mode.
+    for hm in &d.hinges {
+        let r = (0.012 * w.min(h)).max(3.0) as i32;
+        let at = frame.px(hm.displaced);
+        if hm.relative_rotation.abs() > ACTIVE_TOL {
+            root.draw(&Circle::new(at, r, HINGE.filled()))?;
+            root.draw(&Circle::new(at, r, BLACK.stroke_width(1)))?;
+        } else {
+            root.draw(&Circle::new(at, r, WHITE.filled()))?;
+            root.draw(&Circle::new(at, r, ORIGINAL.stroke_width(2)))?;
+        }
+    }
+
+    if text {
+        let big = (0.045 * h).max(12.0);
+        let small = (0.032 * h).max(10.0);
+        root.draw(&Text::new(
+            fig.title.clone(),
+            (margin as i32, (0.2 * title_h) as i32),
+            (FONT, big).into_font().color(&BLACK),
+        ))?;
+        root.draw(&Text::new(
+            fig.subtitle.clone(),
+            (margin as i32, (0.62 * title_h) as i32),
+            (FONT, small).into_font().color(&GROUND),
+        ))?;
+    }
+    Ok(())
+}
+
+/// Renders a mechanism figure of `size` pixels to `path`: SVG when the extension is `svg`,
+/// PNG otherwise. Writes only that file.
+pub fn render_mechanism(path: &Path, size: (u32, u32), fig: &MechanismFigure) -> Result<()> {
+    let svg = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
+    let err = |e: String| anyhow!("cannot draw {}: {e}", path.display());
+    if svg {
+        let root = SVGBackend::new(path, size).into_drawing_area();
+        draw(&root, fig).map_err(|e| err(e.to_string()))?;
+        root.present().map_err(|e| err(e.to_string()))?;
+    } else {
+        let root = BitMapBackend::new(path, size).into_drawing_area();
+        draw(&root, fig).map_err(|e| err(e.to_string()))?;
+        root.present().map_err(|e| err(e.to_string()))?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::circular::CircularArch;
+    use crate::analysis::kinematics::{drawing, families};
+    use crate::model::Arch;
+
+    #[test]
+    fn draws_every_family_to_png_and_svg() {
+        let dir = tempfile::tempdir().unwrap();
+        let geom = CircularArch::new(Arch::semicircular(1.25).unwrap());
+        for f in families(&geom).unwrap() {
+            let fig = MechanismFigure {
+                title: f.template.id.to_string(),
+                subtitle: f.template.description.to_string(),
+                drawing: drawing(&geom, &f.modes.fields[0], 0.08),
+            };
+            for ext in ["png", "svg"] {
+                let path = dir.path().join(format!("{}.{ext}", f.template.id));
+                render_mechanism(&path, (400, 260), &fig).unwrap();
+                let bytes = std::fs::read(&path).unwrap();
+                assert!(bytes.len() > 1000, "{}", path.display());
+            }
+        }
+    }
+
+    #[test]
+    fn a_bad_path_names_itself() {
+        let geom = CircularArch::new(Arch::semicircular(1.25).unwrap());
+        let f = &families(&geom).unwrap()[0];
+        let fig = MechanismFigure {
+            title: String::new(),
+            subtitle: String::new(),
+            drawing: drawing(&geom, &f.modes.fields[0], 0.08),
+        };
+        let path = Path::new("/nonexistent-dir/x.png");
+        let err = render_mechanism(path, (100, 80), &fig).unwrap_err();
+        assert!(format!("{err:#}").contains("/nonexistent-dir/x.png"));
+    }
+}

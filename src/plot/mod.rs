@@ -1,0 +1,170 @@
+//! Figures: the only user of plotters. One file per chart; each chart is a data type (what
+//! to draw, already in its final units) implementing [`Figure`], drawn for a
+//! [`PlotContext`] (format and size). [`render`] returns the bytes of the file (SVG text or
+//! a print-resolution PNG); the caller decides where they go.
+//!
+//! Text uses DejaVu Sans, bundled with the binary and registered under the generic family
+//! `sans-serif`: PNG text never depends on the system's fonts, and the SVG names only the
+//! generic family, so a browser always has a font for it.
+
+pub mod accuracy;
+pub mod critical;
+pub mod domains;
+pub mod mechanisms;
+pub mod regime_map;
+pub mod state;
+mod style;
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+pub use style::LegendItem;
+
+/// Output format of a figure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// SVG, at the design size (for inlining in the HTML report).
+    Svg,
+    /// PNG, at [`PNG_SCALE`] times the design size with a 300 dpi tag (for papers).
+    Png,
+}
+
+impl Format {
+    /// The file extension.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Format::Svg => "svg",
+            Format::Png => "png",
+        }
+    }
+}
+
+/// How much larger a PNG is than the design size: an 800 px design becomes 2400 px.
+pub const PNG_SCALE: f64 = 3.0;
+/// Print resolution written into PNGs, dots per inch.
+pub const PNG_DPI: f64 = 300.0;
+
+/// Where and how big a figure is drawn: format, design size and scale.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlotContext {
+    /// Output format.
+    pub format: Format,
+    /// Size in design pixels (the SVG's size).
+    pub size: (u32, u32),
+    /// Device pixels per design pixel.
+    pub scale: f64,
+}
+
+impl PlotContext {
+    /// A context for a figure of the given design size.
+    pub fn new(format: Format, size: (u32, u32)) -> Self {
+        let scale = match format {
+            Format::Svg => 1.0,
+            Format::Png => PNG_SCALE,
+        };
+        PlotContext {
+            format,
+            size,
+            scale,
+        }
+    }
+
+    /// Size in device pixels.
+    pub fn pixels(&self) -> (u32, u32) {
+        (
+            (f64::from(self.size.0) * self.scale).round() as u32,
+            (f64::from(self.size.1) * self.scale).round() as u32,
+        )
+    }
+
+    /// A length in design pixels as device pixels.
+    pub fn px(&self, v: f64) -> i32 {
+        (v * self.scale).round() as i32
+    }
+
+    /// A length in design pixels as device pixels, unsigned.
+    pub fn upx(&self, v: f64) -> u32 {
+        (v * self.scale).round().max(0.0) as u32
+    }
+
+    /// A font of `size` design pixels.
+    pub fn font(&self, size: f64) -> TextStyle<'static> {
+        style::font(size * self.scale)
+    }
+
+    /// A bold or italic font of `size` design pixels.
+    pub fn font_with(&self, size: f64, st: plotters::style::FontStyle) -> TextStyle<'static> {
+        style::font_with(size * self.scale, st)
+    }
+}
+
+/// Drawing failed (a backend error, reported as text).
+#[derive(Debug, thiserror::Error)]
+#[error("cannot draw the figure: {0}")]
+pub struct PlotError(pub String);
+
+/// A chart: knows its design size and how to draw itself on any backend.
+pub trait Figure {
+    /// Design size in pixels (width, height).
+    fn size(&self) -> (u32, u32);
+    /// Draws the figure on `root` (the whole canvas, already filled white).
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        ctx: &PlotContext,
+    ) -> DrawResult<(), DB>;
+}
+
+fn err<E: std::fmt::Display>(e: E) -> PlotError {
+    PlotError(e.to_string())
+}
+
+/// Renders a figure to the bytes of an SVG or PNG file.
+pub fn render<F: Figure>(fig: &F, format: Format) -> Result<Vec<u8>, PlotError> {
+    style::register_fonts();
+    let ctx = PlotContext::new(format, fig.size());
+    let (w, h) = ctx.pixels();
+    match format {
+        Format::Svg => {
+            let mut text = String::new();
+            {
+                let root = SVGBackend::with_string(&mut text, (w, h)).into_drawing_area();
+                root.fill(&WHITE).map_err(err)?;
+                fig.draw(&root, &ctx).map_err(err)?;
+                root.present().map_err(err)?;
+            }
+            Ok(text.into_bytes())
+        }
+        Format::Png => {
+            let mut rgb = vec![0u8; 3 * w as usize * h as usize];
+            {
+                let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+                root.fill(&WHITE).map_err(err)?;
+                fig.draw(&root, &ctx).map_err(err)?;
+                root.present().map_err(err)?;
+            }
+            encode_png(&rgb, w, h)
+        }
+    }
+}
+
+/// Encodes an RGB buffer as PNG with a [`PNG_DPI`] physical-size tag.
+fn encode_png(rgb: &[u8], w: u32, h: u32) -> Result<Vec<u8>, PlotError> {
+    let mut out = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut out, w, h);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        enc.set_compression(png::Compression::Default);
+        let ppm = (PNG_DPI / 0.0254).round() as u32;
+        enc.set_pixel_dims(Some(png::PixelDimensions {
+            xppu: ppm,
+            yppu: ppm,
+            unit: png::Unit::Meter,
+        }));
+        let mut writer = enc.write_header().map_err(err)?;
+        writer.write_image_data(rgb).map_err(err)?;
+        writer.finish().map_err(err)?;
+    }
+    Ok(out)
+}

@@ -1,0 +1,230 @@
+//! Everything a report shows, read back from the run directory: run.json, results.parquet,
+//! boundaries.parquet, bifurcations.parquet and the figure data. Nothing is recomputed.
+
+use crate::output::RunLayout;
+use crate::runner::RunInfo;
+use crate::store::{
+    self, BifurcationRow, BoundaryRow, CurvePoint, ReferenceRow, ResultRow, StateRow,
+};
+use anyhow::{Context, Result};
+use serde::Deserialize;
+use std::path::Path;
+
+/// The arch block of the resolved manifest in run.json.
+#[derive(Debug, Clone, Deserialize)]
+pub struct ArchView {
+    /// `circular`.
+    pub shape: String,
+    /// Half-embrace angle, degrees.
+    pub half_angle_deg: f64,
+    /// `radial`.
+    pub joints: String,
+    /// `annular` or `centreline`.
+    pub weight: String,
+    /// `continuum` or a voussoir count.
+    pub voussoirs: serde_json::Value,
+}
+
+impl ArchView {
+    /// The voussoir count, `None` for the continuum.
+    pub fn voussoir_count(&self) -> Option<u32> {
+        self.voussoirs.as_u64().map(|n| n as u32)
+    }
+}
+
+/// A grid axis of the resolved manifest (JSON writes infinite μ as null).
+#[derive(Debug, Clone, Deserialize)]
+pub struct AxisView {
+    /// `k`, `t_over_r`, `mu`, `half_angle_deg` or `voussoirs`.
+    pub name: String,
+    /// Values; `None` stands for +inf.
+    pub values: Vec<Option<f64>>,
+}
+
+/// A load case of the resolved manifest.
+#[derive(Debug, Clone, Deserialize)]
+pub struct LoadCaseView {
+    /// Name.
+    pub name: String,
+    /// Kind, e.g. `self_weight`.
+    pub kind: String,
+}
+
+/// A scene of the resolved manifest.
+#[derive(Debug, Clone, Deserialize)]
+pub struct SceneView {
+    /// K.
+    pub k: f64,
+    /// μ (`None`: infinite).
+    pub mu: Option<f64>,
+}
+
+/// The resolved manifest as stored in run.json.
+#[derive(Debug, Clone, Deserialize)]
+pub struct ManifestView {
+    /// Study name.
+    pub name: String,
+    /// Title.
+    pub title: Option<String>,
+    /// Description.
+    pub description: Option<String>,
+    /// Arch options.
+    pub arch: ArchView,
+    /// Grid axes in plan order.
+    pub grid: Vec<AxisView>,
+    /// Load cases.
+    pub load_cases: Vec<LoadCaseView>,
+    /// What each case computes.
+    pub find: String,
+    /// Scenes to draw.
+    #[serde(default)]
+    pub scenes: Vec<SceneView>,
+    /// Boundary tolerance.
+    pub boundary_tolerance: f64,
+}
+
+impl ManifestView {
+    /// True for the paper's case: a semicircular arch with radial joints, annular weight, a
+    /// continuum of joints and self-weight only (and no axis varying the arch).
+    pub fn is_paper_case(&self) -> bool {
+        self.arch.shape == "circular"
+            && self.arch.joints == "radial"
+            && (self.arch.half_angle_deg - 90.0).abs() < 1e-12
+            && self.arch.weight == "annular"
+            && self.arch.voussoir_count().is_none()
+            && !self
+                .grid
+                .iter()
+                .any(|a| a.name == "voussoirs" || a.name == "half_angle_deg")
+            && self.load_cases.iter().all(|l| l.kind == "self_weight")
+    }
+
+    /// The axis of a name, if the grid has it.
+    pub fn axis(&self, name: &str) -> Option<&AxisView> {
+        self.grid.iter().find(|a| a.name == name)
+    }
+}
+
+/// The stored data of a run.
+#[derive(Debug, Clone)]
+pub struct RunData {
+    /// run.json.
+    pub info: RunInfo,
+    /// The resolved manifest from run.json.
+    pub manifest: ManifestView,
+    /// results.parquet.
+    pub results: Vec<ResultRow>,
+    /// boundaries.parquet (`None` when the run has none).
+    pub boundaries: Option<Vec<BoundaryRow>>,
+    /// bifurcations.parquet (`None` when the run has none).
+    pub bifurcations: Option<Vec<BifurcationRow>>,
+    /// curves.parquet (empty when absent).
+    pub curves: Vec<CurvePoint>,
+    /// states.parquet (empty when absent).
+    pub states: Vec<StateRow>,
+    /// reference.parquet (empty when absent).
+    pub reference: Vec<ReferenceRow>,
+}
+
+fn optional<T>(path: &Path, read: impl Fn(&Path) -> Result<T>) -> Result<Option<T>> {
+    if path.exists() {
+        read(path).map(Some)
+    } else {
+        Ok(None)
+    }
+}
+
+/// A path that is not a readable run directory.
+#[derive(Debug, thiserror::Error)]
+#[error("{path} is not a run directory: {reason}")]
+pub struct RunDirError {
+    /// The path given.
+    pub path: std::path::PathBuf,
+    /// What is missing or unreadable.
+    pub reason: String,
+}
+
+/// Reads run.json of a run directory.
+pub fn load_info(layout: &RunLayout) -> Result<RunInfo> {
+    let dir = &layout.dir;
+    let not_run_dir = |reason: String| RunDirError {
+        path: dir.clone(),
+        reason,
+    };
+    if !dir.is_dir() {
+        return Err(not_run_dir("it does not exist or is not a directory".into()).into());
+    }
+    let run_json = layout.run_json();
+    let text = std::fs::read_to_string(&run_json).map_err(|e| {
+        not_run_dir(format!(
+            "cannot read {} ({e}); a run directory holds the run.json that `archstudy run` writes",
+            run_json.display()
+        ))
+    })?;
+    serde_json::from_str(&text).map_err(|e| {
+        not_run_dir(format!(
+            "{} is not a valid run.json ({e})",
+            run_json.display()
+        ))
+        .into()
+    })
+}
+
+/// Reads the stored files of a run directory.
+pub fn load(layout: &RunLayout) -> Result<RunData> {
+    let info = load_info(layout)?;
+    let manifest: ManifestView =
+        serde_json::from_value(info.manifest.clone()).with_context(|| {
+            format!(
+                "{}: the `manifest` object is not valid",
+                layout.run_json().display()
+            )
+        })?;
+    if !layout.results().is_file() {
+        return Err(RunDirError {
+            path: layout.dir.clone(),
+            reason: format!("{} is missing", layout.results().display()),
+        }
+        .into());
+    }
+    let results = store::read_results(&layout.results())?;
+    Ok(RunData {
+        info,
+        manifest,
+        results,
+        boundaries: optional(&layout.boundaries(), store::read_boundaries)?,
+        bifurcations: optional(&layout.bifurcations(), store::read_bifurcations)?,
+        curves: optional(&layout.curves(), store::read_curves)?.unwrap_or_default(),
+        states: optional(&layout.states(), store::read_states)?.unwrap_or_default(),
+        reference: optional(&layout.reference(), store::read_reference)?.unwrap_or_default(),
+    })
+}
+
+impl RunData {
+    /// The points of one series of one stored figure, in stored order.
+    pub fn curve(&self, figure: &str, series: &str) -> Vec<(f64, f64)> {
+        self.curves
+            .iter()
+            .filter(|c| c.figure == figure && c.series == series)
+            .map(|c| (c.x, c.y))
+            .collect()
+    }
+
+    /// The bifurcations of a load case.
+    pub fn bifurcations_of(&self, load_case: &str) -> Vec<&BifurcationRow> {
+        self.bifurcations
+            .iter()
+            .flatten()
+            .filter(|b| b.load_case == load_case)
+            .collect()
+    }
+
+    /// The boundary points of a load case.
+    pub fn boundaries_of(&self, load_case: &str) -> Vec<&BoundaryRow> {
+        self.boundaries
+            .iter()
+            .flatten()
+            .filter(|b| b.load_case == load_case)
+            .collect()
+    }
+}

@@ -1,0 +1,128 @@
+//! The reports of a run: figures (plots/*.svg, plots/*.png), report.html (self-contained,
+//! figures inlined) and report.md (figures linked as PNGs). Everything is built from the
+//! stored files of the run directory ([`data::load`]); nothing is recomputed. Templates are
+//! embedded and rendered in strict mode; the view model holds formatted text only.
+
+pub mod data;
+pub mod figures;
+pub mod format;
+pub mod paper;
+pub mod view;
+
+use crate::output::{RunLayout, write_atomic};
+use crate::plot::Format;
+use anyhow::{Context, Result};
+use data::RunData;
+use figures::FigureSpec;
+use minijinja::value::Serde;
+use minijinja::{Environment, UndefinedBehavior};
+use std::path::Path;
+
+const HTML_TEMPLATE: &str = include_str!("../../templates/report.html.j2");
+const MD_TEMPLATE: &str = include_str!("../../templates/report.md.j2");
+
+/// The figures of a run, drawn: their specs and SVG text (for inlining).
+#[derive(Debug, Clone)]
+pub struct DrawnFigures {
+    /// What each figure is.
+    pub specs: Vec<FigureSpec>,
+    /// The SVG of each figure, in the same order.
+    pub svgs: Vec<String>,
+}
+
+/// Draws every figure of a run and writes plots/STEM.svg and plots/STEM.png.
+pub fn draw_figures(data: &RunData, layout: &RunLayout) -> Result<DrawnFigures> {
+    let dir = layout.plots();
+    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let specs = figures::build(data);
+    let mut svgs = Vec::with_capacity(specs.len());
+    for f in &specs {
+        let svg = f
+            .render(Format::Svg)
+            .with_context(|| format!("figure {}", f.stem))?;
+        write_atomic(&layout.plot(&f.stem, Format::Svg.extension()), &svg)?;
+        let png = f
+            .render(Format::Png)
+            .with_context(|| format!("figure {}", f.stem))?;
+        write_atomic(&layout.plot(&f.stem, Format::Png.extension()), &png)?;
+        svgs.push(inline_svg(&String::from_utf8_lossy(&svg), &f.title));
+    }
+    Ok(DrawnFigures { specs, svgs })
+}
+
+/// An SVG document made ready for inlining in HTML: scalable, with an accessible name.
+fn inline_svg(svg: &str, title: &str) -> String {
+    let label = title
+        .replace('&', "&amp;")
+        .replace('"', "&quot;")
+        .replace('<', "&lt;");
+    svg.replacen(
+        "<svg ",
+        &format!("<svg class=\"figure\" role=\"img\" aria-label=\"{label}\" "),
+        1,
+    )
+}
+
+fn environment() -> Result<Environment<'static>> {
+    let mut env = Environment::new();
+    env.set_undefined_behavior(UndefinedBehavior::Strict);
+    env.set_syntax(
+        minijinja::syntax::SyntaxConfig::builder()
+            .trim_blocks(true)
+            .lstrip_blocks(true)
+            .build()?,
+    );
+    env.add_template("report.html.j2", HTML_TEMPLATE)?;
+    env.add_template("report.md.j2", MD_TEMPLATE)?;
+    Ok(env)
+}
+
+/// The HTML report of a view model.
+pub fn html(view: &view::ReportView) -> Result<String> {
+    let env = environment()?;
+    Ok(env.get_template("report.html.j2")?.render(Serde(view))?)
+}
+
+/// The Markdown report of a view model.
+pub fn markdown(view: &view::ReportView) -> Result<String> {
+    let env = environment()?;
+    let mut s = env.get_template("report.md.j2")?.render(Serde(view))?;
+    if !s.ends_with('\n') {
+        s.push('\n');
+    }
+    Ok(s)
+}
+
+/// Writes report.html and report.md for drawn figures.
+pub fn write_reports(data: &RunData, figs: &DrawnFigures, layout: &RunLayout) -> Result<()> {
+    let v = view::build(data, &figs.specs, &figs.svgs);
+    write_atomic(&layout.report_html(), html(&v)?.as_bytes())?;
+    write_atomic(&layout.report_md(), markdown(&v)?.as_bytes())?;
+    Ok(())
+}
+
+/// What re-rendering a run produced.
+#[derive(Debug, Clone)]
+pub struct ReportSummary {
+    /// Figures drawn.
+    pub figures: usize,
+    /// report.html.
+    pub html: std::path::PathBuf,
+    /// report.md.
+    pub markdown: std::path::PathBuf,
+}
+
+/// `archstudy report RUN_DIR`: re-renders every figure and both reports of a run directory
+/// from its stored files.
+pub fn render_run(dir: &Path) -> Result<ReportSummary> {
+    let layout = RunLayout::at(dir);
+    let data = data::load(&layout)
+        .with_context(|| format!("cannot read the run directory {}", dir.display()))?;
+    let figs = draw_figures(&data, &layout)?;
+    write_reports(&data, &figs, &layout)?;
+    Ok(ReportSummary {
+        figures: figs.specs.len(),
+        html: layout.report_html(),
+        markdown: layout.report_md(),
+    })
+}

@@ -1,0 +1,292 @@
+//! Typed rows of the stored tables that figures and reports read back: results.parquet (the
+//! columns a report needs), boundaries.parquet and bifurcations.parquet (schemas in the
+//! README and docs/report-files.md).
+
+use super::{
+    bool_column, f64_column, list_f64_column, list_str_column, read_parquet, str_column, u64_column,
+};
+use anyhow::{Context as _, Result};
+use std::path::Path;
+
+/// The hinges and sliding joints of a stored state (the four list columns).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct JointLists {
+    /// Hinge angles from the crown, degrees.
+    pub hinge_angles_deg: Vec<f64>,
+    /// Hinge faces, `intrados` or `extrados`, one per angle.
+    pub hinge_faces: Vec<String>,
+    /// Sliding joint angles from the crown, degrees.
+    pub sliding_angles_deg: Vec<f64>,
+    /// Sliding senses, `outward` or `inward`, one per angle.
+    pub sliding_senses: Vec<String>,
+}
+
+/// One row of results.parquet, with the columns the report uses.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ResultRow {
+    /// Case id.
+    pub case_id: u64,
+    /// Load-case name.
+    pub load_case: String,
+    /// `state`, `thickness`, `friction` or `thrust`.
+    pub find: String,
+    /// K = R/r given.
+    pub k: Option<f64>,
+    /// t/R_c given.
+    pub t_over_r: Option<f64>,
+    /// μ given (+inf for infinite friction).
+    pub mu: Option<f64>,
+    /// Half-embrace angle, degrees.
+    pub half_angle_deg: f64,
+    /// `annular` or `centreline`.
+    pub weight: String,
+    /// Voussoir count, `None` for the continuum.
+    pub voussoirs: Option<u32>,
+    /// `found`, `never_stands` or `always_stands` (critical finds).
+    pub outcome: Option<String>,
+    /// Regime (state find).
+    pub regime: Option<String>,
+    /// Lower end of H^r over W_half.
+    pub thrust_r_min: Option<f64>,
+    /// Upper end of H^r over W_half.
+    pub thrust_r_max: Option<f64>,
+    /// Lower end of H^s over W_half.
+    pub thrust_s_min: Option<f64>,
+    /// Upper end of H^s over W_half.
+    pub thrust_s_max: Option<f64>,
+    /// Collapse thickness ratio.
+    pub k_crit: Option<f64>,
+    /// t/R_c at the collapse thickness.
+    pub t_over_r_crit: Option<f64>,
+    /// Critical friction.
+    pub mu_crit: Option<f64>,
+    /// Mechanism of the critical state.
+    pub mechanism: Option<String>,
+    /// Crown thrust of the critical state over W_half.
+    pub thrust_over_half_weight: Option<f64>,
+    /// Crown moment of the critical state over W_half·r.
+    pub crown_moment: Option<f64>,
+    /// Hinges and sliding joints of the critical state.
+    pub joints: JointLists,
+    /// Minimum admissible thrust over W_half (thrust find).
+    pub thrust_min: Option<f64>,
+    /// Maximum admissible thrust over W_half (thrust find).
+    pub thrust_max: Option<f64>,
+    /// `ok` or `error`.
+    pub status: String,
+    /// Wall time of the analysis, µs.
+    pub solve_time_us: f64,
+}
+
+/// One row of boundaries.parquet: a point where the regime changes along a grid line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BoundaryRow {
+    /// Load-case name.
+    pub load_case: String,
+    /// μ of the point.
+    pub mu: f64,
+    /// K of the point.
+    pub k: f64,
+    /// t/R_c of the point.
+    pub t_over_r: f64,
+    /// Regime on the low side (smaller K or μ).
+    pub regime_low: String,
+    /// Regime on the high side.
+    pub regime_high: String,
+    /// The axis along which it was located, `k` or `mu`.
+    pub axis: String,
+    /// True when the point lies on the boundary of the stable region.
+    pub on_collapse_curve: bool,
+    /// The collapse mechanism there (collapse-curve points).
+    pub mechanism: Option<String>,
+    /// Crown thrust over W_half of the limit state.
+    pub thrust_over_half_weight: Option<f64>,
+    /// Crown moment over W_half·r of the limit state.
+    pub crown_moment: Option<f64>,
+    /// Hinges and sliding joints of the limit state.
+    pub joints: JointLists,
+}
+
+/// One row of bifurcations.parquet: a point of the collapse curve where two mechanisms meet.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BifurcationRow {
+    /// Load-case name.
+    pub load_case: String,
+    /// μ of the point.
+    pub mu: f64,
+    /// K of the point.
+    pub k: f64,
+    /// t/R_c of the point.
+    pub t_over_r: f64,
+    /// One mechanism (the one on the larger-μ side).
+    pub mechanism_a: String,
+    /// The other mechanism.
+    pub mechanism_b: String,
+    /// Crown thrust over W_half.
+    pub thrust_over_half_weight: Option<f64>,
+    /// Crown moment over W_half·r.
+    pub crown_moment: Option<f64>,
+    /// Hinges and sliding joints of the limit state (both mechanisms together).
+    pub joints: JointLists,
+}
+
+fn joint_lists(df: &polars::prelude::DataFrame) -> Result<Vec<JointLists>> {
+    let ha = list_f64_column(df, "hinge_angles_deg")?;
+    let hf = list_str_column(df, "hinge_faces")?;
+    let sa = list_f64_column(df, "sliding_angles_deg")?;
+    let ss = list_str_column(df, "sliding_senses")?;
+    Ok(ha
+        .into_iter()
+        .zip(hf)
+        .zip(sa.into_iter().zip(ss))
+        .map(|((ha, hf), (sa, ss))| JointLists {
+            hinge_angles_deg: ha,
+            hinge_faces: hf,
+            sliding_angles_deg: sa,
+            sliding_senses: ss,
+        })
+        .collect())
+}
+
+fn required(v: Vec<Option<String>>, name: &str, path: &Path) -> Result<Vec<String>> {
+    v.into_iter()
+        .enumerate()
+        .map(|(i, s)| s.with_context(|| format!("{}: row {i} has no `{name}`", path.display())))
+        .collect()
+}
+
+fn required_f64(v: Vec<Option<f64>>, name: &str, path: &Path) -> Result<Vec<f64>> {
+    v.into_iter()
+        .enumerate()
+        .map(|(i, s)| s.with_context(|| format!("{}: row {i} has no `{name}`", path.display())))
+        .collect()
+}
+
+/// Reads results.parquet.
+pub fn read_results(path: &Path) -> Result<Vec<ResultRow>> {
+    let df = read_parquet(path)?;
+    let cx = || format!("in {}", path.display());
+    let f = |name: &str| f64_column(&df, name).with_context(cx);
+    let s = |name: &str| str_column(&df, name).with_context(cx);
+    let case_id = u64_column(&df, "case_id").with_context(cx)?;
+    let load_case = required(s("load_case")?, "load_case", path)?;
+    let find = required(s("find")?, "find", path)?;
+    let (k, t_over_r, mu) = (f("k")?, f("t_over_r")?, f("mu")?);
+    let half = required_f64(f("half_angle_deg")?, "half_angle_deg", path)?;
+    let weight = required(s("weight")?, "weight", path)?;
+    let voussoirs = f("voussoirs")?;
+    let (outcome, regime) = (s("outcome")?, s("regime")?);
+    let (rmin, rmax, smin, smax) = (
+        f("thrust_r_min")?,
+        f("thrust_r_max")?,
+        f("thrust_s_min")?,
+        f("thrust_s_max")?,
+    );
+    let (k_crit, t_crit, mu_crit) = (f("k_crit")?, f("t_over_r_crit")?, f("mu_crit")?);
+    let mechanism = s("mechanism")?;
+    let (thrust, moment) = (f("thrust_over_half_weight")?, f("crown_moment")?);
+    let joints = joint_lists(&df).with_context(cx)?;
+    let (tmin, tmax) = (f("thrust_min")?, f("thrust_max")?);
+    let status = required(s("status")?, "status", path)?;
+    let time = f("solve_time_us")?;
+    let mut out = Vec::with_capacity(case_id.len());
+    for (i, joints) in joints.into_iter().enumerate() {
+        out.push(ResultRow {
+            case_id: case_id[i],
+            load_case: load_case[i].clone(),
+            find: find[i].clone(),
+            k: k[i],
+            t_over_r: t_over_r[i],
+            mu: mu[i],
+            half_angle_deg: half[i],
+            weight: weight[i].clone(),
+            voussoirs: voussoirs[i].map(|v| v as u32),
+            outcome: outcome[i].clone(),
+            regime: regime[i].clone(),
+            thrust_r_min: rmin[i],
+            thrust_r_max: rmax[i],
+            thrust_s_min: smin[i],
+            thrust_s_max: smax[i],
+            k_crit: k_crit[i],
+            t_over_r_crit: t_crit[i],
+            mu_crit: mu_crit[i],
+            mechanism: mechanism[i].clone(),
+            thrust_over_half_weight: thrust[i],
+            crown_moment: moment[i],
+            joints,
+            thrust_min: tmin[i],
+            thrust_max: tmax[i],
+            status: status[i].clone(),
+            solve_time_us: time[i].unwrap_or(f64::NAN),
+        });
+    }
+    Ok(out)
+}
+
+/// Reads boundaries.parquet.
+pub fn read_boundaries(path: &Path) -> Result<Vec<BoundaryRow>> {
+    let df = read_parquet(path)?;
+    let cx = || format!("in {}", path.display());
+    let f = |name: &str| f64_column(&df, name).with_context(cx);
+    let s = |name: &str| str_column(&df, name).with_context(cx);
+    let load_case = required(s("load_case")?, "load_case", path)?;
+    let mu = required_f64(f("mu")?, "mu", path)?;
+    let k = required_f64(f("k")?, "k", path)?;
+    let t = required_f64(f("t_over_r")?, "t_over_r", path)?;
+    let low = required(s("regime_low")?, "regime_low", path)?;
+    let high = required(s("regime_high")?, "regime_high", path)?;
+    let axis = required(s("axis")?, "axis", path)?;
+    let on = bool_column(&df, "on_collapse_curve").with_context(cx)?;
+    let mech = s("mechanism")?;
+    let (thrust, moment) = (f("thrust_over_half_weight")?, f("crown_moment")?);
+    let joints = joint_lists(&df).with_context(cx)?;
+    Ok(joints
+        .into_iter()
+        .enumerate()
+        .map(|(i, joints)| BoundaryRow {
+            load_case: load_case[i].clone(),
+            mu: mu[i],
+            k: k[i],
+            t_over_r: t[i],
+            regime_low: low[i].clone(),
+            regime_high: high[i].clone(),
+            axis: axis[i].clone(),
+            on_collapse_curve: on[i].unwrap_or(false),
+            mechanism: mech[i].clone(),
+            thrust_over_half_weight: thrust[i],
+            crown_moment: moment[i],
+            joints,
+        })
+        .collect())
+}
+
+/// Reads bifurcations.parquet.
+pub fn read_bifurcations(path: &Path) -> Result<Vec<BifurcationRow>> {
+    let df = read_parquet(path)?;
+    let cx = || format!("in {}", path.display());
+    let f = |name: &str| f64_column(&df, name).with_context(cx);
+    let s = |name: &str| str_column(&df, name).with_context(cx);
+    let load_case = required(s("load_case")?, "load_case", path)?;
+    let mu = required_f64(f("mu")?, "mu", path)?;
+    let k = required_f64(f("k")?, "k", path)?;
+    let t = required_f64(f("t_over_r")?, "t_over_r", path)?;
+    let a = required(s("mechanism_a")?, "mechanism_a", path)?;
+    let b = required(s("mechanism_b")?, "mechanism_b", path)?;
+    let (thrust, moment) = (f("thrust_over_half_weight")?, f("crown_moment")?);
+    let joints = joint_lists(&df).with_context(cx)?;
+    Ok(joints
+        .into_iter()
+        .enumerate()
+        .map(|(i, joints)| BifurcationRow {
+            load_case: load_case[i].clone(),
+            mu: mu[i],
+            k: k[i],
+            t_over_r: t[i],
+            mechanism_a: a[i].clone(),
+            mechanism_b: b[i].clone(),
+            thrust_over_half_weight: thrust[i],
+            crown_moment: moment[i],
+            joints,
+        })
+        .collect())
+}
