@@ -763,3 +763,94 @@ fn command_line_options_and_json_keys() {
         assert!(e.contains(option) && e.contains(allowed), "{args:?}: {e}");
     }
 }
+
+#[test]
+fn load_factor_agrees_with_the_work_equation_of_its_mechanism() {
+    use archstudy::analysis::forms::ArchModel;
+    use archstudy::analysis::general::{self, Settings};
+    use archstudy::analysis::kinematics::{
+        FlowRule, LimitState, mechanism_modes, pattern_of, work_equation,
+    };
+    // Rotational mechanisms: the virtual work of the loads vanishes (eq. 9), so the load
+    // factor is −(work of the dead load)/(work of the live load) on the mechanism's velocity
+    // field, a kinematic route independent of the programme that found λ.
+    let cases = [
+        (
+            1.3,
+            Discretisation::Continuum,
+            ArchForm::default(),
+            Load::Horizontal,
+        ),
+        (
+            1.3,
+            Discretisation::Voussoirs(64),
+            ArchForm::default(),
+            Load::Horizontal,
+        ),
+        (
+            1.3,
+            Discretisation::Continuum,
+            ArchForm::default(),
+            Load::Point { at_deg: 30.0 },
+        ),
+        (
+            1.25,
+            Discretisation::Continuum,
+            ArchForm::default(),
+            Load::Point { at_deg: -22.5 },
+        ),
+        (
+            1.2,
+            Discretisation::Continuum,
+            pointed(0.3),
+            Load::Horizontal,
+        ),
+    ];
+    for (k, joints, form, load) in cases {
+        let model = ArchModel::new(arch(k, joints), form, load).unwrap();
+        let lf = general::load_factor(&model, std::f64::consts::FRAC_PI_2, &Settings::default());
+        let m = lf.mechanism.clone().unwrap();
+        assert_eq!(
+            m.kind,
+            archstudy::analysis::MechanismKind::Rotational,
+            "{load:?}"
+        );
+        let modes =
+            mechanism_modes(&model, &pattern_of(&m), FlowRule::NonAssociative, true).unwrap();
+        assert_eq!(modes.dof, 1, "{load:?}: {m:?}");
+        let field = &modes.fields[0];
+        let work = |lambda: f64| {
+            let state = LimitState {
+                crown_force: [0.0, 0.0],
+                crown_moment_origin: 0.0,
+                load_factor: lambda,
+                mu: f64::INFINITY,
+            };
+            work_equation(&model, &state, field).work_loads
+        };
+        let (dead, live) = (work(0.0), work(1.0) - work(0.0));
+        let lambda_work = -dead / live;
+        assert!(
+            close(lambda_work, lf.lambda, 1e-9 * (1.0 + lf.lambda)),
+            "{k} {joints} {load:?}: work {lambda_work} vs LP {}",
+            lf.lambda
+        );
+    }
+    // Mixed mechanisms: the loads' work balances the friction dissipated at the sliding
+    // joints (eq. 11) for the state the programme found.
+    for (m, load) in [
+        (0.6, Load::Horizontal),
+        (0.5, Load::Point { at_deg: -22.5 }),
+    ] {
+        let s = lambda_max(
+            arch(1.3, Discretisation::Continuum),
+            mu(m),
+            ArchForm::default(),
+            load,
+        );
+        assert_eq!(s.mechanism, Some("mixed"), "{load:?}");
+        assert_eq!(s.mechanism_dof, Some(1));
+        assert!(s.work_loads.unwrap() > 0.0);
+        assert!(s.work_residual.unwrap() < 1e-9, "{load:?}: {s:?}");
+    }
+}

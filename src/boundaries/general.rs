@@ -14,7 +14,6 @@
 //!   factor, or an arch that never stands, are not recorded.
 
 use super::grid::{Grid, ok_result};
-use super::sweep::union;
 use super::{Bifurcation, BoundaryPoint, Counter, EdgeAxis};
 use crate::analysis::forms::ArchModel;
 use crate::analysis::general::{self, Settings};
@@ -88,6 +87,38 @@ fn critical_state(s: &Solution, k: f64, mu: f64) -> Option<CriticalState> {
         crown_moment: s.crown_moment.unwrap_or(f64::NAN),
         mechanism: Mechanism::from_parts(hinges, sliding)?,
     })
+}
+
+/// Two joints of the two sides of a located change closer than this (degrees) are one: the
+/// hinges of a continuum are located to about 1e-5° on either side of a bracket 1e-9 wide.
+const SAME_JOINT_DEG: f64 = 1e-4;
+
+/// The state with every joint of two states (the one on the lower side first).
+fn union(a: &CriticalState, b: &CriticalState) -> CriticalState {
+    let same = |x: f64, y: f64| (x - y).abs() <= SAME_JOINT_DEG;
+    let mut hinges = a.mechanism.hinges.clone();
+    for h in &b.mechanism.hinges {
+        if !hinges
+            .iter()
+            .any(|g| g.face == h.face && same(g.angle_deg, h.angle_deg))
+        {
+            hinges.push(*h);
+        }
+    }
+    let mut sliding = a.mechanism.sliding_joints.clone();
+    for j in &b.mechanism.sliding_joints {
+        if !sliding
+            .iter()
+            .any(|g| g.sense == j.sense && same(g.angle_deg, j.angle_deg))
+        {
+            sliding.push(*j);
+        }
+    }
+    let mut out = a.clone();
+    if let Some(m) = Mechanism::from_parts(hinges, sliding) {
+        out.mechanism = m;
+    }
+    out
 }
 
 /// The parameter of an edge as a bisection variable, and back.

@@ -151,7 +151,7 @@ fn changes(
 }
 
 /// The state with every joint of two states (the one on the lower-μ side first).
-pub(super) fn union(a: &CriticalState, b: &CriticalState) -> CriticalState {
+fn union(a: &CriticalState, b: &CriticalState) -> CriticalState {
     let mut hinges = a.mechanism.hinges.clone();
     for h in &b.mechanism.hinges {
         if !hinges

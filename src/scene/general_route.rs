@@ -7,8 +7,11 @@ use crate::analysis::forms::ArchModel;
 use crate::analysis::general::{
     self, Critical, CrownState, LoadFactor, Outcome, RegimeReport, Settings,
 };
+use crate::analysis::kinematics::{
+    FlowRule, LimitState, mechanism_modes, pattern_of, work_equation,
+};
 use crate::analysis::{Mechanism, Regime};
-use crate::model::{Load, Shape};
+use crate::model::{JointOrientation, Load, Shape};
 
 /// The largest K at which the scene's form exists and a point load still sits at a joint
 /// (a pointed arch's first joint ψ₁ = asin(e(1 + K)/2) moves away from the crown as K grows).
@@ -43,6 +46,44 @@ fn set_state(out: &mut Solution, crown: &CrownState, mechanism: Option<&Mechanis
         out.mechanism = Some(m.kind.as_str());
         out.hinges = hinge_records(&m.hinges);
         out.sliding_joints = sliding_records(&m.sliding_joints);
+    }
+}
+
+/// The collapse mechanism of a limit state and its work equation (paper eqs. 9 and 11), as on
+/// the closed-form route: `mechanism_dof` and the `work_*` columns. Only for radial joints,
+/// whose reported angles are the joint parameters the kinematics works with.
+fn set_work(
+    out: &mut Solution,
+    model: &ArchModel,
+    crown: &CrownState,
+    lambda: f64,
+    mu: f64,
+    mechanism: &Mechanism,
+) {
+    if model.form().joints != JointOrientation::Radial {
+        return;
+    }
+    let joints = pattern_of(mechanism);
+    let Ok(modes) = mechanism_modes(model, &joints, FlowRule::NonAssociative, true) else {
+        return;
+    };
+    out.mechanism_dof = Some(modes.dof);
+    let field = modes
+        .fields
+        .iter()
+        .find(|f| f.kind() == Some(mechanism.kind))
+        .or(modes.fields.first());
+    if let Some(field) = field {
+        let state = LimitState {
+            crown_force: [crown.thrust_over_half_weight, crown.shear_over_half_weight],
+            crown_moment_origin: crown.moment_about_centre,
+            load_factor: lambda,
+            mu,
+        };
+        let w = work_equation(model, &state, field);
+        out.work_loads = finite(w.work_loads);
+        out.work_friction = finite(w.work_friction);
+        out.work_residual = finite(w.work_residual);
     }
 }
 
@@ -102,6 +143,12 @@ pub(super) fn solve(scene: &Scene, out: &mut Solution) {
         {
             out.k_crit = Some(k);
             out.t_over_r_crit = Some(crate::model::t_over_r_from_k(k));
+            if let (Some(m), Ok(model)) = (
+                &s.mechanism,
+                ArchModel::new(scene.arch.with_k(k), scene.form, scene.load),
+            ) {
+                set_work(out, &model, &s.state.crown, scene.lambda, s.mu, m);
+            }
         }
         return;
     }
@@ -117,6 +164,9 @@ pub(super) fn solve(scene: &Scene, out: &mut Solution) {
             let c = general::friction(&model, &settings);
             if let Some(s) = set_critical(out, &c) {
                 out.mu_crit = Some(s.mu);
+                if let Some(m) = &s.mechanism {
+                    set_work(out, &model, &s.state.crown, scene.lambda, s.mu, m);
+                }
             }
         }
         Find::LoadFactor => {
@@ -126,6 +176,9 @@ pub(super) fn solve(scene: &Scene, out: &mut Solution) {
                 Outcome::Solved => {
                     out.load_factor = finite(lf.lambda);
                     set_state(out, &lf.crown, lf.mechanism.as_ref());
+                    if let Some(m) = &lf.mechanism {
+                        set_work(out, &model, &lf.crown, lf.lambda, scene.friction.mu(), m);
+                    }
                 }
                 Outcome::Unbounded => out.load_factor_unbounded = true,
                 _ => {}
