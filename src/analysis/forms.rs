@@ -41,7 +41,7 @@
 //!   side) and the joint at the adjacent float on the far side.
 
 use super::statics::{ArchGeometry, Joint, Point, Resultant};
-use crate::model::{Arch, ArchForm, Discretisation, JointOrientation, Load, Shape, WeightModel};
+use crate::model::{Arch, ArchForm, Discretisation, JointOrientation, Load, WeightModel};
 use std::f64::consts::FRAC_PI_2;
 
 /// Why a form, an arch and a load do not make a valid scene.
@@ -530,24 +530,12 @@ impl ArchGeometry for ArchModel {
     }
 }
 
-/// Which shapes a form has, for messages: `circular` or `pointed (e = …)`.
-pub fn describe(form: &ArchForm) -> String {
-    match form.shape {
-        Shape::Circular => format!("circular, {} joints", form.joints.as_str()),
-        Shape::Pointed { eccentricity } => {
-            format!(
-                "pointed (e = {eccentricity}), {} joints",
-                form.joints.as_str()
-            )
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::analysis::circular::CircularArch;
     use crate::analysis::statics::joint_rows;
+    use crate::model::Shape;
 
     fn arch(k: f64, alpha: f64, weight: WeightModel, joints: Discretisation) -> Arch {
         Arch::new(k, alpha, weight, joints).unwrap()
