@@ -211,8 +211,9 @@ pub fn domains(arch: &Arch, friction: Friction) -> Domains {
 /// Voussoirs: bisection on the supergradient of the piecewise-linear Φ.
 pub fn rotational_peak(sym: &SymmetricCircular) -> (f64, f64) {
     let phi = |h: f64| sym.rotational_margin(h);
-    if sym.voussoirs.is_some() {
-        return concave_peak(phi, |h| sym.rotational_slope(h));
+    if let Some(n) = sym.voussoirs {
+        return discrete_rotational_peak(sym, n)
+            .unwrap_or_else(|| concave_peak(phi, |h| sym.rotational_slope(h)));
     }
     let (k, alpha) = (sym.k, sym.alpha);
     // U(θ, h) = a(θ) h + b(θ).
@@ -232,6 +233,52 @@ pub fn rotational_peak(sym: &SymmetricCircular) -> (f64, f64) {
     let h = (super::circular::theta_cot_theta(t) + 1.0 - sym.rho_s) / alpha;
     let h = h.max(h_k);
     (h, phi(h))
+}
+
+/// The peak of Φ for N voussoirs, exactly: the same structure as the continuum with the
+/// joints of the half arch θ_i = α(2i + p)/N. Right of the kink, max_i L(θ_i, h) passes from
+/// joint i + 1 to joint i at the breakpoint h_i = (b_{i+1} − b_i)/(cos θ_i − cos θ_{i+1})
+/// (b_i = L(θ_i, 0); L is unimodal in θ, so the maximiser moves through consecutive joints),
+/// and Φ stops rising at the breakpoint where cos θ_i first reaches K cos α. `None` when the
+/// half arch has a single joint.
+fn discrete_rotational_peak(sym: &SymmetricCircular, n: u32) -> Option<(f64, f64)> {
+    let phi = |h: f64| sym.rotational_margin(h);
+    let last = n / 2;
+    if last == 0 {
+        return None;
+    }
+    let (t0, t1) = sym.end_joints();
+    let (a0, a1) = (sym.k * t0.cos(), sym.k * t1.cos());
+    let h_k = (sym.extrados(t1, 0.0) - sym.extrados(t0, 0.0)) / (a0 - a1);
+    if !h_k.is_finite() {
+        return None;
+    }
+    let (_, ta, tb) = sym.intrados_max(h_k);
+    if a1 - ta.cos().max(tb.cos()) <= 0.0 {
+        return Some((h_k, phi(h_k)));
+    }
+    let c = a1;
+    if c >= t0.cos() {
+        return Some((f64::INFINITY, phi(FAR).max(phi(h_k))));
+    }
+    // Largest joint index i with cos θ_i ≥ K cos α.
+    let t_s = c.max(-1.0).acos();
+    let x = (t_s * f64::from(n) / sym.alpha - f64::from(n % 2)) / 2.0;
+    let mut i = if x <= 0.0 {
+        0
+    } else {
+        (x.floor() as u32).min(last - 1)
+    };
+    while i > 0 && sym.joint_angle(i).cos() < c {
+        i -= 1;
+    }
+    while i + 1 < last && sym.joint_angle(i + 1).cos() >= c {
+        i += 1;
+    }
+    let (ti, tj) = (sym.joint_angle(i), sym.joint_angle(i + 1));
+    let h_b = (sym.intrados(tj, 0.0) - sym.intrados(ti, 0.0)) / (ti.cos() - tj.cos());
+    let h = if h_b.is_finite() { h_b.max(h_k) } else { h_k };
+    Some((h, phi(h)))
 }
 
 /// Ψ and its maximiser: the stability margin of a symmetric arch with sliding domain `sd`,
@@ -768,6 +815,36 @@ mod tests {
                     assert!(
                         (h1 - h2).abs() < 1e-6 * (1.0 + h1.abs()),
                         "α = {alpha}, K = {k}: {h1} vs {h2}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn discrete_peak_matches_bisection_on_the_supergradient() {
+        for n in [2u32, 3, 4, 5, 7, 8, 16, 33, 64, 101, 512] {
+            for alpha in [30.0, 90.0, 140.0] {
+                for k in [1.02, 1.1, 1.3, 2.0] {
+                    let a = Arch::new(k, alpha, WeightModel::Annular, Discretisation::Voussoirs(n))
+                        .unwrap();
+                    let sym = SymmetricCircular::new(&a);
+                    let Some((h1, g1)) = discrete_rotational_peak(&sym, n) else {
+                        continue;
+                    };
+                    let (h2, g2) =
+                        concave_peak(|h| sym.rotational_margin(h), |h| sym.rotational_slope(h));
+                    if h1.is_infinite() || h2.is_infinite() {
+                        assert_eq!(
+                            h1.is_infinite(),
+                            h2.is_infinite(),
+                            "N = {n}, α = {alpha}, K = {k}"
+                        );
+                        continue;
+                    }
+                    assert!(
+                        (g1 - g2).abs() < 1e-12,
+                        "N = {n}, α = {alpha}, K = {k}: {g1} vs {g2} at {h1} / {h2}"
                     );
                 }
             }

@@ -16,6 +16,7 @@ use data::RunData;
 use figures::FigureSpec;
 use minijinja::value::Serde;
 use minijinja::{Environment, UndefinedBehavior};
+use rayon::prelude::*;
 use std::path::Path;
 
 const HTML_TEMPLATE: &str = include_str!("../../templates/report.html.j2");
@@ -35,18 +36,21 @@ pub fn draw_figures(data: &RunData, layout: &RunLayout) -> Result<DrawnFigures> 
     let dir = layout.plots();
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let specs = figures::build(data);
-    let mut svgs = Vec::with_capacity(specs.len());
-    for f in &specs {
-        let svg = f
-            .render(Format::Svg)
-            .with_context(|| format!("figure {}", f.stem))?;
-        write_atomic(&layout.plot(&f.stem, Format::Svg.extension()), &svg)?;
-        let png = f
-            .render(Format::Png)
-            .with_context(|| format!("figure {}", f.stem))?;
-        write_atomic(&layout.plot(&f.stem, Format::Png.extension()), &png)?;
-        svgs.push(inline_svg(&String::from_utf8_lossy(&svg), &f.title));
-    }
+    // Figures are independent: render them (SVG and print PNG) on all cores, in order.
+    let svgs = specs
+        .par_iter()
+        .map(|f| -> Result<String> {
+            let svg = f
+                .render(Format::Svg)
+                .with_context(|| format!("figure {}", f.stem))?;
+            write_atomic(&layout.plot(&f.stem, Format::Svg.extension()), &svg)?;
+            let png = f
+                .render(Format::Png)
+                .with_context(|| format!("figure {}", f.stem))?;
+            write_atomic(&layout.plot(&f.stem, Format::Png.extension()), &png)?;
+            Ok(inline_svg(&String::from_utf8_lossy(&svg), &f.title))
+        })
+        .collect::<Result<Vec<_>>>()?;
     Ok(DrawnFigures { specs, svgs })
 }
 
