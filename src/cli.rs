@@ -1,6 +1,10 @@
 //! The command line: clap arguments as typed, turned into domain values at the edge.
 
-use crate::model::{Arch, Discretisation, Friction, ModelError, WeightModel, k_from_t_over_r};
+use crate::analysis::forms::FormError;
+use crate::model::{
+    Arch, ArchForm, Discretisation, Friction, JointOrientation, Load, ModelError, Shape,
+    WeightModel, k_from_t_over_r,
+};
 use crate::scene::{Find, Scene};
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
@@ -120,8 +124,29 @@ pub struct SolveArgs {
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub voussoirs: Option<i64>,
     /// What to compute.
-    #[arg(long, value_name = "WHAT", default_value = "state", value_parser = ["state", "thickness", "friction", "thrust", "thresholds"])]
+    #[arg(long, value_name = "WHAT", default_value = "state", value_parser = ["state", "thickness", "friction", "thrust", "thresholds", "load-factor", "load_factor"])]
     pub find: String,
+    /// Outline: circular, or pointed (two arcs meeting at the crown; needs --eccentricity).
+    #[arg(long, value_name = "SHAPE", default_value = "circular", value_parser = ["circular", "pointed"])]
+    pub shape: String,
+    /// Eccentricity e ∈ [0, 1) of a pointed arch: its arcs' centres lie at ±e·ρ_c on the
+    /// springing line (0: semicircle, 0.5: equilateral).
+    #[arg(long, value_name = "E", allow_hyphen_values = true)]
+    pub eccentricity: Option<f64>,
+    /// Joint planes: radial, or vertical through the intrados points (α ≤ 90°).
+    #[arg(long, value_name = "PLANES", default_value = "radial", value_parser = ["radial", "vertical"])]
+    pub joints: String,
+    /// Load case: self-weight only, or self-weight plus a live load scaled by λ: a horizontal
+    /// body force λ·(weight), or a vertical point load λ·W_total on the extrados (--at).
+    #[arg(long, value_name = "LOAD", default_value = "self-weight", value_parser = ["self-weight", "self_weight", "horizontal", "point"])]
+    pub load: String,
+    /// Position of the point load, degrees from the crown (positive to the right).
+    #[arg(long = "at", value_name = "DEG", allow_hyphen_values = true)]
+    pub at: Option<f64>,
+    /// Load factor λ ≥ 0 of the live load (multiples of the total weight), for every find
+    /// but load-factor.
+    #[arg(long, value_name = "L", allow_hyphen_values = true)]
+    pub lambda: Option<f64>,
     /// Print one JSON object instead of a summary.
     #[arg(long)]
     pub json: bool,
@@ -163,7 +188,7 @@ impl SolveArgs {
             usage(
                 "--find",
                 &self.find,
-                "one of state, thickness, friction, thrust, thresholds",
+                "one of state, thickness, friction, thrust, thresholds, load-factor",
             )
         })?;
         let k = match (self.k, self.t_over_r) {
@@ -209,10 +234,123 @@ impl SolveArgs {
             ),
             other => usage("--k", k, other.to_string()),
         })?;
-        Ok(Scene {
+        let form = self.form()?;
+        let load = self.load()?;
+        if matches!(find, Find::Thrust | Find::Thresholds)
+            && !(load == Load::SelfWeight && form.is_circular_radial())
+        {
+            return Err(usage(
+                "--find",
+                &self.find,
+                format!(
+                    "{find} is defined for self-weight on a circular arch with radial joints only"
+                ),
+            ));
+        }
+        let lambda = self.lambda(find, load)?;
+        if find == Find::LoadFactor && load == Load::SelfWeight {
+            return Err(usage(
+                "--find",
+                &self.find,
+                "load-factor needs a live load: give --load horizontal or --load point --at DEG",
+            ));
+        }
+        let scene = Scene {
             arch,
             friction,
             find,
-        })
+            form,
+            load,
+            lambda,
+        };
+        scene.check().map_err(|e| match e {
+            FormError::Eccentricity(v) => usage("--eccentricity", v, e.to_string()),
+            FormError::PointedTooThick { k, .. } => usage("--k", k, e.to_string()),
+            FormError::VerticalBeyondQuadrant(a) => usage("--half-angle", a, e.to_string()),
+            FormError::LoadOutside { at_deg, .. }
+            | FormError::LoadInsideKeystone { at_deg, .. } => usage("--at", at_deg, e.to_string()),
+        })?;
+        Ok(scene)
+    }
+
+    fn form(&self) -> Result<ArchForm, UsageError> {
+        let joints = JointOrientation::parse(&self.joints)
+            .ok_or_else(|| usage("--joints", &self.joints, "radial or vertical"))?;
+        let shape = match (self.shape.as_str(), self.eccentricity) {
+            ("circular", None) => Shape::Circular,
+            ("circular", Some(e)) => {
+                return Err(usage(
+                    "--eccentricity",
+                    e,
+                    "only a pointed arch has an eccentricity: add --shape pointed",
+                ));
+            }
+            ("pointed", Some(e)) if (0.0..1.0).contains(&e) => Shape::Pointed { eccentricity: e },
+            ("pointed", Some(e)) => {
+                return Err(usage("--eccentricity", e, "e must lie in [0, 1)"));
+            }
+            ("pointed", None) => {
+                return Err(usage(
+                    "--shape",
+                    "pointed",
+                    "a pointed arch needs --eccentricity E (0 ≤ E < 1; 0.5 is the equilateral arch)",
+                ));
+            }
+            (other, _) => return Err(usage("--shape", other, "circular or pointed")),
+        };
+        Ok(ArchForm { shape, joints })
+    }
+
+    fn load(&self) -> Result<Load, UsageError> {
+        let load = match (self.load.as_str(), self.at) {
+            ("self-weight" | "self_weight", None) => Load::SelfWeight,
+            ("horizontal", None) => Load::Horizontal,
+            ("point", Some(a)) if a.is_finite() => Load::Point { at_deg: a },
+            ("point", Some(a)) => return Err(usage("--at", a, "a finite angle in degrees")),
+            ("point", None) => {
+                return Err(usage(
+                    "--load",
+                    "point",
+                    "a point load needs its position: add --at DEG (degrees from the crown)",
+                ));
+            }
+            (_, Some(a)) => {
+                return Err(usage(
+                    "--at",
+                    a,
+                    "--at is the position of a point load: add --load point",
+                ));
+            }
+            (other, None) => {
+                return Err(usage("--load", other, "self-weight, horizontal or point"));
+            }
+        };
+        Ok(load)
+    }
+
+    fn lambda(&self, find: Find, load: Load) -> Result<f64, UsageError> {
+        match (self.lambda, load.is_live(), find) {
+            (None, false, _) | (None, true, Find::LoadFactor) => Ok(0.0),
+            (Some(l), _, Find::LoadFactor) => Err(usage(
+                "--lambda",
+                l,
+                "load-factor finds λ itself: remove --lambda",
+            )),
+            (Some(l), false, _) => Err(usage(
+                "--lambda",
+                l,
+                "self-weight has no live part to scale: add --load horizontal or --load point",
+            )),
+            (Some(l), true, _) if l >= 0.0 && l.is_finite() => Ok(l),
+            (Some(l), true, _) => Err(usage("--lambda", l, "λ must be a finite number ≥ 0")),
+            (None, true, _) => Err(usage(
+                "--load",
+                &self.load,
+                format!(
+                    "a live load needs its load factor for --find {}: add --lambda L (or use --find load-factor)",
+                    find
+                ),
+            )),
+        }
     }
 }

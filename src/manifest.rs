@@ -2,7 +2,9 @@
 //! validated [`Manifest`]. Every error names the file, line and column, the key, the value
 //! given and what is allowed.
 
-use crate::model::{Discretisation, WeightModel, t_over_r_from_k};
+use crate::model::{
+    ArchForm, Discretisation, JointOrientation, Load, Shape, WeightModel, t_over_r_from_k,
+};
 use crate::scene::Find;
 use serde::de::{self, Deserializer, Visitor};
 use serde::{Deserialize, Serialize};
@@ -122,6 +124,7 @@ impl<'de> Deserialize<'de> for RawVoussoirs {
 #[serde(deny_unknown_fields)]
 struct RawArch {
     shape: Option<Spanned<String>>,
+    eccentricity: Option<Spanned<f64>>,
     half_angle_deg: Option<Spanned<f64>>,
     joints: Option<Spanned<String>>,
     weight: Option<Spanned<String>>,
@@ -147,6 +150,7 @@ struct RawGrid {
     mu: Option<Spanned<RawAxis>>,
     half_angle_deg: Option<Spanned<RawAxis>>,
     voussoirs: Option<Spanned<RawAxis>>,
+    at_deg: Option<Spanned<RawAxis>>,
 }
 
 /// One load case as written.
@@ -155,6 +159,8 @@ struct RawGrid {
 struct RawLoadCase {
     name: Spanned<String>,
     kind: Spanned<String>,
+    at_deg: Option<Spanned<f64>>,
+    lambda: Option<Spanned<f64>>,
 }
 
 /// A scene listed for drawing.
@@ -195,6 +201,10 @@ struct RawManifest {
 pub enum LoadKind {
     /// Self-weight only (symmetric).
     SelfWeight,
+    /// Self-weight and a horizontal body force λ·(weight) toward +x.
+    Horizontal,
+    /// Self-weight and a vertical point load λ·W_total on the extrados at `at_deg`.
+    Point,
 }
 
 impl LoadKind {
@@ -202,7 +212,14 @@ impl LoadKind {
     pub fn as_str(self) -> &'static str {
         match self {
             LoadKind::SelfWeight => "self_weight",
+            LoadKind::Horizontal => "horizontal",
+            LoadKind::Point => "point",
         }
+    }
+
+    /// True when the load case has a live part scaled by λ.
+    pub fn is_live(self) -> bool {
+        self != LoadKind::SelfWeight
     }
 }
 
@@ -213,22 +230,59 @@ pub struct LoadCase {
     pub name: String,
     /// Kind.
     pub kind: LoadKind,
+    /// Position of a point load, degrees from the crown (`None` when the grid has an
+    /// `at_deg` axis, and for other kinds).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub at_deg: Option<f64>,
+    /// The given load factor λ of the live part (state, thickness and friction studies).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lambda: Option<f64>,
+}
+
+impl LoadCase {
+    /// The load of this case, with the position `at_deg` of a point load when the grid gives
+    /// it.
+    pub fn load(&self, axis_at_deg: Option<f64>) -> Load {
+        match self.kind {
+            LoadKind::SelfWeight => Load::SelfWeight,
+            LoadKind::Horizontal => Load::Horizontal,
+            LoadKind::Point => Load::Point {
+                at_deg: self.at_deg.or(axis_at_deg).unwrap_or(0.0),
+            },
+        }
+    }
 }
 
 /// The arch options common to every case (each may be overridden by a grid axis).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct ArchOptions {
-    /// `circular`.
+    /// `circular` or `pointed`.
     pub shape: &'static str,
+    /// Eccentricity e of a pointed arch.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub eccentricity: Option<f64>,
     /// Half-embrace angle α in degrees.
     pub half_angle_deg: f64,
-    /// `radial`.
+    /// `radial` or `vertical`.
     pub joints: &'static str,
     /// Weight model.
     pub weight: WeightModel,
     /// Continuum or voussoirs.
     #[serde(serialize_with = "ser_disc")]
     pub voussoirs: Discretisation,
+}
+
+impl ArchOptions {
+    /// The outline and joint planes.
+    pub fn form(&self) -> ArchForm {
+        ArchForm {
+            shape: match self.eccentricity {
+                Some(eccentricity) if self.shape == "pointed" => Shape::Pointed { eccentricity },
+                _ => Shape::Circular,
+            },
+            joints: JointOrientation::parse(self.joints).unwrap_or_default(),
+        }
+    }
 }
 
 fn ser_disc<S: serde::Serializer>(d: &Discretisation, s: S) -> Result<S::Ok, S::Error> {
@@ -252,6 +306,8 @@ pub enum AxisName {
     HalfAngleDeg,
     /// Voussoir count.
     Voussoirs,
+    /// Position of a point load, degrees from the crown (an influence line).
+    AtDeg,
 }
 
 impl AxisName {
@@ -263,6 +319,7 @@ impl AxisName {
             AxisName::Mu => "mu",
             AxisName::HalfAngleDeg => "half_angle_deg",
             AxisName::Voussoirs => "voussoirs",
+            AxisName::AtDeg => "at_deg",
         }
     }
 }
@@ -407,7 +464,7 @@ fn validate(raw: RawManifest, cx: &Ctx) -> Result<Manifest, ManifestError> {
                 Some(f.referenced),
                 "find",
                 format!(
-                    "value {:?} is not allowed: use state, thickness, friction or thrust",
+                    "value {:?} is not allowed: use state, thickness, friction, thrust, thresholds or load_factor",
                     f.value
                 ),
             )
@@ -415,6 +472,7 @@ fn validate(raw: RawManifest, cx: &Ctx) -> Result<Manifest, ManifestError> {
     };
     let grid = validate_grid(raw.grid.as_ref(), find, cx)?;
     let load_cases = validate_load_cases(raw.load_cases.as_deref(), cx)?;
+    check_loads(&raw, &arch, &grid, &load_cases, find, cx)?;
     let mut scenes = Vec::new();
     for s in raw.scenes.iter().flatten() {
         let k = match (&s.value.k, &s.value.t_over_r) {
@@ -483,24 +541,60 @@ fn validate(raw: RawManifest, cx: &Ctx) -> Result<Manifest, ManifestError> {
 }
 
 fn validate_arch(a: &RawArch, cx: &Ctx) -> Result<ArchOptions, ManifestError> {
-    if let Some(s) = &a.shape
-        && s.value != "circular"
-    {
-        return Err(cx.err(
-            Some(s.referenced),
-            "arch.shape",
-            format!("value {:?} is not allowed: use circular", s.value),
-        ));
-    }
-    if let Some(j) = &a.joints
-        && j.value != "radial"
-    {
-        return Err(cx.err(
-            Some(j.referenced),
-            "arch.joints",
-            format!("value {:?} is not allowed: use radial", j.value),
-        ));
-    }
+    let shape: &'static str = match a.shape.as_ref().map(|s| s.value.as_str()) {
+        None | Some("circular") => "circular",
+        Some("pointed") => "pointed",
+        Some(other) => {
+            return Err(cx.err(
+                a.shape.as_ref().map(|s| s.referenced),
+                "arch.shape",
+                format!("value {other:?} is not allowed: use circular or pointed"),
+            ));
+        }
+    };
+    let eccentricity = match (&a.eccentricity, shape) {
+        (None, "pointed") => {
+            return Err(cx.err(
+                a.shape.as_ref().map(|s| s.referenced),
+                "arch.eccentricity",
+                "a pointed arch needs `eccentricity: e` with 0 ≤ e < 1 (0.5 is the equilateral arch)",
+            ));
+        }
+        (None, _) => None,
+        (Some(e), "pointed") => {
+            if !(0.0..1.0).contains(&e.value) {
+                return Err(cx.err(
+                    Some(e.referenced),
+                    "arch.eccentricity",
+                    format!(
+                        "value {} is not allowed: it must lie in [0, 1)",
+                        fmt_num(e.value)
+                    ),
+                ));
+            }
+            Some(e.value)
+        }
+        (Some(e), _) => {
+            return Err(cx.err(
+                Some(e.referenced),
+                "arch.eccentricity",
+                format!(
+                    "value {} is not allowed: only a pointed arch has an eccentricity (add `shape: pointed`)",
+                    fmt_num(e.value)
+                ),
+            ));
+        }
+    };
+    let joints = match &a.joints {
+        None => JointOrientation::Radial,
+        Some(j) => JointOrientation::parse(&j.value).ok_or_else(|| {
+            cx.err(
+                Some(j.referenced),
+                "arch.joints",
+                format!("value {:?} is not allowed: use radial or vertical", j.value),
+            )
+        })?,
+    };
     let half_angle_deg = match &a.half_angle_deg {
         None => 90.0,
         Some(h) => check_half_angle(h.value, h.referenced, "arch.half_angle_deg", cx)?,
@@ -531,9 +625,10 @@ fn validate_arch(a: &RawArch, cx: &Ctx) -> Result<ArchOptions, ManifestError> {
         },
     };
     Ok(ArchOptions {
-        shape: "circular",
+        shape,
+        eccentricity,
         half_angle_deg,
-        joints: "radial",
+        joints: joints.as_str(),
         weight,
         voussoirs,
     })
@@ -674,6 +769,7 @@ fn check_value(
         AxisName::Voussoirs => {
             v.is_infinite() && v > 0.0 || v.fract() == 0.0 && (1.0..=1e7).contains(&v)
         }
+        AxisName::AtDeg => v.is_finite() && v.abs() < 180.0,
     };
     if ok {
         return Ok(());
@@ -686,6 +782,7 @@ fn check_value(
         AxisName::Voussoirs => {
             "the voussoir count must be an integer in [1, 10000000], or `continuum`"
         }
+        AxisName::AtDeg => "the position of a point load must lie in (−180, 180) degrees",
     };
     Err(cx.err(
         Some(at),
@@ -740,6 +837,7 @@ fn validate_grid(
     for (name, ax) in [
         (AxisName::HalfAngleDeg, &g.half_angle_deg),
         (AxisName::Voussoirs, &g.voussoirs),
+        (AxisName::AtDeg, &g.at_deg),
         (AxisName::K, &g.k),
         (AxisName::TOverR, &g.t_over_r),
         (AxisName::Mu, &g.mu),
@@ -784,6 +882,8 @@ fn validate_load_cases(
         return Ok(vec![LoadCase {
             name: "self_weight".into(),
             kind: LoadKind::SelfWeight,
+            at_deg: None,
+            lambda: None,
         }]);
     };
     if list.is_empty() {
@@ -819,20 +919,284 @@ fn validate_load_cases(
         }
         let kind = match lc.value.kind.value.as_str() {
             "self_weight" => LoadKind::SelfWeight,
+            "horizontal" => LoadKind::Horizontal,
+            "point" => LoadKind::Point,
             other => {
                 return Err(cx.err(
                     Some(lc.value.kind.referenced),
                     "load_cases.kind",
-                    format!("value {other:?} is not allowed: use self_weight"),
+                    format!("value {other:?} is not allowed: use self_weight, horizontal or point"),
                 ));
             }
         };
+        if let Some(a) = &lc.value.at_deg {
+            if kind != LoadKind::Point {
+                return Err(cx.err(
+                    Some(a.referenced),
+                    "load_cases.at_deg",
+                    format!(
+                        "value {} is not allowed: only a `point` load case has a position (load case {:?} is {})",
+                        fmt_num(a.value),
+                        name.value,
+                        kind.as_str()
+                    ),
+                ));
+            }
+            if !(a.value.is_finite() && a.value.abs() < 180.0) {
+                return Err(cx.err(
+                    Some(a.referenced),
+                    "load_cases.at_deg",
+                    format!(
+                        "value {} is not allowed: the position must lie in (−180, 180) degrees",
+                        fmt_num(a.value)
+                    ),
+                ));
+            }
+        }
+        if let Some(l) = &lc.value.lambda {
+            if kind == LoadKind::SelfWeight {
+                return Err(cx.err(
+                    Some(l.referenced),
+                    "load_cases.lambda",
+                    format!(
+                        "value {} is not allowed: load case {:?} is self_weight, which has no live part to scale",
+                        fmt_num(l.value),
+                        name.value
+                    ),
+                ));
+            }
+            if !(l.value >= 0.0 && l.value.is_finite()) {
+                return Err(cx.err(
+                    Some(l.referenced),
+                    "load_cases.lambda",
+                    format!(
+                        "value {} is not allowed: the load factor λ must be a finite number ≥ 0",
+                        fmt_num(l.value)
+                    ),
+                ));
+            }
+        }
         out.push(LoadCase {
             name: name.value.clone(),
             kind,
+            at_deg: lc.value.at_deg.as_ref().map(|a| a.value),
+            lambda: lc.value.lambda.as_ref().map(|l| l.value),
         });
     }
     Ok(out)
+}
+
+/// Cross-checks of the load cases against the find, the grid and the form; every message
+/// names the key and the value at fault.
+fn check_loads(
+    raw: &RawManifest,
+    arch: &ArchOptions,
+    grid: &[GridAxis],
+    lcs: &[LoadCase],
+    find: Find,
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    let raw_lcs: &[Spanned<RawLoadCase>] = raw.load_cases.as_deref().unwrap_or(&[]);
+    let raw_grid = raw.grid.as_ref();
+    let at_axis = raw_grid.and_then(|g| g.at_deg.as_ref());
+    let values = |n: AxisName| grid.iter().find(|a| a.name == n).map(|a| a.values.clone());
+    let alphas = values(AxisName::HalfAngleDeg).unwrap_or_else(|| vec![arch.half_angle_deg]);
+    let alpha_min = alphas.iter().copied().fold(f64::INFINITY, f64::min);
+    let alpha_max = alphas.iter().copied().fold(0.0, f64::max);
+    let form = arch.form();
+    let kind_at = |i: usize| raw_lcs.get(i).map(|l| l.value.kind.referenced);
+    let case_at = |i: usize| raw_lcs.get(i).map(|l| l.referenced);
+    for (i, lc) in lcs.iter().enumerate() {
+        let live = lc.kind.is_live();
+        if find == Find::LoadFactor && !live {
+            return Err(cx.err(
+                kind_at(i),
+                "load_cases.kind",
+                format!(
+                    "load case {:?} is self_weight: a load_factor study needs a live load (horizontal or point)",
+                    lc.name
+                ),
+            ));
+        }
+        if matches!(find, Find::Thrust | Find::Thresholds) && live {
+            return Err(cx.err(
+                kind_at(i),
+                "load_cases.kind",
+                format!(
+                    "load case {:?} is {}: a {find} study is defined for self_weight only",
+                    lc.name,
+                    lc.kind.as_str()
+                ),
+            ));
+        }
+        let lambda_at = raw_lcs
+            .get(i)
+            .and_then(|l| l.value.lambda.as_ref())
+            .map(|l| l.referenced);
+        match (live, find, lc.lambda) {
+            (true, Find::LoadFactor, Some(l)) => {
+                return Err(cx.err(
+                    lambda_at,
+                    "load_cases.lambda",
+                    format!(
+                        "value {} is not allowed: a load_factor study finds λ itself; remove `lambda` from load case {:?}",
+                        fmt_num(l),
+                        lc.name
+                    ),
+                ));
+            }
+            (true, f, None) if f != Find::LoadFactor => {
+                return Err(cx.err(
+                    case_at(i),
+                    "load_cases.lambda",
+                    format!(
+                        "load case {:?} ({}) needs its load factor in a `{f}` study: add `lambda: L` (L ≥ 0), or use `find: load_factor`",
+                        lc.name,
+                        lc.kind.as_str()
+                    ),
+                ));
+            }
+            _ => {}
+        }
+        match (lc.kind, at_axis, lc.at_deg) {
+            (LoadKind::Point, Some(_), Some(a)) => {
+                let at = raw_lcs
+                    .get(i)
+                    .and_then(|l| l.value.at_deg.as_ref())
+                    .map(|a| a.referenced);
+                return Err(cx.err(
+                    at,
+                    "load_cases.at_deg",
+                    format!(
+                        "value {} is not allowed: the grid's at_deg axis gives the position of load case {:?}; remove one of them",
+                        fmt_num(a),
+                        lc.name
+                    ),
+                ));
+            }
+            (LoadKind::Point, None, None) => {
+                return Err(cx.err(
+                    case_at(i),
+                    "load_cases.at_deg",
+                    format!(
+                        "point load case {:?} needs its position: add `at_deg: DEG` (degrees from the crown, in [−α, α]) or a grid axis `at_deg`",
+                        lc.name
+                    ),
+                ));
+            }
+            (kind, Some(ax), _) if kind != LoadKind::Point => {
+                return Err(cx.err(
+                    Some(ax.referenced),
+                    "grid.at_deg",
+                    format!(
+                        "an at_deg axis positions point loads, but load case {:?} is {}: give it a study of its own",
+                        lc.name,
+                        kind.as_str()
+                    ),
+                ));
+            }
+            _ => {}
+        }
+    }
+    if matches!(find, Find::Thrust | Find::Thresholds) && !form.is_circular_radial() {
+        return Err(cx.err(
+            raw.arch
+                .shape
+                .as_ref()
+                .or(raw.arch.joints.as_ref())
+                .map(|s| s.referenced),
+            "find",
+            format!("a {find} study is defined for the circular arch with radial joints only"),
+        ));
+    }
+    if form.joints == JointOrientation::Vertical && alpha_max > 90.0 {
+        return Err(cx.err(
+            raw.arch.joints.as_ref().map(|j| j.referenced),
+            "arch.joints",
+            format!(
+                "value \"vertical\" is not allowed with a half-angle of {}°: vertical joints need α ≤ 90° (beyond, a vertical plane through the intrados crosses the opening)",
+                fmt_num(alpha_max)
+            ),
+        ));
+    }
+    // Positions of point loads with where they were written.
+    let mut positions: Vec<(f64, Option<Location>, &str)> = Vec::new();
+    for (i, lc) in lcs.iter().enumerate() {
+        if let Some(a) = lc.at_deg {
+            let at = raw_lcs
+                .get(i)
+                .and_then(|l| l.value.at_deg.as_ref())
+                .map(|a| a.referenced);
+            positions.push((a, at, "load_cases.at_deg"));
+        }
+    }
+    if let (Some(ax), Some(vals)) = (at_axis, values(AxisName::AtDeg)) {
+        for v in vals {
+            positions.push((v, Some(ax.referenced), "grid.at_deg"));
+        }
+    }
+    for &(a, at, key) in &positions {
+        if a.abs() > alpha_min {
+            return Err(cx.err(
+                at,
+                key,
+                format!(
+                    "value {} is not allowed: a point load must lie on the arch, in [−{alpha_min}, {alpha_min}] degrees (the half-angle)",
+                    fmt_num(a)
+                ),
+            ));
+        }
+    }
+    if let Shape::Pointed { eccentricity: e } = form.shape
+        && e > 0.0
+    {
+        let k_axis = raw_grid.and_then(|g| g.k.as_ref().or(g.t_over_r.as_ref()));
+        let ks = grid
+            .iter()
+            .find(|a| matches!(a.name, AxisName::K | AxisName::TOverR))
+            .map(|a| {
+                a.values
+                    .iter()
+                    .map(|&v| {
+                        if a.name == AxisName::TOverR {
+                            crate::model::k_from_t_over_r(v)
+                        } else {
+                            v
+                        }
+                    })
+                    .collect::<Vec<_>>()
+            });
+        if let Some(ks) = ks {
+            let k_top = ks.iter().copied().fold(1.0, f64::max);
+            for &alpha in &alphas {
+                let k_lim = form.max_k(alpha.to_radians());
+                if k_top >= k_lim {
+                    return Err(cx.err(
+                        k_axis.map(|a| a.referenced),
+                        "grid.k",
+                        format!(
+                            "value K = {k_top} is not allowed: a pointed arch with eccentricity {e} and half-angle {alpha}° exists only for K < {k_lim} (its intrados arcs must meet above the springings)"
+                        ),
+                    ));
+                }
+            }
+            // ψ₁ = asin(e(1 + K)/2) grows with K: the thickest arch has the largest keystone.
+            let psi_1 = (e * 0.5 * (1.0 + k_top)).min(1.0).asin().to_degrees();
+            for &(a, at, key) in &positions {
+                if a != 0.0 && a.abs() < psi_1 {
+                    return Err(cx.err(
+                        at,
+                        key,
+                        format!(
+                            "value {} is not allowed: a point load must sit at a joint, and this pointed arch has none between its crown (0°) and ±{psi_1:.6}° at K = {k_top}",
+                            fmt_num(a)
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
 }
 
 impl Manifest {

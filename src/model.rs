@@ -225,3 +225,147 @@ impl Arch {
         0.5 * (self.k * self.k - 1.0) * self.half_angle
     }
 }
+
+/// The outline of the arch: one circle, or two circular arcs meeting at the crown.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Shape {
+    /// Intrados and extrados are concentric circles about the origin (radii r and R = K r).
+    #[default]
+    Circular,
+    /// A pointed arch: the right half is an annulus of radii r and K r about the centre
+    /// (−e·ρ_c, 0), the left half its mirror image, so the halves meet on x = 0 at the crown.
+    /// ρ_c = (1 + K)/2 is the centreline radius of each arc (over r); e = 0 is the semicircle
+    /// and e = 0.5 the equilateral arch (centres at the centreline springings).
+    Pointed {
+        /// Eccentricity e ∈ [0, 1): distance of each centre from the axis over ρ_c.
+        eccentricity: f64,
+    },
+}
+
+impl Shape {
+    /// `circular` or `pointed`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Shape::Circular => "circular",
+            Shape::Pointed { .. } => "pointed",
+        }
+    }
+
+    /// The eccentricity e (0 for a circular arch).
+    pub fn eccentricity(self) -> f64 {
+        match self {
+            Shape::Circular => 0.0,
+            Shape::Pointed { eccentricity } => eccentricity,
+        }
+    }
+}
+
+/// How the joint planes of the arch are oriented.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum JointOrientation {
+    /// Joints along the radii of the arc (the paper's model).
+    #[default]
+    Radial,
+    /// Vertical joint planes through the intrados points, as in the stereotomy literature;
+    /// the springings stay radial (they are the supports).
+    Vertical,
+}
+
+impl JointOrientation {
+    /// `radial` or `vertical`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            JointOrientation::Radial => "radial",
+            JointOrientation::Vertical => "vertical",
+        }
+    }
+
+    /// Parses `radial` or `vertical`.
+    pub fn parse(s: &str) -> Option<Self> {
+        match s {
+            "radial" => Some(JointOrientation::Radial),
+            "vertical" => Some(JointOrientation::Vertical),
+            _ => None,
+        }
+    }
+}
+
+/// The form of an arch beyond the data of [`Arch`]: its outline and its joint planes.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ArchForm {
+    /// Circular or pointed.
+    pub shape: Shape,
+    /// Radial or vertical joint planes.
+    pub joints: JointOrientation,
+}
+
+impl ArchForm {
+    /// True for the paper's circular arch with radial joints (closed forms exist).
+    pub fn is_circular_radial(&self) -> bool {
+        self.shape == Shape::Circular && self.joints == JointOrientation::Radial
+    }
+
+    /// Offset d of each arc's centre from the axis, over r: e·ρ_c = e(1 + K)/2.
+    pub fn centre_offset(&self, k: f64) -> f64 {
+        self.shape.eccentricity() * 0.5 * (1.0 + k)
+    }
+
+    /// Largest K for which the form exists at half-angle α (radians): a pointed arch needs
+    /// its intrados arcs to meet above the springings, d = e(1 + K)/2 < min(1, sin α) for
+    /// α ≤ 90° (< 1 beyond), i.e. K < 2 min(1, sin α)/e − 1. Infinite for e = 0.
+    pub fn max_k(&self, half_angle: f64) -> f64 {
+        let e = self.shape.eccentricity();
+        if e <= 0.0 {
+            return f64::INFINITY;
+        }
+        let reach = if half_angle <= std::f64::consts::FRAC_PI_2 {
+            half_angle.sin()
+        } else {
+            1.0
+        };
+        2.0 * reach / e - 1.0
+    }
+}
+
+/// The live part of a load case, scaled by the load factor λ (DESIGN.md §1: load factors are
+/// multiples of the total weight). Self-weight is always present.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Load {
+    /// Self-weight only: no live part.
+    #[default]
+    SelfWeight,
+    /// A horizontal body force λ·(weight) on every voussoir, toward +x (quasi-static seismic
+    /// load).
+    Horizontal,
+    /// A vertical point load λ·W_total at the extrados end of the joint at `at_deg` from the
+    /// crown. A load exactly at a joint belongs to the part nearer the crown; a load at the
+    /// crown itself to the right half.
+    Point {
+        /// Position, degrees from the crown, positive to the right.
+        at_deg: f64,
+    },
+}
+
+impl Load {
+    /// `self_weight`, `horizontal` or `point`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Load::SelfWeight => "self_weight",
+            Load::Horizontal => "horizontal",
+            Load::Point { .. } => "point",
+        }
+    }
+
+    /// The position of a point load in degrees, `None` for the other loads.
+    pub fn at_deg(self) -> Option<f64> {
+        match self {
+            Load::Point { at_deg } => Some(at_deg),
+            _ => None,
+        }
+    }
+
+    /// True when the load case has a live part scaled by λ.
+    pub fn is_live(self) -> bool {
+        self != Load::SelfWeight
+    }
+}

@@ -3,7 +3,7 @@
 //! innermost).
 
 use crate::manifest::{AxisName, LoadCase, Manifest};
-use crate::model::{Arch, Discretisation, Friction, k_from_t_over_r};
+use crate::model::{Arch, Discretisation, Friction, Load, k_from_t_over_r};
 use crate::scene::{Find, Scene};
 
 /// Largest number of cases a study may ask for.
@@ -61,7 +61,7 @@ pub fn build(manifest: Manifest) -> Result<Plan, PlanTooLarge> {
     for (lc, _) in manifest.load_cases.iter().enumerate() {
         let mut idx = vec![0usize; dims.len()];
         for _ in 0..per_lc {
-            let scene = scene_at(&manifest, &idx);
+            let scene = scene_at(&manifest, lc, &idx);
             cases.push(Case {
                 id,
                 load_case: lc,
@@ -81,8 +81,9 @@ pub fn build(manifest: Manifest) -> Result<Plan, PlanTooLarge> {
     Ok(Plan { manifest, cases })
 }
 
-fn scene_at(m: &Manifest, idx: &[usize]) -> Scene {
+fn scene_at(m: &Manifest, lc: usize, idx: &[usize]) -> Scene {
     let mut half = m.arch.half_angle_deg;
+    let mut at_deg = None;
     let mut joints = m.arch.voussoirs;
     // K for finds that do not use it: a placeholder the analysis ignores.
     let mut k = 2.0;
@@ -101,6 +102,7 @@ fn scene_at(m: &Manifest, idx: &[usize]) -> Scene {
                     Discretisation::Voussoirs(v as u32)
                 }
             }
+            AxisName::AtDeg => at_deg = Some(v),
         }
     }
     // Every value was validated with the manifest, so the constructors cannot fail.
@@ -111,10 +113,14 @@ fn scene_at(m: &Manifest, idx: &[usize]) -> Scene {
         joints,
     };
     let friction = Friction::new(mu).unwrap_or(Friction::INFINITE);
+    let case = m.load_cases.get(lc);
     Scene {
         arch,
         friction,
         find: m.find,
+        form: m.arch.form(),
+        load: case.map_or(Load::SelfWeight, |c| c.load(at_deg)),
+        lambda: case.and_then(|c| c.lambda).unwrap_or(0.0),
     }
 }
 
@@ -124,19 +130,27 @@ impl Plan {
         &self.manifest.load_cases[c.load_case]
     }
 
-    /// True when every case is a symmetric self-weight `state` query, so the grid can use
-    /// the separable structure (H^r depends on K only, H^s on μ only).
+    /// True when every case is a symmetric self-weight `state` query on a circular arch with
+    /// radial joints, so the grid can use the separable structure (H^r depends on K only,
+    /// H^s on μ only). Live loads and other forms go case by case through the general
+    /// formulation.
     pub fn is_separable_state_grid(&self) -> bool {
         self.manifest.find == Find::State
+            && self.manifest.arch.form().is_circular_radial()
+            && self.manifest.load_cases.iter().all(|l| !l.kind.is_live())
     }
 
     /// A readable description of the plan for `archstudy check`.
     pub fn describe(&self) -> String {
         let m = &self.manifest;
         let mut s = format!("study `{}`: find {}\n", m.name, m.find);
+        let shape = match m.arch.eccentricity {
+            Some(e) => format!("{} (e = {e})", m.arch.shape),
+            None => m.arch.shape.to_string(),
+        };
         s.push_str(&format!(
             "arch: {} α = {}°, {} joints, {} weight, {}\n",
-            m.arch.shape, m.arch.half_angle_deg, m.arch.joints, m.arch.weight, m.arch.voussoirs
+            shape, m.arch.half_angle_deg, m.arch.joints, m.arch.weight, m.arch.voussoirs
         ));
         for a in &m.grid {
             let first = a.values.first().copied().unwrap_or(f64::NAN);
@@ -149,7 +163,21 @@ impl Plan {
                 last
             ));
         }
-        let names: Vec<&str> = m.load_cases.iter().map(|l| l.name.as_str()).collect();
+        let names: Vec<String> = m
+            .load_cases
+            .iter()
+            .map(|l| {
+                let mut d = format!("{} ({}", l.name, l.kind.as_str());
+                if let Some(a) = l.at_deg {
+                    d.push_str(&format!(" at {a}°"));
+                }
+                if let Some(x) = l.lambda {
+                    d.push_str(&format!(", λ = {x}"));
+                }
+                d.push(')');
+                d
+            })
+            .collect();
         s.push_str(&format!("load cases: {}\n", names.join(", ")));
         s.push_str(&format!("cases: {}\n", self.cases.len()));
         s

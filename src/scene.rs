@@ -1,15 +1,18 @@
 //! One scene (an arch, a friction coefficient, a load case) and the answer to one question
 //! about it: the record shared by `archstudy solve --json` and the rows of results.parquet.
 
+use crate::analysis::forms::{ArchModel, FormError};
 use crate::analysis::kinematics::collapse_mechanism;
 use crate::analysis::symmetric::{
     self, Critical, CriticalState, RotationalDomain, SlidingDomain, ThrustState,
 };
 use crate::analysis::{Hinge, Regime, SlidingJoint};
-use crate::model::{Arch, Friction, t_over_r_from_k};
+use crate::model::{Arch, ArchForm, Friction, Load, t_over_r_from_k};
 use serde::Serialize;
 use std::fmt;
 use std::time::Instant;
+
+mod general_route;
 
 /// What is asked of a scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Default)]
@@ -27,19 +30,23 @@ pub enum Find {
     /// The critical values of the arch under self-weight: K_c at μ = ∞, the μ of the
     /// rotational/mixed bifurcation, μ_min and the K of the mixed/sliding bifurcation.
     Thresholds,
+    /// The largest load factor λ of the live load at (K, μ), with its mechanism.
+    #[serde(rename = "load_factor")]
+    LoadFactor,
 }
 
 impl Find {
     /// All finds.
-    pub const ALL: [Find; 5] = [
+    pub const ALL: [Find; 6] = [
         Find::State,
         Find::Thickness,
         Find::Friction,
         Find::Thrust,
         Find::Thresholds,
+        Find::LoadFactor,
     ];
 
-    /// `state`, `thickness`, `friction`, `thrust` or `thresholds`.
+    /// `state`, `thickness`, `friction`, `thrust`, `thresholds` or `load_factor`.
     pub fn as_str(self) -> &'static str {
         match self {
             Find::State => "state",
@@ -47,11 +54,13 @@ impl Find {
             Find::Friction => "friction",
             Find::Thrust => "thrust",
             Find::Thresholds => "thresholds",
+            Find::LoadFactor => "load_factor",
         }
     }
 
-    /// Parses a find name.
+    /// Parses a find name (`load-factor` is accepted for `load_factor`).
     pub fn parse(s: &str) -> Option<Self> {
+        let s = if s == "load-factor" { "load_factor" } else { s };
         Find::ALL.into_iter().find(|f| f.as_str() == s)
     }
 
@@ -81,6 +90,47 @@ pub struct Scene {
     pub friction: Friction,
     /// The question.
     pub find: Find,
+    /// Outline and joint planes (circular with radial joints by default).
+    pub form: ArchForm,
+    /// The load case: self-weight and a live part.
+    pub load: Load,
+    /// The given load factor λ of the live part (multiples of the total weight), for every
+    /// find but `load_factor`, which finds it.
+    pub lambda: f64,
+}
+
+impl Scene {
+    /// A self-weight scene of a circular arch with radial joints (the paper's).
+    pub fn new(arch: Arch, friction: Friction, find: Find) -> Self {
+        Scene {
+            arch,
+            friction,
+            find,
+            form: ArchForm::default(),
+            load: Load::SelfWeight,
+            lambda: 0.0,
+        }
+    }
+
+    /// True when the closed forms of the symmetric problem answer the scene: self-weight on a
+    /// circular arch with radial joints, and a find other than `load_factor`. Every other
+    /// scene goes through the general three-unknown formulation.
+    pub fn uses_closed_forms(&self) -> bool {
+        self.load == Load::SelfWeight
+            && self.form.is_circular_radial()
+            && self.find != Find::LoadFactor
+    }
+
+    /// Checks that the form exists at this K and α and that a point load sits at a joint
+    /// (the K of a `thickness` scene is not checked: the search stays where the form exists).
+    pub fn check(&self) -> Result<(), FormError> {
+        if self.find == Find::Thickness {
+            let probe = self.arch.with_k(1.0 + 1e-9);
+            ArchModel::new(probe, self.form, self.load).map(|_| ())
+        } else {
+            ArchModel::new(self.arch, self.form, self.load).map(|_| ())
+        }
+    }
 }
 
 /// A hinge as stored: angle and face name.
@@ -139,8 +189,21 @@ pub struct Solution {
     pub weight: &'static str,
     /// Voussoir count, null for the continuum.
     pub voussoirs: Option<u32>,
+    /// `circular` or `pointed`.
+    pub shape: &'static str,
+    /// Eccentricity e of a pointed arch (null for a circular one).
+    pub eccentricity: Option<f64>,
+    /// `radial` or `vertical` joint planes.
+    pub joints: &'static str,
+    /// The load case kind: `self_weight`, `horizontal` or `point`.
+    pub load: &'static str,
+    /// Position of a point load, degrees from the crown (null for other loads).
+    pub at_deg: Option<f64>,
+    /// The given load factor λ of the live part (null for self-weight and for `load_factor`).
+    pub lambda: Option<f64>,
     /// `found`, `never_stands` or `always_stands` for critical finds (`found` or `never_stands`
-    /// for thrust), null for state.
+    /// for thrust; `found`, `unbounded` or `never_stands` for load_factor; `failed` or
+    /// `not_converged` when the general route could not decide), null for state.
     pub outcome: Option<&'static str>,
     /// Regime (state find).
     pub regime: Option<&'static str>,
@@ -165,6 +228,14 @@ pub struct Solution {
     /// Crown moment m/(W_half·r) of the critical state: the line of thrust crosses the crown
     /// joint at height m/h over r (with h = thrust_over_half_weight).
     pub crown_moment: Option<f64>,
+    /// Vertical force F_y/W_half at the crown of the critical state (general route only: zero
+    /// under symmetric loading, null on the closed-form route).
+    pub crown_shear: Option<f64>,
+    /// Largest load factor λ (multiples of the total weight) of the live load (load_factor
+    /// find); null when unbounded or when no λ ≥ 0 lets the arch stand.
+    pub load_factor: Option<f64>,
+    /// True when every λ ≥ 0 lets the arch stand (load_factor find).
+    pub load_factor_unbounded: bool,
     /// Hinges of the critical state.
     pub hinges: Vec<HingeRecord>,
     /// Sliding joints of the critical state.
@@ -230,6 +301,16 @@ impl Solution {
             half_angle_deg: a.half_angle_deg(),
             weight: a.weight.as_str(),
             voussoirs: a.joints.voussoirs(),
+            shape: scene.form.shape.as_str(),
+            eccentricity: match scene.form.shape {
+                crate::model::Shape::Pointed { eccentricity } => Some(eccentricity),
+                crate::model::Shape::Circular => None,
+            },
+            joints: scene.form.joints.as_str(),
+            load: scene.load.as_str(),
+            at_deg: scene.load.at_deg(),
+            lambda: (scene.load.is_live() && scene.find != Find::LoadFactor)
+                .then_some(scene.lambda),
             outcome: None,
             regime: None,
             thrust_r_min: None,
@@ -242,6 +323,9 @@ impl Solution {
             mechanism: None,
             thrust_over_half_weight: None,
             crown_moment: None,
+            crown_shear: None,
+            load_factor: None,
+            load_factor_unbounded: false,
             hinges: Vec::new(),
             sliding_joints: Vec::new(),
             work_loads: None,
@@ -315,6 +399,11 @@ pub fn state_from_domains(scene: &Scene, rot: &RotationalDomain, sld: &SlidingDo
 pub fn solve(scene: &Scene) -> Solution {
     let start = Instant::now();
     let mut out = Solution::empty(scene);
+    if !scene.uses_closed_forms() {
+        general_route::solve(scene, &mut out);
+        out.solve_time_us = start.elapsed().as_secs_f64() * 1e6;
+        return out;
+    }
     match scene.find {
         Find::State => {
             let d = symmetric::domains(&scene.arch, scene.friction);
@@ -369,6 +458,8 @@ pub fn solve(scene: &Scene) -> Solution {
                 out.sliding_joints_max = sliding_records(&hi.sliding_joints);
             }
         }
+        // Not reached: load_factor scenes take the general route.
+        Find::LoadFactor => {}
     }
     out.solve_time_us = start.elapsed().as_secs_f64() * 1e6;
     out
@@ -397,6 +488,21 @@ pub fn summary(s: &Solution) -> String {
         opt(s.t_over_r),
         mu
     );
+    if s.shape != "circular" || s.joints != "radial" || s.load != "self_weight" {
+        let mut form = s.shape.to_string();
+        if let Some(e) = s.eccentricity {
+            form.push_str(&format!(" (e = {e})"));
+        }
+        let mut load = match s.at_deg {
+            Some(a) => format!("self-weight and a point load at {a}°"),
+            None if s.load == "horizontal" => "self-weight and a horizontal load".to_string(),
+            None => "self-weight".to_string(),
+        };
+        if let Some(l) = s.lambda {
+            load.push_str(&format!(", λ = {l}"));
+        }
+        let _ = writeln!(o, "form: {form}, {} joints; load: {load}", s.joints);
+    }
     let hinges = |h: &[HingeRecord]| {
         h.iter()
             .map(|h| format!("{:.4}° {}", h.angle_deg, h.face))
@@ -446,6 +552,27 @@ pub fn summary(s: &Solution) -> String {
                 ("friction", "always_stands") => {
                     let _ = writeln!(o, "critical friction 0: the arch stands without friction");
                 }
+                ("load_factor", "unbounded") => {
+                    let _ = writeln!(
+                        o,
+                        "load factor unbounded: the arch carries every multiple of the live load"
+                    );
+                }
+                ("load_factor", "never_stands") => {
+                    let _ = writeln!(o, "no load factor: the arch cannot stand under this load");
+                }
+                (_, "invalid") => {
+                    let _ = writeln!(o, "no answer: the form does not exist for these inputs");
+                }
+                (_, "unsupported") => {
+                    let _ = writeln!(
+                        o,
+                        "no answer: this find is defined for self-weight on a circular arch with radial joints only"
+                    );
+                }
+                (_, "failed" | "not_converged") => {
+                    let _ = writeln!(o, "no answer: the analysis {}", outcome.replace('_', " "));
+                }
                 _ => {}
             }
             if s.find == "thresholds" {
@@ -472,11 +599,22 @@ pub fn summary(s: &Solution) -> String {
             if let Some(m) = s.mu_crit {
                 let _ = writeln!(o, "μ_c = {m:.12} ≈ {m:.3}");
             }
+            if let Some(l) = s.load_factor {
+                let _ = writeln!(
+                    o,
+                    "λ_max = {l:.12} ≈ {l:.4} (multiples of the total weight)"
+                );
+            }
             if let Some(m) = s.mechanism {
                 let _ = writeln!(o, "mechanism: {m}");
             }
             if let Some(h) = s.thrust_over_half_weight {
                 let _ = writeln!(o, "H/W_half = {h:.12} ≈ {h:.3}");
+            }
+            if let Some(v) = s.crown_shear
+                && v != 0.0
+            {
+                let _ = writeln!(o, "V/W_half at the crown = {v:.12}");
             }
             if !s.hinges.is_empty() {
                 let _ = writeln!(o, "hinges: {}", hinges(&s.hinges));

@@ -4,6 +4,7 @@
 mod archive;
 mod boundaries;
 mod common;
+mod loads;
 mod report;
 mod run;
 mod solve;

@@ -31,6 +31,9 @@ use std::f64::consts::FRAC_PI_2;
 /// The objective of every programme here: maximise the fourth unknown (τ or λ).
 pub const OBJECTIVE: [f64; 4] = [0.0, 0.0, 0.0, 1.0];
 
+/// The auxiliary row −λ ≤ 0 of a load-factor programme.
+const LAMBDA_NON_NEGATIVE: [f64; 4] = [0.0, 0.0, 0.0, -1.0];
+
 /// Largest K − 1 explored when bracketing a critical thickness.
 const FAR: f64 = 1e9;
 
@@ -288,14 +291,14 @@ impl LinearRows {
         rows
     }
 
-    /// The load-factor programme at the given joints: rows a·x + a_λ λ ≤ b.
+    /// The load-factor programme at the given joints: rows a·x + a_λ λ ≤ b, and λ ≥ 0.
     pub fn load_factor<G: ArchGeometry + ?Sized>(
         geom: &G,
         thetas: &[f64],
         phi: f64,
         set: RowSet,
     ) -> Self {
-        let mut rows = LinearRows::default();
+        let mut rows = LinearRows::new(Objective::LoadFactor);
         for &t in thetas {
             rows.push_joint(geom, t, phi, set, Objective::LoadFactor);
         }
@@ -309,7 +312,12 @@ impl LinearRows {
                 b: vec![cap],
                 joints: Vec::new(),
             },
-            Objective::LoadFactor => LinearRows::default(),
+            // λ ≥ 0: the live load acts in its own sense.
+            Objective::LoadFactor => LinearRows {
+                a: vec![LAMBDA_NON_NEGATIVE],
+                b: vec![0.0],
+                joints: Vec::new(),
+            },
         }
     }
 }
@@ -416,6 +424,8 @@ struct Solved {
     /// Largest violation over all joints at z.
     max_violation: f64,
     active: Vec<ActiveRow>,
+    /// The joint and condition of each active row.
+    active_joints: Vec<JointRow>,
     iterations: usize,
 }
 
@@ -434,17 +444,59 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
         }
     }
 
-    /// The refined local maxima over [−α, α] of the violation of each condition at z.
+    /// The refined local maxima of the violation of each condition at z over every family
+    /// of joints ([`ArchGeometry::families`]), and the violations at the isolated joints.
     fn scan(&self, z: &[f64; 4], homogeneous: bool, settings: &Settings) -> Vec<Candidate> {
+        let families = self.geom.families();
+        let total: f64 = families.iter().map(|f| (f[1] - f[0]).max(0.0)).sum();
+        let samples = settings.exchange_samples.max(2);
+        let mut out = Vec::new();
+        let mut points = self.geom.isolated_joints();
+        for &[lo, hi] in &families {
+            if hi > lo && total > 0.0 {
+                let n = ((samples as f64 * (hi - lo) / total).ceil() as usize).max(2);
+                self.scan_family(lo, hi, n, z, homogeneous, settings, &mut out);
+            } else {
+                points.push(lo);
+            }
+        }
+        for t in points {
+            let rows = joint_rows(self.geom, t, self.phi);
+            for (ci, condition) in Condition::ALL.into_iter().enumerate() {
+                if self.set.includes(condition) {
+                    out.push(Candidate {
+                        theta: t,
+                        condition,
+                        violation: violation(&rows[ci], self.objective, z, homogeneous),
+                    });
+                }
+            }
+        }
+        out
+    }
+
+    /// The refined local maxima over [lo, hi] (n sampling intervals) of the violation of each
+    /// condition at z.
+    #[allow(clippy::too_many_arguments)]
+    fn scan_family(
+        &self,
+        lo: f64,
+        hi: f64,
+        n: usize,
+        z: &[f64; 4],
+        homogeneous: bool,
+        settings: &Settings,
+        out: &mut Vec<Candidate>,
+    ) {
         let alpha = self.geom.half_angle();
-        let n = settings.exchange_samples.max(2);
-        let step = 2.0 * alpha / n as f64;
-        let thetas: Vec<f64> = (0..=n).map(|i| -alpha + step * i as f64).collect();
+        let step = (hi - lo) / n as f64;
+        let thetas: Vec<f64> = (0..=n)
+            .map(|i| if i == n { hi } else { lo + step * i as f64 })
+            .collect();
         let samples: Vec<[Row; 4]> = thetas
             .iter()
             .map(|&t| joint_rows(self.geom, t, self.phi))
             .collect();
-        let mut out = Vec::new();
         for condition in self.conditions() {
             let ci = Condition::ALL
                 .iter()
@@ -460,10 +512,10 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
             maxima.sort_by(|&i, &j| v[j].total_cmp(&v[i]));
             maxima.truncate(settings.exchange_maxima.max(1));
             for i in maxima {
-                let lo = thetas[i.saturating_sub(1)];
-                let hi = thetas[(i + 1).min(n)];
+                let a = thetas[i.saturating_sub(1)];
+                let b = thetas[(i + 1).min(n)];
                 let f = |t: f64| violation(&self.row(t, condition), self.objective, z, homogeneous);
-                let (mut t, mut fv) = maximise_1d(f, lo, hi, 1e-10 * alpha.max(1e-3));
+                let (mut t, mut fv) = maximise_1d(f, a, b, 1e-10 * alpha.max(1e-3));
                 // Brent never evaluates the ends of its bracket: the sample may be better.
                 if v[i] >= fv {
                     (t, fv) = (thetas[i], v[i]);
@@ -475,7 +527,6 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
                 });
             }
         }
-        out
     }
 
     fn lp(&self, rows: &LinearRows, settings: &Settings) -> lp::Solution<4> {
@@ -507,10 +558,90 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
     }
 
     fn solve(&self, settings: &Settings) -> Solved {
-        match self.geom.discrete_joints() {
+        let mut s = match self.geom.discrete_joints() {
             Some(thetas) => self.solve_discrete(&thetas, settings),
             None => self.solve_continuum(settings),
+        };
+        // Only a limit state names a mechanism: τ ≈ 0 for a margin, any λ_max.
+        let limit = match self.objective {
+            Objective::Margin { .. } => s.z[3].abs() <= 1e-6 * Self::scale(&s.z),
+            Objective::LoadFactor => true,
+        };
+        if s.outcome == Outcome::Solved && limit && !s.active.is_empty() {
+            self.keep_necessary(&mut s, settings);
         }
+        s
+    }
+
+    /// Keeps the active rows that name the mechanism: those that hold with equality in
+    /// every optimal state, at joints that transmit a force.
+    ///
+    /// The programme's optimum may be a face rather than a point (at μ_min, say, the crown
+    /// moment M₀ is free within a range): the vertex returned touches rows that other
+    /// optimal states leave slack. With the fourth unknown fixed at its optimum, a row is
+    /// kept iff the largest distance x can take from its plane over the optimal face is
+    /// within `active_tol` (one small programme per active row, over the programme's rows
+    /// and the active ones). A joint without normal force (a support that lifts off) holds
+    /// its rows with 0 = 0 but neither hinges nor slides: it is open, and left out.
+    fn keep_necessary(&self, s: &mut Solved, settings: &Settings) {
+        let t = s.z[3];
+        let scale = Self::scale(&s.z);
+        let tol = self.active_tol(&s.z, settings);
+        // x = z[..3] violates no row by more than the residual: relax every row by it.
+        let relax = s.max_violation.max(0.0) + 1e-14 * scale;
+        let mut a3: Vec<[f64; 3]> = Vec::with_capacity(s.rows.a.len() + s.active.len());
+        let mut b3: Vec<f64> = Vec::with_capacity(a3.capacity());
+        let mut push = |a: [f64; 4], b: f64| {
+            let n = norm3(&[a[0], a[1], a[2]]);
+            if n > 0.0 {
+                a3.push([a[0], a[1], a[2]]);
+                b3.push(b - a[3] * t + relax * n);
+            }
+        };
+        for (a, b) in s.rows.a.iter().zip(&s.rows.b) {
+            push(*a, *b);
+        }
+        let active: Vec<([f64; 4], f64)> = s
+            .active_joints
+            .iter()
+            .map(|j| lp_row(&self.row(j.theta, j.condition), self.objective))
+            .collect();
+        for (a, b) in &active {
+            push(*a, *b);
+        }
+        let lp_settings = lp::Settings {
+            max_iter: settings.lp.max_iter.max(10_000 + 4 * a3.len()),
+            ..settings.lp
+        };
+        let lambda = match self.objective {
+            Objective::Margin { lambda, .. } => lambda,
+            Objective::LoadFactor => t,
+        };
+        let mut keep = Vec::with_capacity(active.len());
+        for ((a, b), j) in active.iter().zip(&s.active_joints) {
+            let n = norm3(&[a[0], a[1], a[2]]);
+            let c = [-a[0] / n, -a[1] / n, -a[2] / n];
+            let necessary = match lp::maximise(&c, &a3, &b3, &lp_settings) {
+                Ok(sol) if sol.status == lp::Status::Optimal => {
+                    // Largest distance from the plane (t fixed) over the optimal face.
+                    let d = (b - a[3] * t) / n + sol.objective;
+                    d <= tol + relax
+                }
+                Ok(sol) if sol.status == lp::Status::Unbounded => false,
+                _ => true,
+            };
+            // The normal force N = F·t at the joint (compression > 0).
+            let d = self.geom.dead_load(j.theta);
+            let l = self.geom.live_load(j.theta);
+            let normal = self.geom.joint(j.theta).normal();
+            let f = [s.z[0] + d.fx + lambda * l.fx, s.z[1] + d.fy + lambda * l.fy];
+            let n_force = f[0] * normal[0] + f[1] * normal[1];
+            keep.push(necessary && n_force > tol);
+        }
+        let mut k = keep.iter();
+        s.active.retain(|_| *k.next().unwrap_or(&true));
+        let mut k = keep.iter();
+        s.active_joints.retain(|_| *k.next().unwrap_or(&true));
     }
 
     fn solve_discrete(&self, thetas: &[f64], settings: &Settings) -> Solved {
@@ -532,6 +663,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
         };
         let mut max_violation = f64::NEG_INFINITY;
         let mut active = Vec::new();
+        let mut active_joints = Vec::new();
         let tol = self.active_tol(&z, settings);
         for (a, (b, j)) in rows.a.iter().zip(rows.b.iter().zip(&rows.joints)) {
             let n = norm3(&[a[0], a[1], a[2]]);
@@ -540,10 +672,11 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
             max_violation = max_violation.max(v);
             if outcome == Outcome::Solved && v >= -tol {
                 active.push(ActiveRow {
-                    angle_deg: j.theta.to_degrees(),
+                    angle_deg: self.geom.angle_deg(j.theta),
                     condition: j.condition,
                     slack: (-v).max(0.0),
                 });
+                active_joints.push(*j);
             }
         }
         Solved {
@@ -552,16 +685,32 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
             rows,
             max_violation,
             active,
+            active_joints,
             iterations: 1,
         }
     }
 
     fn solve_continuum(&self, settings: &Settings) -> Solved {
-        let alpha = self.geom.half_angle();
         let n0 = settings.exchange_initial_joints.max(2);
         let mut rows = LinearRows::new(self.objective);
-        for i in 0..n0 {
-            let t = -alpha + 2.0 * alpha * i as f64 / (n0 - 1) as f64;
+        let families = self.geom.families();
+        let total: f64 = families.iter().map(|f| (f[1] - f[0]).max(0.0)).sum();
+        for &[lo, hi] in &families {
+            if hi > lo && total > 0.0 {
+                let n = ((n0 as f64 * (hi - lo) / total).ceil() as usize).max(2);
+                for i in 0..n {
+                    let t = if i + 1 == n {
+                        hi
+                    } else {
+                        lo + (hi - lo) * i as f64 / (n - 1) as f64
+                    };
+                    rows.push_joint(self.geom, t, self.phi, self.set, self.objective);
+                }
+            } else {
+                rows.push_joint(self.geom, lo, self.phi, self.set, self.objective);
+            }
+        }
+        for t in self.geom.isolated_joints() {
             rows.push_joint(self.geom, t, self.phi, self.set, self.objective);
         }
         let mut iterations = 0;
@@ -578,6 +727,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
                         rows,
                         max_violation: f64::INFINITY,
                         active: Vec::new(),
+                        active_joints: Vec::new(),
                         iterations,
                     };
                 }
@@ -588,6 +738,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
                         rows,
                         max_violation: f64::INFINITY,
                         active: Vec::new(),
+                        active_joints: Vec::new(),
                         iterations,
                     };
                 }
@@ -599,26 +750,37 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
             let tol = settings.exchange_tol * Self::scale(&z);
             let done = |outcome: Outcome, rows: LinearRows| {
                 let atol = self.active_tol(&z, settings);
-                let mut active: Vec<ActiveRow> = if outcome == Outcome::Solved {
+                let mut pairs: Vec<(ActiveRow, JointRow)> = if outcome == Outcome::Solved {
                     candidates
                         .iter()
                         .filter(|c| c.violation >= vmax.max(0.0) - atol)
-                        .map(|c| ActiveRow {
-                            angle_deg: c.theta.to_degrees(),
-                            condition: c.condition,
-                            slack: (vmax.max(0.0) - c.violation).max(0.0),
+                        .map(|c| {
+                            (
+                                ActiveRow {
+                                    angle_deg: self.geom.angle_deg(c.theta),
+                                    condition: c.condition,
+                                    slack: (vmax.max(0.0) - c.violation).max(0.0),
+                                },
+                                JointRow {
+                                    theta: c.theta,
+                                    condition: c.condition,
+                                },
+                            )
                         })
                         .collect()
                 } else {
                     Vec::new()
                 };
-                active.sort_by(|a, b| a.angle_deg.total_cmp(&b.angle_deg));
+                pairs.sort_by(|a, b| a.0.angle_deg.total_cmp(&b.0.angle_deg));
+                let (active, active_joints): (Vec<ActiveRow>, Vec<JointRow>) =
+                    pairs.into_iter().unzip();
                 Solved {
                     outcome,
                     z,
                     rows,
                     max_violation: vmax,
                     active,
+                    active_joints,
                     iterations,
                 }
             };
@@ -645,7 +807,21 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
                 }
             }
             if added == 0 {
-                return done(Outcome::NotConverged, rows);
+                // Every violated joint is already a row: the residual is what the programme
+                // solver accepted (its tolerance also scales with t), not a missing joint.
+                let lp_tol = 10.0
+                    * settings.lp.tol_feas
+                    * (1.0 + z.iter().fold(0.0, |m: f64, v| m.max(v.abs())));
+                let outcome = if vmax <= lp_tol {
+                    if homogeneous {
+                        Outcome::Unbounded
+                    } else {
+                        Outcome::Solved
+                    }
+                } else {
+                    Outcome::NotConverged
+                };
+                return done(outcome, rows);
             }
         }
     }
@@ -763,6 +939,12 @@ pub fn mechanism_of(active: &[ActiveRow]) -> Option<Mechanism> {
             }
         }
     }
+    // Both sides of a point load are joints at (nearly) the same angle: one joint each.
+    let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * (1.0 + a.abs());
+    hinges.sort_by(|a, b| a.angle_deg.total_cmp(&b.angle_deg));
+    hinges.dedup_by(|a, b| a.face == b.face && same(a.angle_deg, b.angle_deg));
+    sliding.sort_by(|a, b| a.angle_deg.total_cmp(&b.angle_deg));
+    sliding.dedup_by(|a, b| a.sense == b.sense && same(a.angle_deg, b.angle_deg));
     Mechanism::from_parts(hinges, sliding)
 }
 
@@ -867,11 +1049,24 @@ fn reference(m: &MarginSolution, settings: &Settings) -> Result<f64, Stop> {
 }
 
 /// The smallest p in [lo, hi] with psi(p) ≥ 0, for psi whose sign is non-decreasing; `hi`
-/// doubles away from `lo` while psi(hi) < 0 when `grow_hi`.
+/// doubles away from `lo` (up to `cap`) while psi(hi) < 0 when `grow_hi`.
 fn search(
     psi: impl Fn(f64) -> f64,
     lo: f64,
     hi: f64,
+    tol: f64,
+    grow_hi: bool,
+    failed: &Cell<Option<Outcome>>,
+) -> Result<f64, Stop> {
+    search_capped(psi, lo, hi, f64::INFINITY, tol, grow_hi, failed)
+}
+
+/// [`search`] with `hi` never beyond `cap`.
+fn search_capped(
+    psi: impl Fn(f64) -> f64,
+    lo: f64,
+    hi: f64,
+    cap: f64,
     tol: f64,
     grow_hi: bool,
     failed: &Cell<Option<Outcome>>,
@@ -883,12 +1078,12 @@ fn search(
     if check(psi(lo))? >= 0.0 {
         return Err(Stop::Always);
     }
-    let mut hi = hi;
+    let mut hi = hi.min(cap);
     while check(psi(hi))? < 0.0 {
-        if !grow_hi {
+        if !grow_hi || hi >= cap {
             return Err(Stop::Never);
         }
-        hi = lo + 2.0 * (hi - lo);
+        hi = (lo + 2.0 * (hi - lo)).min(cap);
         if hi - lo > FAR {
             return Err(Stop::Never);
         }
@@ -909,29 +1104,64 @@ fn search(
 /// search measures the thickness against what sliding allows instead of against noise.
 /// Invariant: τ_all ≥ τ_ref − `margin_tol` ≥ −2 `margin_tol` at the returned K.
 pub fn thickness(arch: &Arch, friction: Friction, settings: &Settings) -> Critical {
-    let phi = friction.angle();
-    let at = |k: f64| CircularArch::new(arch.with_k(k));
-    let failed = Cell::new(None);
-    let tau_ref = match reference(
-        &margin(&at(arch.k), phi, RowSet::Sliding, settings),
+    thickness_with(
+        |k| Some(CircularArch::new(arch.with_k(k))),
+        f64::INFINITY,
+        Some(arch.k),
+        friction,
         settings,
-    ) {
-        Ok(r) => r,
-        Err(c) => return c.into(),
+    )
+}
+
+/// The collapse thickness of any family of arches K ↦ `at(K)`, K ∈ (1, `k_max`), at
+/// friction μ and the load factor `settings.lambda`: as [`thickness`].
+///
+/// `at(K)` is `None` where the family does not exist (it counts as not standing there).
+/// `sliding_reference` is a K at which to take τ_ref when the sliding rows do not depend on
+/// K (circular arches with radial joints: the loads over W_half are the same at every K);
+/// `None` takes τ_ref = 0. A family that does not stand up to `k_max` never stands.
+pub fn thickness_with<G: ArchGeometry, F: Fn(f64) -> Option<G>>(
+    at: F,
+    k_max: f64,
+    sliding_reference: Option<f64>,
+    friction: Friction,
+    settings: &Settings,
+) -> Critical {
+    let phi = friction.angle();
+    let failed = Cell::new(None);
+    let tau_ref = match sliding_reference {
+        Some(k) => match at(k).map(|g| margin(&g, phi, RowSet::Sliding, settings)) {
+            Some(m) => match reference(&m, settings) {
+                Ok(r) => r,
+                Err(c) => return c.into(),
+            },
+            None => 0.0,
+        },
+        None => 0.0,
     };
-    let psi = |k: f64| {
-        shifted_margin(
-            &margin(&at(k), phi, RowSet::All, settings),
+    let psi = |k: f64| match at(k) {
+        Some(g) => shifted_margin(
+            &margin(&g, phi, RowSet::All, settings),
             tau_ref,
             settings,
             &failed,
-        )
+        ),
+        None => -1.0,
     };
-    let k = match search(psi, 1.0 + 1e-12, 1.5, 1e-15, true, &failed) {
+    // Stay clear of the end of the family, where it degenerates.
+    let cap = if k_max.is_finite() {
+        1.0 + (k_max - 1.0) * (1.0 - 1e-9)
+    } else {
+        f64::INFINITY
+    };
+    let k = match search_capped(psi, 1.0 + 1e-12, 1.5, cap, 1e-15, true, &failed) {
         Ok(k) => k,
         Err(c) => return c.into(),
     };
-    let state = margin(&at(k), phi, RowSet::All, settings);
+    let Some(g) = at(k) else {
+        return Critical::NeverStands;
+    };
+    let state = margin(&g, phi, RowSet::All, settings);
     Critical::Found(LimitState {
         k: Some(k),
         mu: friction.mu(),
@@ -1009,7 +1239,9 @@ pub struct LoadFactor {
     pub iterations: usize,
 }
 
-/// Maximises λ subject to all rows (the static theorem for a proportional live load).
+/// Maximises λ ≥ 0 subject to all rows (the static theorem for a proportional live load):
+/// the collapse load factor of the live load of `geom` on top of its dead load. Infeasible
+/// when no λ ≥ 0 admits a state, unbounded when every λ ≥ 0 does.
 pub fn load_factor<G: ArchGeometry + ?Sized>(
     geom: &G,
     phi: f64,

@@ -4,6 +4,7 @@
 //! thrusts over the half weight W_half.
 
 pub mod circular;
+pub mod forms;
 pub mod general;
 pub mod kinematics;
 pub mod lp;

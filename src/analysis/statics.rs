@@ -96,6 +96,24 @@ pub trait ArchGeometry {
     }
     /// The joints of a discrete arch in increasing θ, `None` for a continuum.
     fn discrete_joints(&self) -> Option<Vec<f64>>;
+    /// The potential joints of the continuum: closed intervals of θ, increasing and
+    /// disjoint, over each of which the joints and loads vary continuously; default
+    /// [−α, α]. A load concentrated at θ = a splits an interval into [.., a] and
+    /// [next float after a, ..], so that both sides of the load are joints.
+    fn families(&self) -> Vec<[f64; 2]> {
+        let a = self.half_angle();
+        vec![[-a, a]]
+    }
+    /// Joints of the continuum outside [`ArchGeometry::families`] (e.g. supports that are
+    /// not members of a family); default none.
+    fn isolated_joints(&self) -> Vec<f64> {
+        Vec::new()
+    }
+    /// The angle that names joint θ in results, degrees from the crown, positive to the
+    /// right; default θ itself.
+    fn angle_deg(&self, theta: f64) -> f64 {
+        theta.to_degrees()
+    }
 }
 
 /// Which condition a linear row expresses.

@@ -1,10 +1,11 @@
 //! The results of a run as K × μ grids: one per load case and per value of the other axes
-//! (half-angle, voussoirs), with the K and μ values sorted (a `values:` list may be in any
-//! order).
+//! (half-angle, voussoirs, position of a point load), with the K and μ values sorted (a
+//! `values:` list may be in any order).
 
 use crate::engine::{CaseResult, Status};
 use crate::model::Arch;
 use crate::plan::Plan;
+use crate::scene::Scene;
 use std::collections::HashMap;
 
 /// One K × μ grid of results.
@@ -14,6 +15,9 @@ pub(crate) struct Grid {
     pub load_case: usize,
     /// The arch of the first case of the group (its K is one of the grid's).
     pub arch: Arch,
+    /// The scene of the first case of the group (form, load, λ, find; its K and μ are two of
+    /// the grid's).
+    pub scene: Scene,
     /// Distinct K values, increasing.
     pub ks: Vec<f64>,
     /// Distinct μ values, increasing (may end with +∞).
@@ -40,8 +44,8 @@ pub(crate) fn ok_result<'a>(
     (r.status == Status::Ok).then_some(r)
 }
 
-/// Group key: load case, half-angle bits and discretisation.
-type Key = (usize, u64, crate::model::Discretisation);
+/// Group key: load case, half-angle bits, discretisation and point-load position bits.
+type Key = (usize, u64, crate::model::Discretisation, Option<u64>);
 
 fn sorted_distinct(mut v: Vec<f64>) -> Vec<f64> {
     v.sort_by(f64::total_cmp);
@@ -60,11 +64,13 @@ pub(crate) fn groups(plan: &Plan, results: &[CaseResult]) -> Vec<Grid> {
             continue;
         }
         let a = &case.scene.arch;
-        let key = (case.load_case, a.half_angle.to_bits(), a.joints);
+        let at = case.scene.load.at_deg().map(f64::to_bits);
+        let key = (case.load_case, a.half_angle.to_bits(), a.joints, at);
         let g = *index.entry(key).or_insert_with(|| {
             grids.push(Grid {
                 load_case: case.load_case,
                 arch: *a,
+                scene: case.scene,
                 ks: Vec::new(),
                 mus: Vec::new(),
                 cells: Vec::new(),

@@ -31,6 +31,7 @@
 //! results.parquet). `thrust` studies have neither.
 
 mod bifurcation;
+mod general;
 mod grid;
 mod probe;
 mod state_grid;
@@ -72,6 +73,9 @@ pub struct BoundaryPoint {
     pub half_angle_deg: f64,
     /// Voussoir count, `None` for the continuum.
     pub voussoirs: Option<u32>,
+    /// Position of the point load of the group, degrees from the crown (`None` for other
+    /// loads).
+    pub at_deg: Option<f64>,
     /// K = R/r at the point (located to the tolerance on a K-edge, a grid value otherwise).
     pub k: f64,
     /// μ at the point (located on a μ-edge, a grid value, possibly infinite, otherwise).
@@ -108,13 +112,24 @@ pub struct Bifurcation {
     pub half_angle_deg: f64,
     /// Voussoir count, `None` for the continuum.
     pub voussoirs: Option<u32>,
+    /// Position of the point load of the group, degrees from the crown (`None` for other
+    /// loads).
+    pub at_deg: Option<f64>,
+    /// For a change of mechanism located on a grid edge (studies on the general route): the
+    /// axis of that edge; `None` for the bifurcations of the symmetric collapse curve.
+    pub axis: Option<EdgeAxis>,
+    /// The collapse load factor λ there (`load_factor` studies), multiples of the total
+    /// weight.
+    pub load_factor: Option<f64>,
     /// K = R/r at the bifurcation.
     pub k: f64,
     /// μ at the bifurcation.
     pub mu: f64,
-    /// The mechanism on the lower-μ side (toward thicker arches along the collapse curve).
+    /// The mechanism on the lower-μ side (toward thicker arches along the collapse curve); on
+    /// a grid edge (`axis` set), on the lower-value side of the edge.
     pub mechanism_a: MechanismKind,
-    /// The mechanism on the higher-μ side (toward thinner arches).
+    /// The mechanism on the higher-μ side (toward thinner arches); on a grid edge, on the
+    /// higher-value side.
     pub mechanism_b: MechanismKind,
     /// The coexisting limit state: thrust over W_half, crown moment over W_half·r and every
     /// joint active at the bifurcation (the union of both mechanisms' joints).
@@ -163,19 +178,30 @@ pub fn locate(plan: &Plan, results: &[CaseResult]) -> Located {
     let counter = Counter::default();
     let tol = plan.manifest.boundary_tolerance;
     let groups = grid::groups(plan, results);
-    let (boundaries, bifurcations) = match plan.manifest.find {
-        Find::State => state_grid::locate(&groups, results, tol, &counter),
-        Find::Thickness => (
-            Vec::new(),
-            sweep::locate(&groups, results, sweep::Swept::Mu, tol, &counter),
-        ),
-        Find::Friction => (
-            Vec::new(),
-            sweep::locate(&groups, results, sweep::Swept::K, tol, &counter),
-        ),
-        // Thresholds are the bifurcations themselves, one set per row.
-        Find::Thrust | Find::Thresholds => (Vec::new(), Vec::new()),
-    };
+    let mut boundaries = Vec::new();
+    let mut bifurcations = Vec::new();
+    for g in &groups {
+        let one = std::slice::from_ref(g);
+        let (b, f) = if !g.scene.uses_closed_forms() {
+            general::locate(g, results, tol, &counter)
+        } else {
+            match plan.manifest.find {
+                Find::State => state_grid::locate(one, results, tol, &counter),
+                Find::Thickness => (
+                    Vec::new(),
+                    sweep::locate(one, results, sweep::Swept::Mu, tol, &counter),
+                ),
+                Find::Friction => (
+                    Vec::new(),
+                    sweep::locate(one, results, sweep::Swept::K, tol, &counter),
+                ),
+                // Thresholds are the bifurcations themselves, one set per row.
+                Find::Thrust | Find::Thresholds | Find::LoadFactor => (Vec::new(), Vec::new()),
+            }
+        };
+        boundaries.extend(b);
+        bifurcations.extend(f);
+    }
     Located {
         boundaries,
         bifurcations,

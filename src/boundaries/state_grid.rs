@@ -220,6 +220,7 @@ impl<'a> GridRefiner<'a> {
             load_case: self.grid.load_case,
             half_angle_deg: self.grid.arch.half_angle_deg(),
             voussoirs: self.grid.arch.joints.voussoirs(),
+            at_deg: self.grid.scene.load.at_deg(),
             k,
             mu,
             axis,

@@ -283,7 +283,12 @@ pub fn run(manifest: &Manifest, layout: &RunLayout) -> Result<FigureDataSummary>
     let mut out = Collector { points: Vec::new() };
     let mut states = Vec::new();
     let mut mechs = Vec::new();
-    for lc in &manifest.load_cases {
+    // The drawings (an arc of a circle, a symmetric line of thrust, H^r and H^s) are those of
+    // self-weight on the circular arch with radial joints: other forms and live loads get
+    // none rather than wrong ones (docs/loads-and-geometries.md).
+    let drawable = manifest.arch.form().is_circular_radial()
+        && manifest.load_cases.iter().all(|l| !l.kind.is_live());
+    for lc in manifest.load_cases.iter().filter(|_| drawable) {
         let sfx = suffix(manifest, &lc.name);
         let bifs: Vec<&BifurcationRow> = bifurcations
             .iter()

@@ -62,11 +62,7 @@ fn continuum_scene(r: &ResultRow) -> Option<Scene> {
     let k = r.k.unwrap_or(2.0);
     let arch = Arch::new(k, r.half_angle_deg, weight, Discretisation::Continuum).ok()?;
     let friction = r.mu.and_then(Friction::new).unwrap_or(Friction::INFINITE);
-    Some(Scene {
-        arch,
-        friction,
-        find,
-    })
+    Some(Scene::new(arch, friction, find))
 }
 
 /// The continuum value of each compared quantity for every successful discrete case of the
@@ -77,7 +73,11 @@ fn continuum_scene(r: &ResultRow) -> Option<Scene> {
 pub fn continuum_references(manifest: &Manifest, layout: &RunLayout) -> Result<Vec<ReferenceRow>> {
     let discrete = manifest.arch.voussoirs != Discretisation::Continuum
         || manifest.grid.iter().any(|a| a.name == AxisName::Voussoirs);
-    if !discrete {
+    // The references are the closed-form continuum of self-weight on the circular arch with
+    // radial joints; other forms and live loads have none here.
+    let paper = manifest.arch.form().is_circular_radial()
+        && manifest.load_cases.iter().all(|l| !l.kind.is_live());
+    if !discrete || !paper {
         return Ok(Vec::new());
     }
     let rows = store::read_results(&layout.results())?;

@@ -13,11 +13,14 @@ use std::path::Path;
 /// The arch block of the resolved manifest in run.json.
 #[derive(Debug, Clone, Deserialize)]
 pub struct ArchView {
-    /// `circular`.
+    /// `circular` or `pointed`.
     pub shape: String,
+    /// Eccentricity of a pointed arch (absent for a circular one).
+    #[serde(default)]
+    pub eccentricity: Option<f64>,
     /// Half-embrace angle, degrees.
     pub half_angle_deg: f64,
-    /// `radial`.
+    /// `radial` or `vertical`.
     pub joints: String,
     /// `annular` or `centreline`.
     pub weight: String,

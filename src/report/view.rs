@@ -276,6 +276,10 @@ fn find_text(f: &str) -> &'static str {
         "thickness" => "thickness: the collapse thickness K_c at every grid point",
         "friction" => "friction: the critical friction μ_c at every grid point",
         "thrust" => "thrust: the minimum and maximum admissible thrusts at every grid point",
+        "thresholds" => "thresholds: the critical values of the arch under self-weight",
+        "load_factor" => {
+            "load_factor: the largest load factor λ of the live load at every grid point"
+        }
         _ => "unknown",
     }
 }
@@ -288,8 +292,11 @@ pub fn build(data: &RunData, figs: &[FigureSpec], svgs: &[String]) -> ReportView
         item(
             "shape",
             format!(
-                "{}, half-embrace angle α = {}°",
+                "{}{}, half-embrace angle α = {}°",
                 m.arch.shape,
+                m.arch
+                    .eccentricity
+                    .map_or(String::new(), |e| format!(" (eccentricity {e})")),
                 given(m.arch.half_angle_deg)
             ),
         ),

@@ -118,6 +118,7 @@ pub fn boundaries_frame(plan: &Plan, located: &Located) -> Result<DataFrame> {
             b.iter().map(|p| p.half_angle_deg).collect(),
         )
         .opt_u32("voussoirs", b.iter().map(|p| p.voussoirs).collect())
+        .opt_f64("at_deg", b.iter().map(|p| p.at_deg).collect())
         .finish()
 }
 
@@ -153,6 +154,14 @@ pub fn bifurcations_frame(plan: &Plan, located: &Located) -> Result<DataFrame> {
             b.iter().map(|p| p.half_angle_deg).collect(),
         )
         .opt_u32("voussoirs", b.iter().map(|p| p.voussoirs).collect())
+        .opt_f64("at_deg", b.iter().map(|p| p.at_deg).collect())
+        .opt_str(
+            "axis",
+            b.iter()
+                .map(|p| p.axis.map(|a| a.as_str().to_string()))
+                .collect(),
+        )
+        .opt_f64("load_factor", b.iter().map(|p| p.load_factor).collect())
         .finish()
 }
 
@@ -165,7 +174,7 @@ mod tests {
     use polars::prelude::DataType;
     use std::path::Path;
 
-    const BOUNDARY_COLUMNS: [&str; 17] = [
+    const BOUNDARY_COLUMNS: [&str; 18] = [
         "load_case",
         "mu",
         "k",
@@ -183,8 +192,9 @@ mod tests {
         "sliding_senses",
         "half_angle_deg",
         "voussoirs",
+        "at_deg",
     ];
-    const BIFURCATION_COLUMNS: [&str; 14] = [
+    const BIFURCATION_COLUMNS: [&str; 17] = [
         "load_case",
         "mu",
         "k",
@@ -199,6 +209,9 @@ mod tests {
         "sliding_senses",
         "half_angle_deg",
         "voussoirs",
+        "at_deg",
+        "axis",
+        "load_factor",
     ];
 
     fn plan() -> Plan {
@@ -253,6 +266,7 @@ mod tests {
             load_case: 0,
             half_angle_deg: 90.0,
             voussoirs: None,
+            at_deg: None,
             k: kc.k,
             mu: 0.5,
             axis: EdgeAxis::K,
@@ -268,6 +282,9 @@ mod tests {
                 load_case: 0,
                 half_angle_deg: 90.0,
                 voussoirs: Some(16),
+                at_deg: None,
+                axis: None,
+                load_factor: None,
                 k: kc.k,
                 mu: 0.39,
                 mechanism_a: crate::analysis::MechanismKind::Mixed,

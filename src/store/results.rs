@@ -28,6 +28,7 @@ enum Spec<'a> {
     F64(&'static str, Vec<f64>, Get<'a, f64>),
     OptF64(&'static str, Vec<Option<f64>>, Get<'a, Option<f64>>),
     OptU32(&'static str, Vec<Option<u32>>, Get<'a, Option<u32>>),
+    Bool(&'static str, Vec<bool>, Get<'a, bool>),
     Str(&'static str, Vec<&'a str>, Get<'a, &'a str>),
     OptStr(&'static str, Vec<Option<&'a str>>, Get<'a, Option<&'a str>>),
     ListF64(&'static str, Vec<Vec<f64>>, Get<'a, Vec<f64>>),
@@ -45,6 +46,7 @@ impl<'a> Spec<'a> {
             Spec::F64(_, v, g) => v.push(g(r)),
             Spec::OptF64(_, v, g) => v.push(g(r)),
             Spec::OptU32(_, v, g) => v.push(g(r)),
+            Spec::Bool(_, v, g) => v.push(g(r)),
             Spec::Str(_, v, g) => v.push(g(r)),
             Spec::OptStr(_, v, g) => v.push(g(r)),
             Spec::ListF64(_, v, g) => v.push(g(r)),
@@ -58,6 +60,7 @@ impl<'a> Spec<'a> {
             Spec::F64(n, v, _) => t.f64(n, v),
             Spec::OptF64(n, v, _) => t.opt_f64(n, v),
             Spec::OptU32(n, v, _) => t.opt_u32(n, v),
+            Spec::Bool(n, v, _) => t.bool(n, v),
             Spec::Str(n, v, _) => t.str(n, v),
             Spec::OptStr(n, v, _) => t.opt_str(n, v),
             Spec::ListF64(n, v, _) => t.list_f64(n, v),
@@ -130,6 +133,37 @@ pub fn results_frame<'a>(plan: &'a Plan, rows: &'a [CaseResult]) -> Result<DataF
             Vec::with_capacity(n),
             Box::new(|r: &'a CaseResult| r.solution.voussoirs),
         ),
+        // Form and load case (docs/loads-and-geometries.md).
+        Spec::Str(
+            "shape",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.shape),
+        ),
+        Spec::OptF64(
+            "eccentricity",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.eccentricity),
+        ),
+        Spec::Str(
+            "joints",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.joints),
+        ),
+        Spec::Str(
+            "load",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.load),
+        ),
+        Spec::OptF64(
+            "at_deg",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.at_deg),
+        ),
+        Spec::OptF64(
+            "lambda",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.lambda),
+        ),
         Spec::OptStr(
             "outcome",
             Vec::with_capacity(n),
@@ -189,6 +223,21 @@ pub fn results_frame<'a>(plan: &'a Plan, rows: &'a [CaseResult]) -> Result<DataF
             "crown_moment",
             Vec::with_capacity(n),
             Box::new(|r: &'a CaseResult| r.solution.crown_moment),
+        ),
+        Spec::OptF64(
+            "crown_shear",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.crown_shear),
+        ),
+        Spec::OptF64(
+            "load_factor",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.load_factor),
+        ),
+        Spec::Bool(
+            "load_factor_unbounded",
+            Vec::with_capacity(n),
+            Box::new(|r: &'a CaseResult| r.solution.load_factor_unbounded),
         ),
         Spec::ListF64(
             "hinge_angles_deg",

@@ -1,0 +1,192 @@
+//! Scenes answered by the general three-unknown formulation ([`crate::analysis::general`]):
+//! every load case with a live part, every form other than the circular arch with radial
+//! joints, and every `load_factor` question (DESIGN.md §1).
+
+use super::{Find, Scene, Solution, hinge_records, sliding_records};
+use crate::analysis::forms::ArchModel;
+use crate::analysis::general::{
+    self, Critical, CrownState, LoadFactor, Outcome, RegimeReport, Settings,
+};
+use crate::analysis::kinematics::{
+    FlowRule, LimitState, mechanism_modes, pattern_of, work_equation,
+};
+use crate::analysis::{Mechanism, Regime};
+use crate::model::{JointOrientation, Load, Shape};
+
+/// The largest K at which the scene's form exists and a point load still sits at a joint
+/// (a pointed arch's first joint ψ₁ = asin(e(1 + K)/2) moves away from the crown as K grows).
+fn k_max(scene: &Scene) -> f64 {
+    let mut k = scene.form.max_k(scene.arch.half_angle);
+    if let (Shape::Pointed { eccentricity }, Load::Point { at_deg }) =
+        (scene.form.shape, scene.load)
+        && at_deg != 0.0
+        && eccentricity > 0.0
+    {
+        let s = at_deg
+            .to_radians()
+            .abs()
+            .min(std::f64::consts::FRAC_PI_2)
+            .sin();
+        k = k.min(2.0 * s / eccentricity - 1.0);
+    }
+    k
+}
+
+fn finite(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+/// Records a limit state: mechanism, crown force and moment (m = −M₀, the crown joint lying
+/// on x = 0), hinges and sliding joints.
+fn set_state(out: &mut Solution, crown: &CrownState, mechanism: Option<&Mechanism>) {
+    out.thrust_over_half_weight = finite(crown.thrust_over_half_weight);
+    out.crown_moment = finite(-crown.moment_about_centre);
+    out.crown_shear = finite(crown.shear_over_half_weight);
+    if let Some(m) = mechanism {
+        out.mechanism = Some(m.kind.as_str());
+        out.hinges = hinge_records(&m.hinges);
+        out.sliding_joints = sliding_records(&m.sliding_joints);
+    }
+}
+
+/// The collapse mechanism of a limit state and its work equation (paper eqs. 9 and 11), as on
+/// the closed-form route: `mechanism_dof` and the `work_*` columns. Only for radial joints,
+/// whose reported angles are the joint parameters the kinematics works with.
+fn set_work(
+    out: &mut Solution,
+    model: &ArchModel,
+    crown: &CrownState,
+    lambda: f64,
+    mu: f64,
+    mechanism: &Mechanism,
+) {
+    if model.form().joints != JointOrientation::Radial {
+        return;
+    }
+    let joints = pattern_of(mechanism);
+    let Ok(modes) = mechanism_modes(model, &joints, FlowRule::NonAssociative, true) else {
+        return;
+    };
+    out.mechanism_dof = Some(modes.dof);
+    let field = modes
+        .fields
+        .iter()
+        .find(|f| f.kind() == Some(mechanism.kind))
+        .or(modes.fields.first());
+    if let Some(field) = field {
+        let state = LimitState {
+            crown_force: [crown.thrust_over_half_weight, crown.shear_over_half_weight],
+            crown_moment_origin: crown.moment_about_centre,
+            load_factor: lambda,
+            mu,
+        };
+        let w = work_equation(model, &state, field);
+        out.work_loads = finite(w.work_loads);
+        out.work_friction = finite(w.work_friction);
+        out.work_residual = finite(w.work_residual);
+    }
+}
+
+fn outcome_of(o: Outcome) -> &'static str {
+    match o {
+        Outcome::Solved => "found",
+        Outcome::Infeasible => "never_stands",
+        Outcome::Unbounded => "unbounded",
+        Outcome::NotConverged => "not_converged",
+        Outcome::Failed(_) => "failed",
+    }
+}
+
+fn set_critical(out: &mut Solution, c: &Critical) -> Option<general::LimitState> {
+    out.outcome = Some(match c {
+        Critical::Found(_) => "found",
+        Critical::NeverStands => "never_stands",
+        Critical::AlwaysStands => "always_stands",
+        Critical::Failed(o) => outcome_of(*o),
+    });
+    let s = c.found()?.clone();
+    set_state(out, &s.state.crown, s.mechanism.as_ref());
+    Some(s)
+}
+
+/// The regime of the scene at its λ, by the feasibility of the rotational rows alone, the
+/// sliding rows alone and all rows.
+pub(crate) fn regime(model: &ArchModel, scene: &Scene) -> RegimeReport {
+    let settings = Settings {
+        lambda: scene.lambda,
+        ..Settings::default()
+    };
+    general::regime(model, scene.friction.angle(), &settings)
+}
+
+/// The collapse load factor of the scene.
+pub(crate) fn load_factor(model: &ArchModel, scene: &Scene) -> LoadFactor {
+    general::load_factor(model, scene.friction.angle(), &Settings::default())
+}
+
+/// Fills `out` for a scene of the general route.
+pub(super) fn solve(scene: &Scene, out: &mut Solution) {
+    let settings = Settings {
+        lambda: scene.lambda,
+        ..Settings::default()
+    };
+    if scene.find == Find::Thickness {
+        let make = |k: f64| ArchModel::new(scene.arch.with_k(k), scene.form, scene.load).ok();
+        // Over W_half the sliding rows of a circular arch with radial joints (a pointed one
+        // with e = 0 included) do not depend on K; those of other forms do.
+        let circular_radial = scene.form.joints == crate::model::JointOrientation::Radial
+            && scene.form.shape.eccentricity() == 0.0;
+        let reference = circular_radial.then_some(scene.arch.k);
+        let c = general::thickness_with(make, k_max(scene), reference, scene.friction, &settings);
+        if let Some(s) = set_critical(out, &c)
+            && let Some(k) = s.k
+        {
+            out.k_crit = Some(k);
+            out.t_over_r_crit = Some(crate::model::t_over_r_from_k(k));
+            if let (Some(m), Ok(model)) = (
+                &s.mechanism,
+                ArchModel::new(scene.arch.with_k(k), scene.form, scene.load),
+            ) {
+                set_work(out, &model, &s.state.crown, scene.lambda, s.mu, m);
+            }
+        }
+        return;
+    }
+    let Ok(model) = ArchModel::new(scene.arch, scene.form, scene.load) else {
+        out.outcome = Some("invalid");
+        return;
+    };
+    match scene.find {
+        Find::State => {
+            out.regime = regime(&model, scene).regime.map(Regime::as_str);
+        }
+        Find::Friction => {
+            let c = general::friction(&model, &settings);
+            if let Some(s) = set_critical(out, &c) {
+                out.mu_crit = Some(s.mu);
+                if let Some(m) = &s.mechanism {
+                    set_work(out, &model, &s.state.crown, scene.lambda, s.mu, m);
+                }
+            }
+        }
+        Find::LoadFactor => {
+            let lf = load_factor(&model, scene);
+            out.outcome = Some(outcome_of(lf.outcome));
+            match lf.outcome {
+                Outcome::Solved => {
+                    out.load_factor = finite(lf.lambda);
+                    set_state(out, &lf.crown, lf.mechanism.as_ref());
+                    if let Some(m) = &lf.mechanism {
+                        set_work(out, &model, &lf.crown, lf.lambda, scene.friction.mu(), m);
+                    }
+                }
+                Outcome::Unbounded => out.load_factor_unbounded = true,
+                _ => {}
+            }
+        }
+        // The extreme thrust states and the thresholds are defined for symmetric self-weight
+        // on the circular arch with radial joints only.
+        Find::Thrust | Find::Thresholds => out.outcome = Some("unsupported"),
+        Find::Thickness => {}
+    }
+}
