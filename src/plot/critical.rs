@@ -194,14 +194,7 @@ impl Figure for CriticalChart {
         ctx: &PlotContext,
     ) -> DrawResult<(), DB> {
         let legend = self.legend();
-        let (w, h) = ctx.pixels();
-        let lh = ctx.px(style::legend_height(
-            ctx,
-            &legend,
-            f64::from(w) / ctx.scale - 20.0,
-        ));
-        let (upper, lower) = root.split_vertically(h as i32 - lh);
-        style::draw_legend(&lower, ctx, &legend)?;
+        let upper = style::above_legend(root, ctx, &legend)?;
         let upper = style::title(&upper, ctx, &self.title)?;
         let n = self.panels.len().max(1);
         let areas = upper.split_evenly((1, n));

@@ -86,14 +86,8 @@ impl Figure for DomainsChart {
         ctx: &PlotContext,
     ) -> DrawResult<(), DB> {
         let legend = self.legend();
-        let (w, h) = ctx.pixels();
-        let lh = ctx.px(style::legend_height(
-            ctx,
-            &legend,
-            f64::from(w) / ctx.scale - 20.0,
-        ));
-        let (upper, lower) = root.split_vertically(h as i32 - lh);
-        style::draw_legend(&lower, ctx, &legend)?;
+        let upper = style::above_legend(root, ctx, &legend)?;
+        let (w, _) = ctx.pixels();
         let (x0, x1) = (0.0, self.alpha_deg);
         let (y0, y1) = (0.0, y_top(self));
         let mut chart = ChartBuilder::on(&upper)

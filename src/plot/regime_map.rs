@@ -185,14 +185,7 @@ impl Figure for RegimeMap {
         ctx: &PlotContext,
     ) -> DrawResult<(), DB> {
         let legend = self.legend();
-        let (w, h) = ctx.pixels();
-        let lh = ctx.px(style::legend_height(
-            ctx,
-            &legend,
-            f64::from(w) / ctx.scale - 20.0,
-        ));
-        let (upper, lower) = root.split_vertically(h as i32 - lh);
-        style::draw_legend(&lower, ctx, &legend)?;
+        let upper = style::above_legend(root, ctx, &legend)?;
         if self.mu.len() < 2 || self.k.len() < 2 {
             upper.draw(&Text::new(
                 "The regime map needs at least two values of μ and of K.".to_string(),

@@ -69,14 +69,8 @@ impl Figure for StateDrawing {
         ctx: &PlotContext,
     ) -> DrawResult<(), DB> {
         let legend = self.legend();
-        let (w, h) = ctx.pixels();
-        let lh = ctx.px(style::legend_height(
-            ctx,
-            &legend,
-            f64::from(w) / ctx.scale - 20.0,
-        ));
-        let (upper, lower) = root.split_vertically(h as i32 - lh);
-        style::draw_legend(&lower, ctx, &legend)?;
+        let upper = style::above_legend(root, ctx, &legend)?;
+        let (w, _) = ctx.pixels();
         // Title and subtitle.
         let title_font = ctx.font(17.0).pos(Pos::new(HPos::Center, VPos::Top));
         upper.draw(&Text::new(

@@ -187,6 +187,20 @@ fn legend_rows(ctx: &PlotContext, items: &[LegendItem], width: f64) -> Vec<(Vec<
     rows
 }
 
+/// Draws the legend in a strip along the bottom of `root` and returns the area above it,
+/// where the chart goes.
+pub fn above_legend<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    ctx: &PlotContext,
+    items: &[LegendItem],
+) -> DrawResult<DrawingArea<DB, Shift>, DB> {
+    let (w, h) = ctx.pixels();
+    let lh = ctx.px(legend_height(ctx, items, f64::from(w) / ctx.scale - 20.0));
+    let (upper, lower) = root.split_vertically(h as i32 - lh);
+    draw_legend(&lower, ctx, items)?;
+    Ok(upper)
+}
+
 /// Height in design pixels of a legend of `items` in `width` design pixels.
 pub fn legend_height(ctx: &PlotContext, items: &[LegendItem], width: f64) -> f64 {
     if items.is_empty() {
