@@ -762,6 +762,9 @@ pub struct AccuracyRow {
 
 /// The accuracy rows of a run (empty without references).
 pub fn accuracy_rows(data: &RunData) -> Vec<AccuracyRow> {
+    if data.reference.is_empty() {
+        return Vec::new();
+    }
     let by_id: HashMap<u64, &crate::store::ResultRow> =
         data.results.iter().map(|r| (r.case_id, r)).collect();
     // Per (quantity, N): value, continuum value, solve time, continuum solve time.

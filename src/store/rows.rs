@@ -195,13 +195,13 @@ pub fn read_results(path: &Path) -> Result<Vec<ResultRow>> {
     let f = |name: &str| f64_column(&df, name).with_context(cx);
     let s = |name: &str| str_column(&df, name).with_context(cx);
     let case_id = u64_column(&df, "case_id").with_context(cx)?;
-    let load_case = required(s("load_case")?, "load_case", path)?;
-    let find = required(s("find")?, "find", path)?;
+    let mut load_case = required(s("load_case")?, "load_case", path)?;
+    let mut find = required(s("find")?, "find", path)?;
     let (k, t_over_r, mu) = (f("k")?, f("t_over_r")?, f("mu")?);
     let half = required_f64(f("half_angle_deg")?, "half_angle_deg", path)?;
-    let weight = required(s("weight")?, "weight", path)?;
+    let mut weight = required(s("weight")?, "weight", path)?;
     let voussoirs = f("voussoirs")?;
-    let (outcome, regime) = (s("outcome")?, s("regime")?);
+    let (mut outcome, mut regime) = (s("outcome")?, s("regime")?);
     let (rmin, rmax, smin, smax) = (
         f("thrust_r_min")?,
         f("thrust_r_max")?,
@@ -209,28 +209,28 @@ pub fn read_results(path: &Path) -> Result<Vec<ResultRow>> {
         f("thrust_s_max")?,
     );
     let (k_crit, t_crit, mu_crit) = (f("k_crit")?, f("t_over_r_crit")?, f("mu_crit")?);
-    let mechanism = s("mechanism")?;
+    let mut mechanism = s("mechanism")?;
     let (thrust, moment) = (f("thrust_over_half_weight")?, f("crown_moment")?);
     let joints = joint_lists(&df).with_context(cx)?;
     let (tmin, tmax) = (f("thrust_min")?, f("thrust_max")?);
     let (kcr, murm) = (f("k_c_rotational")?, f("mu_rotational_mixed")?);
     let (mumin, kms) = (f("mu_min")?, f("k_mixed_sliding")?);
-    let status = required(s("status")?, "status", path)?;
+    let mut status = required(s("status")?, "status", path)?;
     let time = f("solve_time_us")?;
     let mut out = Vec::with_capacity(case_id.len());
     for (i, joints) in joints.into_iter().enumerate() {
         out.push(ResultRow {
             case_id: case_id[i],
-            load_case: load_case[i].clone(),
-            find: find[i].clone(),
+            load_case: std::mem::take(&mut load_case[i]),
+            find: std::mem::take(&mut find[i]),
             k: k[i],
             t_over_r: t_over_r[i],
             mu: mu[i],
             half_angle_deg: half[i],
-            weight: weight[i].clone(),
+            weight: std::mem::take(&mut weight[i]),
             voussoirs: voussoirs[i].map(|v| v as u32),
-            outcome: outcome[i].clone(),
-            regime: regime[i].clone(),
+            outcome: outcome[i].take(),
+            regime: regime[i].take(),
             thrust_r_min: rmin[i],
             thrust_r_max: rmax[i],
             thrust_s_min: smin[i],
@@ -238,7 +238,7 @@ pub fn read_results(path: &Path) -> Result<Vec<ResultRow>> {
             k_crit: k_crit[i],
             t_over_r_crit: t_crit[i],
             mu_crit: mu_crit[i],
-            mechanism: mechanism[i].clone(),
+            mechanism: mechanism[i].take(),
             thrust_over_half_weight: thrust[i],
             crown_moment: moment[i],
             joints,
@@ -248,7 +248,7 @@ pub fn read_results(path: &Path) -> Result<Vec<ResultRow>> {
             mu_rotational_mixed: murm[i],
             mu_min: mumin[i],
             k_mixed_sliding: kms[i],
-            status: status[i].clone(),
+            status: std::mem::take(&mut status[i]),
             solve_time_us: time[i].unwrap_or(f64::NAN),
         });
     }
