@@ -440,6 +440,27 @@ fn price<const D: usize>(
     let mut best1: Option<(f64, usize)> = None;
     let mut best0: Option<(f64, usize)> = None;
     let mut max_violation = f64::NEG_INFINITY;
+    if !phase1 {
+        // Phase 2: the M-part of every real row is zero, so only its finite violation counts
+        // (the same test as below, without the M-part branches, on the hot loop).
+        for (k, ((row, &inv), (&bk, &basic))) in
+            t.a.iter()
+                .zip(&t.inv_norm)
+                .zip(t.b.iter().zip(in_basis))
+                .enumerate()
+        {
+            if inv == 0.0 || basic {
+                continue;
+            }
+            let v0 = (dot(row, &v.x0) - bk) * inv;
+            if v0 > max_violation {
+                max_violation = v0;
+            }
+            if v0 > tol0 && best0.is_none_or(|(s, _)| !bland && v0 > s) {
+                best0 = Some((v0, k));
+            }
+        }
+    }
     let mut consider = |k: usize, row: &[f64; D], inv: f64, b0: f64, b1: f64| {
         let v1 = if phase1 {
             (dot(row, &v.x1) - b1) * inv
@@ -463,16 +484,18 @@ fn price<const D: usize>(
             best0 = Some((v0, k));
         }
     };
-    for (k, ((row, &inv), (&bk, &basic))) in
-        t.a.iter()
-            .zip(&t.inv_norm)
-            .zip(t.b.iter().zip(in_basis))
-            .enumerate()
-    {
-        if inv == 0.0 || basic {
-            continue;
+    if phase1 {
+        for (k, ((row, &inv), (&bk, &basic))) in
+            t.a.iter()
+                .zip(&t.inv_norm)
+                .zip(t.b.iter().zip(in_basis))
+                .enumerate()
+        {
+            if inv == 0.0 || basic {
+                continue;
+            }
+            consider(k, row, inv, bk, 0.0);
         }
-        consider(k, row, inv, bk, 0.0);
     }
     for i in 0..D {
         let k = t.m + i;
