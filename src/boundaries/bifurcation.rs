@@ -21,9 +21,6 @@ use crate::analysis::MechanismKind;
 use crate::analysis::symmetric::CriticalState;
 use std::sync::OnceLock;
 
-/// Relative step above the rotational K_c at which the rotational/mixed bifurcation is solved.
-const RM_NUDGE: f64 = 1e-11;
-
 /// The two kinds of bifurcation of a symmetric arch.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Kind {
@@ -83,14 +80,10 @@ impl<'a> Landmarks<'a> {
     pub fn rotational_mixed(&self) -> Option<&CriticalState> {
         self.rotational_mixed
             .get_or_init(|| {
+                // `friction` at K_c itself locates μ against the plateau of the margin, so the
+                // rotational state's own K is used, no nudge.
                 let k = self.rotational()?.k;
-                // At K_c itself H^r is a single thrust only to rounding (the peak margin sits
-                // at the classification tolerance) and the margin in μ is noise above μ_c:
-                // solve just thicker, where H^r is a clearly non-empty sliver around that
-                // thrust. The error in μ is |dμ_c/dK|·δ, far below any tolerance.
-                let mut s = self.probe.friction(k * (1.0 + RM_NUDGE)).found().cloned()?;
-                s.k = k;
-                Some(s)
+                self.probe.friction(k).found().cloned()
             })
             .as_ref()
     }
