@@ -109,19 +109,13 @@ pub fn rotational_domain(sym: &SymmetricCircular) -> RotationalDomain {
         h_peak.signum() * FAR
     };
     let root_toward = |dir: f64| -> f64 {
-        let mut step = 1.0;
-        let mut x = start + dir * step;
-        while phi(x) >= 0.0 {
-            if step > 4.0 * FAR {
-                return dir * f64::INFINITY;
-            }
-            step *= 2.0;
-            x = start + dir * step;
-        }
         if phi(start) < 0.0 {
             return start;
         }
-        brent(phi, x, start, 1e-15).unwrap_or(start)
+        match bracket_negative(&phi, start, dir) {
+            Some(x) => brent(phi, x, start, 1e-15).unwrap_or(start),
+            None => dir * f64::INFINITY,
+        }
     };
     let lo = if h_peak == f64::NEG_INFINITY {
         f64::NEG_INFINITY
@@ -313,7 +307,7 @@ fn stability_margin(sym: &SymmetricCircular, sd: &Interval) -> (f64, f64) {
     if sd.hi.is_finite() && (hp.is_infinite() || sd.hi - hp < g) {
         let top = if hp.is_finite() { hp } else { sd.hi };
         let f = |h: f64| phi(h) + h - sd.hi;
-        if let Some(lo) = bracket_below(&f, top)
+        if let Some(lo) = bracket_negative(&f, top, -1.0)
             && let Some(h) = brent(&f, lo, top, 1e-15)
         {
             consider(h);
@@ -322,7 +316,7 @@ fn stability_margin(sym: &SymmetricCircular, sd: &Interval) -> (f64, f64) {
     // Φ(h) = h − h_s,min right of the peak (Φ − h falls there).
     if sd.lo.is_finite() && hp.is_finite() && hp - sd.lo < g {
         let f = |h: f64| phi(h) - h + sd.lo;
-        if let Some(hi) = bracket_above(&f, hp)
+        if let Some(hi) = bracket_negative(&f, hp, 1.0)
             && let Some(h) = brent(&f, hi, hp, 1e-15)
         {
             consider(h);
@@ -334,24 +328,12 @@ fn stability_margin(sym: &SymmetricCircular, sd: &Interval) -> (f64, f64) {
     best
 }
 
-/// A point left of `x` where the increasing function `f` is negative.
-fn bracket_below(f: &impl Fn(f64) -> f64, x: f64) -> Option<f64> {
+/// A point beyond `x` in direction `dir` (±1) where `f` is negative, stepping by doubling:
+/// left of `x` for an increasing `f`, right of it for a decreasing one.
+fn bracket_negative(f: &impl Fn(f64) -> f64, x: f64, dir: f64) -> Option<f64> {
     let mut step = 1.0;
     while step < 4.0 * FAR {
-        let y = x - step;
-        if f(y) < 0.0 {
-            return Some(y);
-        }
-        step *= 2.0;
-    }
-    None
-}
-
-/// A point right of `x` where the decreasing function `f` is negative.
-fn bracket_above(f: &impl Fn(f64) -> f64, x: f64) -> Option<f64> {
-    let mut step = 1.0;
-    while step < 4.0 * FAR {
-        let y = x + step;
+        let y = x + dir * step;
         if f(y) < 0.0 {
             return Some(y);
         }
