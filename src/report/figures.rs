@@ -332,57 +332,60 @@ fn critical(data: &RunData, lc: &str, on: &str) -> Option<CriticalChart> {
         (paper::MU_ROTATIONAL_MIXED, paper::K_C),
         (paper::MU_MIN, paper::K_MIXED_SLIDING),
     ];
-    let panel_a = |curve: Vec<(f64, f64)>| CriticalPanel {
-        title: "(a) collapse thickness K_c(μ)".into(),
-        x_desc: "friction coefficient μ".into(),
-        y_desc: "collapse thickness ratio K_c = R/r".into(),
-        curve,
-        bifurcations: bifs
-            .iter()
-            .map(|b| PointMark {
-                x: b.mu,
-                y: b.k,
-                label: String::new(),
-            })
-            .collect(),
-        paper: if paper {
-            paper_pts
+    // Both panels show the same points, with μ and K on swapped axes.
+    let panel = |title: &str, x_desc: &str, y_desc: &str, curve, k_on_x: bool| {
+        let xy = |mu: f64, k: f64| if k_on_x { (k, mu) } else { (mu, k) };
+        CriticalPanel {
+            title: title.into(),
+            x_desc: x_desc.into(),
+            y_desc: y_desc.into(),
+            curve,
+            bifurcations: bifs
                 .iter()
-                .map(|(m, k)| PointMark {
-                    x: m.value,
-                    y: k.value,
-                    label: format!("paper: μ = {}, K = {}", m.text, k.text),
+                .map(|b| {
+                    let (x, y) = xy(b.mu, b.k);
+                    PointMark {
+                        x,
+                        y,
+                        label: String::new(),
+                    }
                 })
-                .collect()
-        } else {
-            Vec::new()
-        },
+                .collect(),
+            paper: if paper {
+                paper_pts
+                    .iter()
+                    .map(|(m, k)| {
+                        let (x, y) = xy(m.value, k.value);
+                        let label = if k_on_x {
+                            format!("paper: K = {}, μ = {}", k.text, m.text)
+                        } else {
+                            format!("paper: μ = {}, K = {}", m.text, k.text)
+                        };
+                        PointMark { x, y, label }
+                    })
+                    .collect()
+            } else {
+                Vec::new()
+            },
+        }
     };
-    let panel_b = |curve: Vec<(f64, f64)>| CriticalPanel {
-        title: "(b) critical friction μ_c(K)".into(),
-        x_desc: "thickness ratio K = R/r".into(),
-        y_desc: "critical friction coefficient μ_c".into(),
-        curve,
-        bifurcations: bifs
-            .iter()
-            .map(|b| PointMark {
-                x: b.k,
-                y: b.mu,
-                label: String::new(),
-            })
-            .collect(),
-        paper: if paper {
-            paper_pts
-                .iter()
-                .map(|(m, k)| PointMark {
-                    x: k.value,
-                    y: m.value,
-                    label: format!("paper: K = {}, μ = {}", k.text, m.text),
-                })
-                .collect()
-        } else {
-            Vec::new()
-        },
+    let panel_a = |curve: Vec<(f64, f64)>| {
+        panel(
+            "(a) collapse thickness K_c(μ)",
+            "friction coefficient μ",
+            "collapse thickness ratio K_c = R/r",
+            curve,
+            false,
+        )
+    };
+    let panel_b = |curve: Vec<(f64, f64)>| {
+        panel(
+            "(b) critical friction μ_c(K)",
+            "thickness ratio K = R/r",
+            "critical friction coefficient μ_c",
+            curve,
+            true,
+        )
     };
     let mut panels = Vec::new();
     match data.manifest.find.as_str() {
