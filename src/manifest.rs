@@ -161,6 +161,7 @@ struct RawLoadCase {
     kind: Spanned<String>,
     at_deg: Option<Spanned<f64>>,
     lambda: Option<Spanned<f64>>,
+    find: Option<Spanned<String>>,
 }
 
 /// A scene listed for drawing.
@@ -237,6 +238,8 @@ pub struct LoadCase {
     /// The given load factor λ of the live part (state, thickness and friction studies).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lambda: Option<f64>,
+    /// What the cases of this load case compute: the load case's own `find`, or the study's.
+    pub find: Find,
 }
 
 impl LoadCase {
@@ -249,6 +252,17 @@ impl LoadCase {
             LoadKind::Point => Load::Point {
                 at_deg: self.at_deg.or(axis_at_deg).unwrap_or(0.0),
             },
+        }
+    }
+
+    /// True when the cases of this load case span the grid axis `axis`: every axis but the
+    /// ones its find finds itself (K for `thickness`, μ for `friction`, both for
+    /// `thresholds`).
+    pub fn spans(&self, axis: AxisName) -> bool {
+        match axis {
+            AxisName::K | AxisName::TOverR => self.find.needs_k(),
+            AxisName::Mu => self.find.needs_mu(),
+            AxisName::HalfAngleDeg | AxisName::Voussoirs | AxisName::AtDeg => true,
         }
     }
 }
@@ -357,7 +371,8 @@ pub struct Manifest {
     pub grid: Vec<GridAxis>,
     /// Load cases.
     pub load_cases: Vec<LoadCase>,
-    /// What each case computes.
+    /// What each case computes, unless its load case names its own find
+    /// ([`LoadCase::find`]).
     pub find: Find,
     /// Scenes to draw.
     pub scenes: Vec<SceneSpec>,
@@ -459,20 +474,11 @@ fn validate(raw: RawManifest, cx: &Ctx) -> Result<Manifest, ManifestError> {
     let arch = validate_arch(&raw.arch, cx)?;
     let find = match &raw.find {
         None => Find::State,
-        Some(f) => Find::parse(&f.value).ok_or_else(|| {
-            cx.err(
-                Some(f.referenced),
-                "find",
-                format!(
-                    "value {:?} is not allowed: use state, thickness, friction, thrust, thresholds or load_factor",
-                    f.value
-                ),
-            )
-        })?,
+        Some(f) => parse_find(f, "find", cx)?,
     };
-    let grid = validate_grid(raw.grid.as_ref(), find, cx)?;
-    let load_cases = validate_load_cases(raw.load_cases.as_deref(), cx)?;
-    check_loads(&raw, &arch, &grid, &load_cases, find, cx)?;
+    let load_cases = validate_load_cases(raw.load_cases.as_deref(), find, cx)?;
+    let grid = validate_grid(raw.grid.as_ref(), &load_cases, cx)?;
+    check_loads(&raw, &arch, &grid, &load_cases, cx)?;
     let mut scenes = Vec::new();
     for s in raw.scenes.iter().flatten() {
         let k = match (&s.value.k, &s.value.t_over_r) {
@@ -537,6 +543,19 @@ fn validate(raw: RawManifest, cx: &Ctx) -> Result<Manifest, ManifestError> {
         find,
         scenes,
         boundary_tolerance,
+    })
+}
+
+fn parse_find(f: &Spanned<String>, key: &str, cx: &Ctx) -> Result<Find, ManifestError> {
+    Find::parse(&f.value).ok_or_else(|| {
+        cx.err(
+            Some(f.referenced),
+            key,
+            format!(
+                "value {:?} is not allowed: use state, thickness, friction, thrust, thresholds or load_factor",
+                f.value
+            ),
+        )
     })
 }
 
@@ -793,7 +812,7 @@ fn check_value(
 
 fn validate_grid(
     g: Option<&RawGrid>,
-    find: Find,
+    lcs: &[LoadCase],
     cx: &Ctx,
 ) -> Result<Vec<GridAxis>, ManifestError> {
     let empty = RawGrid::default();
@@ -805,32 +824,62 @@ fn validate_grid(
             "give either a k axis or a t_over_r axis, not both",
         ));
     }
-    if find == Find::Thickness
-        && let Some(a) = g.k.as_ref().or(g.t_over_r.as_ref())
-    {
-        return Err(cx.err(
-            Some(a.referenced),
-            "grid.k",
-            "a `thickness` study finds K itself: remove the k / t_over_r axis",
-        ));
+    // The distinct finds of the load cases, in order of first appearance.
+    let mut finds: Vec<Find> = Vec::new();
+    for lc in lcs {
+        if !finds.contains(&lc.find) {
+            finds.push(lc.find);
+        }
     }
-    if find == Find::Thresholds
-        && let Some(a) = g.k.as_ref().or(g.t_over_r.as_ref()).or(g.mu.as_ref())
-    {
-        return Err(cx.err(
-            Some(a.referenced),
-            "grid",
-            "a `thresholds` study finds K and μ itself: remove the k, t_over_r and mu axes",
-        ));
+    let spanned = |axis: AxisName| lcs.iter().any(|lc| lc.spans(axis));
+    if let [find] = finds[..] {
+        if find == Find::Thickness
+            && let Some(a) = g.k.as_ref().or(g.t_over_r.as_ref())
+        {
+            return Err(cx.err(
+                Some(a.referenced),
+                "grid.k",
+                "a `thickness` study finds K itself: remove the k / t_over_r axis",
+            ));
+        }
+        if find == Find::Thresholds
+            && let Some(a) = g.k.as_ref().or(g.t_over_r.as_ref()).or(g.mu.as_ref())
+        {
+            return Err(cx.err(
+                Some(a.referenced),
+                "grid",
+                "a `thresholds` study finds K and μ itself: remove the k, t_over_r and mu axes",
+            ));
+        }
+        if find == Find::Friction
+            && let Some(a) = &g.mu
+        {
+            return Err(cx.err(
+                Some(a.referenced),
+                "grid.mu",
+                "a `friction` study finds μ itself: remove the mu axis",
+            ));
+        }
     }
-    if find == Find::Friction
-        && let Some(a) = &g.mu
-    {
-        return Err(cx.err(
-            Some(a.referenced),
-            "grid.mu",
-            "a `friction` study finds μ itself: remove the mu axis",
-        ));
+    for (name, ax) in [
+        (AxisName::K, &g.k),
+        (AxisName::TOverR, &g.t_over_r),
+        (AxisName::Mu, &g.mu),
+    ] {
+        if let Some(ax) = ax
+            && !spanned(name)
+        {
+            let finds: Vec<&str> = finds.iter().map(|f| f.as_str()).collect();
+            return Err(cx.err(
+                Some(ax.referenced),
+                &format!("grid.{}", name.as_str()),
+                format!(
+                    "no load case uses this axis: their finds ({}) find {} themselves; remove the axis",
+                    finds.join(", "),
+                    if name == AxisName::Mu { "μ" } else { "K" }
+                ),
+            ));
+        }
     }
     let mut axes = Vec::new();
     // Plan order, outermost first: geometry, then K, then μ innermost.
@@ -853,29 +902,41 @@ fn validate_grid(
         .iter()
         .any(|a| matches!(a.name, AxisName::K | AxisName::TOverR));
     let has_mu = axes.iter().any(|a| a.name == AxisName::Mu);
-    if find.needs_k() && !has_k {
-        return Err(ManifestError {
-            path: cx.path.to_path_buf(),
-            position: None,
-            key: Some("grid".into()),
-            message: format!("a `{find}` study needs a k (or t_over_r) axis"),
-        });
-    }
-    if find.needs_mu() && !has_mu && find != Find::Thickness {
-        return Err(ManifestError {
-            path: cx.path.to_path_buf(),
-            position: None,
-            key: Some("grid".into()),
-            message: format!(
-                "a `{find}` study needs a mu axis (use values: [inf] for infinite friction)"
-            ),
-        });
+    // Which study needs the axis: the whole study when every load case has the same find.
+    let whose = |lc: &LoadCase| {
+        if finds.len() == 1 {
+            format!("a `{}` study", lc.find)
+        } else {
+            format!("load case {:?} (find {})", lc.name, lc.find)
+        }
+    };
+    for lc in lcs {
+        if lc.find.needs_k() && !has_k {
+            return Err(ManifestError {
+                path: cx.path.to_path_buf(),
+                position: None,
+                key: Some("grid".into()),
+                message: format!("{} needs a k (or t_over_r) axis", whose(lc)),
+            });
+        }
+        if lc.find.needs_mu() && !has_mu && lc.find != Find::Thickness {
+            return Err(ManifestError {
+                path: cx.path.to_path_buf(),
+                position: None,
+                key: Some("grid".into()),
+                message: format!(
+                    "{} needs a mu axis (use values: [inf] for infinite friction)",
+                    whose(lc)
+                ),
+            });
+        }
     }
     Ok(axes)
 }
 
 fn validate_load_cases(
     l: Option<&[Spanned<RawLoadCase>]>,
+    find: Find,
     cx: &Ctx,
 ) -> Result<Vec<LoadCase>, ManifestError> {
     let Some(list) = l else {
@@ -884,6 +945,7 @@ fn validate_load_cases(
             kind: LoadKind::SelfWeight,
             at_deg: None,
             lambda: None,
+            find,
         }]);
     };
     if list.is_empty() {
@@ -981,6 +1043,10 @@ fn validate_load_cases(
             kind,
             at_deg: lc.value.at_deg.as_ref().map(|a| a.value),
             lambda: lc.value.lambda.as_ref().map(|l| l.value),
+            find: match &lc.value.find {
+                None => find,
+                Some(f) => parse_find(f, "load_cases.find", cx)?,
+            },
         });
     }
     Ok(out)
@@ -993,7 +1059,6 @@ fn check_loads(
     arch: &ArchOptions,
     grid: &[GridAxis],
     lcs: &[LoadCase],
-    find: Find,
     cx: &Ctx,
 ) -> Result<(), ManifestError> {
     let raw_lcs: &[Spanned<RawLoadCase>] = raw.load_cases.as_deref().unwrap_or(&[]);
@@ -1008,6 +1073,7 @@ fn check_loads(
     let case_at = |i: usize| raw_lcs.get(i).map(|l| l.referenced);
     for (i, lc) in lcs.iter().enumerate() {
         let live = lc.kind.is_live();
+        let find = lc.find;
         if find == Find::LoadFactor && !live {
             return Err(cx.err(
                 kind_at(i),
@@ -1098,7 +1164,12 @@ fn check_loads(
             _ => {}
         }
     }
-    if matches!(find, Find::Thrust | Find::Thresholds) && !form.is_circular_radial() {
+    if let Some(find) = lcs
+        .iter()
+        .map(|lc| lc.find)
+        .find(|f| matches!(f, Find::Thrust | Find::Thresholds))
+        && !form.is_circular_radial()
+    {
         return Err(cx.err(
             raw.arch
                 .shape
@@ -1226,6 +1297,86 @@ mod tests {
 
     fn p(s: &str) -> Result<Manifest, ManifestError> {
         parse(s, Path::new("study.yaml"))
+    }
+
+    const TWO_FINDS: &str = "name: a
+grid:
+  voussoirs: {values: [8, continuum]}
+  t_over_r: {values: [0.15]}
+  mu: {values: [0.4]}
+load_cases:
+  - {name: gravity, kind: self_weight}
+  - {name: wind, kind: horizontal, find: load_factor}
+find: thresholds
+";
+
+    #[test]
+    fn a_load_case_may_name_its_own_find() {
+        let m = p(TWO_FINDS).unwrap();
+        assert_eq!(m.find, Find::Thresholds);
+        assert_eq!(m.load_cases[0].find, Find::Thresholds);
+        assert_eq!(m.load_cases[1].find, Find::LoadFactor);
+        // The thresholds find K and μ: their load case spans the voussoir axis only.
+        let spans =
+            |lc: &LoadCase| -> Vec<bool> { m.grid.iter().map(|a| lc.spans(a.name)).collect() };
+        assert_eq!(spans(&m.load_cases[0]), [true, false, false]);
+        assert_eq!(spans(&m.load_cases[1]), [true, true, true]);
+        // The resolved manifest (run.json) names every load case's find.
+        let json = serde_json::to_value(&m).unwrap();
+        assert_eq!(json["load_cases"][0]["find"], "thresholds");
+        assert_eq!(json["load_cases"][1]["find"], "load_factor");
+    }
+
+    #[test]
+    fn per_load_case_finds_are_checked_against_the_axes_and_loads() {
+        // An axis that no load case spans.
+        let e = p("name: a
+grid:
+  voussoirs: {values: [8]}
+  mu: {values: [0.4]}
+load_cases:
+  - {name: gravity, kind: self_weight}
+  - {name: more, kind: self_weight, find: friction}
+find: thresholds
+")
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("study.yaml:4:")
+                && e.contains("grid.mu")
+                && e.contains("no load case uses this axis")
+                && e.contains("thresholds, friction"),
+            "{e}"
+        );
+        // A load case whose find needs an axis the grid lacks is named.
+        let e = p(&TWO_FINDS.replace("  mu: {values: [0.4]}\n", ""))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("load case \"wind\" (find load_factor) needs a mu axis"),
+            "{e}"
+        );
+        // Each load case's find is checked against its load.
+        let e = p(&TWO_FINDS.replace(
+            "kind: horizontal, find: load_factor",
+            "kind: horizontal, find: thrust",
+        ))
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("load_cases.kind") && e.contains("defined for self_weight only"),
+            "{e}"
+        );
+        // An unknown find is located at the load case.
+        let e = p(&TWO_FINDS.replace("find: load_factor", "find: lambda"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("study.yaml:8:")
+                && e.contains("load_cases.find")
+                && e.contains("\"lambda\""),
+            "{e}"
+        );
     }
 
     #[test]

@@ -1,6 +1,7 @@
 //! The plan: the cartesian product of the grid axes and the load cases, in a stable order
 //! with stable case ids (load case outermost, then the axes in manifest plan order, μ
-//! innermost).
+//! innermost). A load case spans the axes its find uses: a `thresholds` load case in a study
+//! whose other load cases have k and mu axes has one case per value of the other axes.
 
 use crate::manifest::{AxisName, LoadCase, Manifest};
 use crate::model::{Arch, Discretisation, Friction, Load, k_from_t_over_r};
@@ -41,11 +42,16 @@ pub struct PlanTooLarge {
 
 /// Number of cases a manifest asks for.
 pub fn case_count(m: &Manifest) -> u128 {
-    m.grid
+    m.load_cases
         .iter()
-        .map(|a| a.values.len() as u128)
-        .product::<u128>()
-        * m.load_cases.len() as u128
+        .map(|lc| {
+            m.grid
+                .iter()
+                .filter(|a| lc.spans(a.name))
+                .map(|a| a.values.len() as u128)
+                .product::<u128>()
+        })
+        .sum()
 }
 
 /// Expands a manifest into its cases.
@@ -55,10 +61,22 @@ pub fn build(manifest: Manifest) -> Result<Plan, PlanTooLarge> {
         return Err(PlanTooLarge { requested });
     }
     let mut cases = Vec::with_capacity(requested as usize);
-    let dims: Vec<usize> = manifest.grid.iter().map(|a| a.values.len()).collect();
-    let per_lc: usize = dims.iter().product();
     let mut id = 0u64;
-    for (lc, _) in manifest.load_cases.iter().enumerate() {
+    for (lc, load_case) in manifest.load_cases.iter().enumerate() {
+        // The axes this load case spans stay at their first value for the others (never
+        // read: the scene finds that parameter itself).
+        let dims: Vec<usize> = manifest
+            .grid
+            .iter()
+            .map(|a| {
+                if load_case.spans(a.name) {
+                    a.values.len()
+                } else {
+                    1
+                }
+            })
+            .collect();
+        let per_lc: usize = dims.iter().product();
         let mut idx = vec![0usize; dims.len()];
         for _ in 0..per_lc {
             let scene = scene_at(&manifest, lc, &idx);
@@ -88,7 +106,11 @@ fn scene_at(m: &Manifest, lc: usize, idx: &[usize]) -> Scene {
     // K for finds that do not use it: a placeholder the analysis ignores.
     let mut k = 2.0;
     let mut mu = f64::INFINITY;
+    let case = m.load_cases.get(lc);
     for (axis, &i) in m.grid.iter().zip(idx) {
+        if case.is_some_and(|c| !c.spans(axis.name)) {
+            continue;
+        }
         let v = axis.values[i];
         match axis.name {
             AxisName::K => k = v,
@@ -113,11 +135,10 @@ fn scene_at(m: &Manifest, lc: usize, idx: &[usize]) -> Scene {
         joints,
     };
     let friction = Friction::new(mu).unwrap_or(Friction::INFINITE);
-    let case = m.load_cases.get(lc);
     Scene {
         arch,
         friction,
-        find: m.find,
+        find: case.map_or(m.find, |c| c.find),
         form: m.arch.form(),
         load: case.map_or(Load::SelfWeight, |c| c.load(at_deg)),
         lambda: case.and_then(|c| c.lambda).unwrap_or(0.0),
@@ -135,9 +156,12 @@ impl Plan {
     /// H^s on μ only). Live loads and other forms go case by case through the general
     /// formulation.
     pub fn is_separable_state_grid(&self) -> bool {
-        self.manifest.find == Find::State
-            && self.manifest.arch.form().is_circular_radial()
-            && self.manifest.load_cases.iter().all(|l| !l.kind.is_live())
+        self.manifest.arch.form().is_circular_radial()
+            && self
+                .manifest
+                .load_cases
+                .iter()
+                .all(|l| l.find == Find::State && !l.kind.is_live())
     }
 
     /// A readable description of the plan for `archstudy check`.
@@ -174,6 +198,9 @@ impl Plan {
                 if let Some(x) = l.lambda {
                     d.push_str(&format!(", λ = {x}"));
                 }
+                if l.find != m.find {
+                    d.push_str(&format!(", find {}", l.find));
+                }
                 d.push(')');
                 d
             })
@@ -181,5 +208,68 @@ impl Plan {
         s.push_str(&format!("load cases: {}\n", names.join(", ")));
         s.push_str(&format!("cases: {}\n", self.cases.len()));
         s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    #[test]
+    fn load_cases_span_the_axes_of_their_own_find() {
+        let m = crate::manifest::parse(
+            "name: a
+grid:
+  voussoirs: {values: [8, 64, continuum]}
+  t_over_r: {values: [0.15, 0.2]}
+  mu: {values: [0.4]}
+load_cases:
+  - {name: gravity, kind: self_weight}
+  - {name: wind, kind: horizontal, find: load_factor}
+find: thresholds
+",
+            Path::new("a.yaml"),
+        )
+        .unwrap();
+        assert_eq!(case_count(&m), 3 + 3 * 2);
+        let plan = build(m).unwrap();
+        let ids: Vec<u64> = plan.cases.iter().map(|c| c.id).collect();
+        assert_eq!(ids, (0..9).collect::<Vec<_>>());
+        let (gravity, wind) = plan.cases.split_at(3);
+        assert!(
+            gravity
+                .iter()
+                .all(|c| c.load_case == 0 && c.scene.find == Find::Thresholds)
+        );
+        assert_eq!(
+            gravity
+                .iter()
+                .map(|c| c.scene.arch.joints)
+                .collect::<Vec<_>>(),
+            [
+                Discretisation::Voussoirs(8),
+                Discretisation::Voussoirs(64),
+                Discretisation::Continuum
+            ]
+        );
+        assert!(
+            wind.iter()
+                .all(|c| c.load_case == 1 && c.scene.find == Find::LoadFactor)
+        );
+        // K varies inside the voussoir count, μ innermost.
+        let k = |t| k_from_t_over_r(t);
+        let got: Vec<(Discretisation, f64, f64)> = wind
+            .iter()
+            .map(|c| (c.scene.arch.joints, c.scene.arch.k, c.scene.friction.mu()))
+            .collect();
+        assert_eq!(got[0], (Discretisation::Voussoirs(8), k(0.15), 0.4));
+        assert_eq!(got[1], (Discretisation::Voussoirs(8), k(0.2), 0.4));
+        assert_eq!(got[5], (Discretisation::Continuum, k(0.2), 0.4));
+        assert!(!plan.is_separable_state_grid());
+        assert!(
+            plan.describe()
+                .contains("wind (horizontal, find load_factor)")
+        );
     }
 }

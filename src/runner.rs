@@ -211,7 +211,7 @@ fn write_run_json(layout: &RunLayout, info: &RunInfo) -> Result<()> {
 fn publish(plan: &Plan, layout: &RunLayout, info: &mut RunInfo) -> Result<()> {
     write_run_json(layout, info)?;
     let t = Instant::now();
-    figdata::run(&plan.manifest, layout)?;
+    figdata::run(plan, layout)?;
     let mut data = report::data::load(layout)?;
     let figs = report::draw_figures(&data, layout)?;
     info.stages.plots_ms = ms(t);

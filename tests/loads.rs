@@ -854,3 +854,68 @@ fn load_factor_agrees_with_the_work_equation_of_its_mechanism() {
         assert!(s.work_residual.unwrap() < 1e-9, "{load:?}: {s:?}");
     }
 }
+
+#[test]
+fn one_study_converges_thresholds_and_a_horizontal_load_factor() {
+    // The shape of studies/convergence.yaml on a few counts: the self-weight load case finds
+    // the thresholds, the horizontal one its load factor at t/R_c = 0.15, μ = 0.4.
+    let dir = scratch("loads-two-finds");
+    let text = "name: conv
+grid:
+  voussoirs: {values: [8, 64, 512, continuum]}
+  t_over_r: {values: [0.15]}
+  mu: {values: [0.4]}
+load_cases:
+  - {name: gravity, kind: self_weight}
+  - {name: wind, kind: horizontal, find: load_factor}
+find: thresholds
+";
+    let o = run_study(&dir, "conv", text);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let run = dir.join("out/conv");
+    let rows = store::read_results(&run.join("results.parquet")).unwrap();
+    assert_eq!(rows.len(), 8);
+    let (gravity, wind): (Vec<_>, Vec<_>) = rows.iter().partition(|r| r.load_case == "gravity");
+    assert!(gravity.iter().all(|r| r.find == "thresholds" && r.k.is_none()));
+    assert!(wind.iter().all(|r| r.find == "load_factor" && r.mu == Some(0.4)));
+    // The continuum thresholds of the paper, in the same run as the load factor.
+    let cont = gravity.iter().find(|r| r.voussoirs.is_none()).unwrap();
+    assert!(close(cont.k_c_rotational.unwrap(), K_C, 1e-9));
+    assert!(close(cont.mu_min.unwrap(), MU_MIN, 1e-9));
+    // The continuum load factor, checked against a model of 4096 voussoirs solved apart:
+    // a discrete arch has fewer potential joints, so it carries at least as much.
+    let lambda = |n: Option<u32>| {
+        wind.iter()
+            .find(|r| r.voussoirs == n)
+            .and_then(|r| r.load_factor)
+            .unwrap()
+    };
+    let lc = lambda(None);
+    let k = archstudy::model::k_from_t_over_r(0.15);
+    let fine = lambda_max(
+        arch(k, Discretisation::Voussoirs(4096)),
+        mu(0.4),
+        ArchForm::default(),
+        Load::Horizontal,
+    )
+    .load_factor
+    .unwrap();
+    assert!(fine >= lc && fine - lc < 1e-7, "{lc} against N = 4096: {fine}");
+    assert!(close(lc, 0.05246891, 1e-8), "{lc}");
+    for n in [8, 64, 512] {
+        assert!(lambda(Some(n)) > lc, "N = {n}");
+    }
+    assert!(lambda(Some(512)) - lc < 1e-5 && lambda(Some(8)) - lc > 1e-3);
+    // Each discrete case's reference is the continuum case of its own load case.
+    let refs = store::read_reference(&run.join("reference.parquet")).unwrap();
+    let lf: Vec<_> = refs.iter().filter(|r| r.quantity == "load_factor").collect();
+    assert_eq!(lf.len(), 3);
+    assert!(lf.iter().all(|r| r.continuum_value == Some(lc)));
+    assert_eq!(refs.iter().filter(|r| r.quantity == "mu_min").count(), 3);
+    // The report tabulates the load factor's convergence beside the thresholds'.
+    let md = std::fs::read_to_string(run.join("report.md")).unwrap();
+    assert!(md.contains("### λ (load factor) (`load_factor`)"), "{md}");
+    let row = format!("| 512 | {:.10} | {:.3e} |", lambda(Some(512)), lambda(Some(512)) - lc);
+    assert!(md.contains(&row), "{row} not in the report");
+    assert!(md.contains("load case wind: load_factor"), "{md}");
+}

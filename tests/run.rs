@@ -307,8 +307,15 @@ fn convergence_study_thresholds_approach_the_continuum() {
     let mu_rm = store::f64_column(&df, "mu_rotational_mixed").unwrap();
     let mu_min = store::f64_column(&df, "mu_min").unwrap();
     let k_ms = store::f64_column(&df, "k_mixed_sliding").unwrap();
-    let last = df.height() - 1;
-    assert!(n[last].is_none(), "the continuum is the last row");
+    let lf = store::f64_column(&df, "load_factor").unwrap();
+    let lc = store::str_column(&df, "load_case").unwrap();
+    // The self-weight thresholds first (25 models, continuum last), then the horizontal
+    // load factor of the same 25 models.
+    assert_eq!(df.height(), 50);
+    let last = 24;
+    assert!(lc[..25].iter().all(|l| l.as_deref() == Some("self_weight")));
+    assert!(lc[25..].iter().all(|l| l.as_deref() == Some("horizontal")));
+    assert!(n[last].is_none() && n[49].is_none(), "the continuum is the last row");
     assert!((kc[last].unwrap() - 1.113581813339).abs() < 1e-9);
     assert!((mu_rm[last].unwrap() - 0.395265252140).abs() < 1e-9);
     assert!((mu_min[last].unwrap() - 0.309215444330).abs() < 1e-9);
@@ -330,4 +337,14 @@ fn convergence_study_thresholds_approach_the_continuum() {
         let e = (col[i4096].unwrap() - col[last].unwrap()).abs();
         assert!(e < 1e-6, "{name}: error {e} at N = 4096");
     }
+    // The horizontal load factor: every discrete arch carries more than the continuum, and
+    // 4096 voussoirs are within 1e-7 of it.
+    let lambda_c = lf[49].unwrap();
+    assert!((lambda_c - 0.05246891).abs() < 1e-8, "{lambda_c}");
+    for i in 25..49 {
+        let l = lf[i].unwrap();
+        assert!(l > lambda_c, "N = {:?}: {l}", n[i]);
+    }
+    let e = lf[25 + i4096].unwrap() - lambda_c;
+    assert!(e < 1e-7, "λ: error {e} at N = 4096");
 }

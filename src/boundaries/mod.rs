@@ -185,7 +185,7 @@ pub fn locate(plan: &Plan, results: &[CaseResult]) -> Located {
         let (b, f) = if !g.scene.uses_closed_forms() {
             general::locate(g, results, tol, &counter)
         } else {
-            match plan.manifest.find {
+            match g.scene.find {
                 Find::State => state_grid::locate(one, results, tol, &counter),
                 Find::Thickness => (
                     Vec::new(),

@@ -8,11 +8,13 @@
 pub mod curves;
 pub mod mechanisms;
 mod reference;
+pub use reference::find_of_quantity;
 
 use crate::analysis::symmetric;
 use crate::manifest::{AxisName, Manifest};
 use crate::model::{Arch, Friction};
 use crate::output::RunLayout;
+use crate::plan::Plan;
 use crate::store::{self, BifurcationRow, CurvePoint, JointLists, StateRow};
 use anyhow::{Context, Result};
 use curves::Samples;
@@ -274,7 +276,8 @@ fn critical_curves(
 }
 
 /// Runs the stage: computes the figure data of a run and writes it into its directory.
-pub fn run(manifest: &Manifest, layout: &RunLayout) -> Result<FigureDataSummary> {
+pub fn run(plan: &Plan, layout: &RunLayout) -> Result<FigureDataSummary> {
+    let manifest = &plan.manifest;
     let bifurcations = if layout.bifurcations().exists() {
         store::read_bifurcations(&layout.bifurcations())?
     } else {
@@ -286,9 +289,12 @@ pub fn run(manifest: &Manifest, layout: &RunLayout) -> Result<FigureDataSummary>
     // The drawings (an arc of a circle, a symmetric line of thrust, H^r and H^s) are those of
     // self-weight on the circular arch with radial joints: other forms and live loads get
     // none rather than wrong ones (docs/loads-and-geometries.md).
-    let drawable = manifest.arch.form().is_circular_radial()
-        && manifest.load_cases.iter().all(|l| !l.kind.is_live());
-    for lc in manifest.load_cases.iter().filter(|_| drawable) {
+    let drawable = manifest.arch.form().is_circular_radial();
+    for lc in manifest
+        .load_cases
+        .iter()
+        .filter(|l| drawable && !l.kind.is_live())
+    {
         let sfx = suffix(manifest, &lc.name);
         let bifs: Vec<&BifurcationRow> = bifurcations
             .iter()
@@ -309,12 +315,12 @@ pub fn run(manifest: &Manifest, layout: &RunLayout) -> Result<FigureDataSummary>
             let id = format!("scene-{}{sfx}", i + 1);
             states.push(scene_state(manifest, id, &lc.name, s.k, s.mu, &mut out)?);
         }
-        if manifest.find == crate::scene::Find::State && single_model(manifest) {
+        if lc.find == crate::scene::Find::State && single_model(manifest) {
             let own: Vec<BifurcationRow> = bifs.into_iter().cloned().collect();
             critical_curves(manifest, &lc.name, &own, &mut out)?;
         }
     }
-    let refs = reference::continuum_references(manifest, layout)?;
+    let refs = reference::continuum_references(plan, layout)?;
     store::write_parquet(&mut store::curves_frame(&out.points)?, &layout.curves())?;
     store::write_parquet(&mut store::states_frame(&states)?, &layout.states())?;
     store::write_parquet(&mut store::reference_frame(&refs)?, &layout.reference())?;

@@ -1,10 +1,10 @@
 //! Continuum reference values for the cases of a discrete arch: the error of each critical
 //! value against the continuum and the cost of both, for the speed-and-accuracy figure.
 
-use crate::manifest::{AxisName, Manifest};
-use crate::model::{Arch, Discretisation, Friction, WeightModel};
+use crate::model::Discretisation;
 use crate::output::RunLayout;
-use crate::scene::{self, Find, Scene, Solution};
+use crate::plan::Plan;
+use crate::scene::{self, Scene, Solution};
 use crate::store::{self, ReferenceRow, ResultRow};
 use anyhow::Result;
 use std::collections::HashMap;
@@ -22,8 +22,17 @@ pub fn quantities_of(find: &str) -> &'static [&'static str] {
             "mu_min",
             "k_mixed_sliding",
         ],
+        "load_factor" => &["load_factor"],
         _ => &[],
     }
+}
+
+/// The find whose results column `quantity` is (the inverse of [`quantities_of`]).
+pub fn find_of_quantity(quantity: &str) -> Option<&'static str> {
+    crate::scene::Find::ALL
+        .iter()
+        .map(|f| f.as_str())
+        .find(|f| quantities_of(f).contains(&quantity))
 }
 
 fn value_of(s: &Solution, quantity: &str) -> Option<f64> {
@@ -36,55 +45,52 @@ fn value_of(s: &Solution, quantity: &str) -> Option<f64> {
         "mu_rotational_mixed" => s.mu_rotational_mixed,
         "mu_min" => s.mu_min,
         "k_mixed_sliding" => s.k_mixed_sliding,
+        "load_factor" => s.load_factor,
         _ => None,
     }
 }
 
-/// What makes two cases the same scene but for the voussoir count.
-type SceneKey = (String, String, [u64; 3], String);
+/// What makes two cases the same scene but for the voussoir count: the load case and the
+/// bits of K, μ, α, the position of a point load and λ.
+type SceneKey = (usize, [u64; 5]);
 
-fn key_of(r: &ResultRow) -> SceneKey {
+fn key_of(load_case: usize, s: &Scene) -> SceneKey {
     (
-        r.find.clone(),
-        r.load_case.clone(),
+        load_case,
         [
-            r.k.unwrap_or(f64::NAN).to_bits(),
-            r.mu.unwrap_or(f64::INFINITY).to_bits(),
-            r.half_angle_deg.to_bits(),
+            s.arch.k.to_bits(),
+            s.friction.mu().to_bits(),
+            s.arch.half_angle.to_bits(),
+            s.load.at_deg().unwrap_or(f64::NAN).to_bits(),
+            s.lambda.to_bits(),
         ],
-        r.weight.clone(),
     )
-}
-
-fn continuum_scene(r: &ResultRow) -> Option<Scene> {
-    let find = Find::parse(&r.find)?;
-    let weight = WeightModel::parse(&r.weight)?;
-    let k = r.k.unwrap_or(2.0);
-    let arch = Arch::new(k, r.half_angle_deg, weight, Discretisation::Continuum).ok()?;
-    let friction = r.mu.and_then(Friction::new).unwrap_or(Friction::INFINITE);
-    Some(Scene::new(arch, friction, find))
 }
 
 /// The continuum value of each compared quantity for every successful discrete case of the
 /// run (empty when the run has no discrete case). The continuum case of the run itself is
-/// used when it has one (same find, load case, K, μ, half-angle and weight model: the
-/// `continuum` entry of a `voussoirs` axis); otherwise each distinct continuum scene is
-/// solved once here.
-pub fn continuum_references(manifest: &Manifest, layout: &RunLayout) -> Result<Vec<ReferenceRow>> {
-    let discrete = manifest.arch.voussoirs != Discretisation::Continuum
-        || manifest.grid.iter().any(|a| a.name == AxisName::Voussoirs);
-    // The references are the closed-form continuum of self-weight on the circular arch with
-    // radial joints; other forms and live loads have none here.
-    let paper = manifest.arch.form().is_circular_radial()
-        && manifest.load_cases.iter().all(|l| !l.kind.is_live());
-    if !discrete || !paper {
+/// used when it has one (the `continuum` entry of a `voussoirs` axis: same load case, K, μ,
+/// half-angle, load position and λ); otherwise each distinct continuum scene is solved once
+/// here, by the same route as the run's own cases.
+pub fn continuum_references(plan: &Plan, layout: &RunLayout) -> Result<Vec<ReferenceRow>> {
+    let discrete = plan
+        .cases
+        .iter()
+        .any(|c| c.scene.arch.joints != Discretisation::Continuum);
+    if !discrete {
         return Ok(Vec::new());
     }
     let rows = store::read_results(&layout.results())?;
+    let case_of = |r: &ResultRow| {
+        usize::try_from(r.case_id)
+            .ok()
+            .and_then(|i| plan.cases.get(i))
+            .filter(|c| c.id == r.case_id)
+    };
     let stored: HashMap<SceneKey, &ResultRow> = rows
         .iter()
         .filter(|r| r.voussoirs.is_none() && r.status == "ok")
-        .map(|r| (key_of(r), r))
+        .filter_map(|r| Some((key_of(case_of(r)?.load_case, &case_of(r)?.scene), r)))
         .collect();
     let mut solved: HashMap<SceneKey, Solution> = HashMap::new();
     let mut out = Vec::new();
@@ -92,17 +98,17 @@ pub fn continuum_references(manifest: &Manifest, layout: &RunLayout) -> Result<V
         .iter()
         .filter(|r| r.voussoirs.is_some() && r.status == "ok")
     {
-        let key = key_of(r);
+        let Some(case) = case_of(r) else {
+            continue;
+        };
+        let key = key_of(case.load_case, &case.scene);
         for &q in quantities_of(&r.find) {
             let (value, time) = if let Some(c) = stored.get(&key) {
                 (c.value_of(q), c.solve_time_us)
             } else {
-                let Some(scene) = continuum_scene(r) else {
-                    continue;
-                };
-                let s = solved
-                    .entry(key.clone())
-                    .or_insert_with(|| scene::solve(&scene));
+                let mut scene = case.scene;
+                scene.arch.joints = Discretisation::Continuum;
+                let s = solved.entry(key).or_insert_with(|| scene::solve(&scene));
                 (value_of(s, q), s.solve_time_us)
             };
             out.push(ReferenceRow {

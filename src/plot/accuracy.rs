@@ -24,8 +24,9 @@ pub struct AccuracyChart {
     pub title: String,
     /// The series.
     pub series: Vec<AccuracySeries>,
-    /// Median solve time of the continuum analyses, µs.
-    pub continuum_time_us: Option<f64>,
+    /// Median solve time of the continuum analyses, µs, with the label of its line (one per
+    /// find of the study).
+    pub continuum_times: Vec<(f64, String)>,
 }
 
 const COLORS: [RGBColor; 6] = [
@@ -72,13 +73,13 @@ fn panel<DB: DrawingBackend>(
     title: &str,
     x_desc: &str,
     series: &[(String, Vec<(f64, f64)>)],
-    vline: Option<(f64, &str)>,
+    vlines: &[(f64, String)],
     joined: bool,
 ) -> DrawResult<(), DB> {
     let xs = series
         .iter()
         .flat_map(|s| s.1.iter().map(|p| p.0))
-        .chain(vline.map(|v| v.0));
+        .chain(vlines.iter().map(|v| v.0));
     let ys = series.iter().flat_map(|s| s.1.iter().map(|p| p.1));
     let (Some((x0, x1)), Some((y0, y1))) = (log_range(xs), log_range(ys)) else {
         area.draw(&Text::new(
@@ -108,7 +109,9 @@ fn panel<DB: DrawingBackend>(
         .light_line_style(BLACK.mix(0.04))
         .bold_line_style(BLACK.mix(0.10).stroke_width(1))
         .draw()?;
-    if let Some((x, label)) = vline {
+    // Labels stacked from the top so that lines close together keep readable labels.
+    for (i, (x, label)) in vlines.iter().enumerate() {
+        let x = *x;
         chart.draw_series(DashedLineSeries::new(
             [(x, y0), (x, y1)],
             ctx.upx(6.0),
@@ -120,7 +123,7 @@ fn panel<DB: DrawingBackend>(
             label.to_string(),
             (
                 c.0 - area.get_base_pixel().0 + ctx.px(4.0),
-                c.1 - area.get_base_pixel().1 + ctx.px(4.0),
+                c.1 - area.get_base_pixel().1 + ctx.px(4.0 + 16.0 * i as f64),
             ),
             ctx.font(12.0).color(&palette::GREY),
         ))?;
@@ -168,7 +171,7 @@ impl Figure for AccuracyChart {
             "(a) error against voussoir count",
             "voussoirs N",
             &by_n,
-            None,
+            &[],
             true,
         )?;
         panel(
@@ -177,7 +180,7 @@ impl Figure for AccuracyChart {
             "(b) error against solve time",
             "median solve time per case (µs)",
             &by_t,
-            self.continuum_time_us.map(|t| (t, "continuum")),
+            &self.continuum_times,
             false,
         )?;
         Ok(())
@@ -201,7 +204,7 @@ impl AccuracyChart {
                 )
             })
             .collect();
-        if self.continuum_time_us.is_some() {
+        if !self.continuum_times.is_empty() {
             items.push(LegendItem::new(
                 "continuum solve time (error 0)",
                 Mark::Line {

@@ -51,6 +51,10 @@ pub struct LoadCaseView {
     pub name: String,
     /// Kind, e.g. `self_weight`.
     pub kind: String,
+    /// What its cases compute (absent in runs stored before load cases had their own find:
+    /// the study's find then).
+    #[serde(default)]
+    pub find: Option<String>,
 }
 
 /// A scene of the resolved manifest.
@@ -100,6 +104,15 @@ impl ManifestView {
                 .iter()
                 .any(|a| a.name == "voussoirs" || a.name == "half_angle_deg")
             && self.load_cases.iter().all(|l| l.kind == "self_weight")
+    }
+
+    /// What the cases of load case `lc` compute: its own find, else the study's.
+    pub fn find_of(&self, lc: &str) -> &str {
+        self.load_cases
+            .iter()
+            .find(|l| l.name == lc)
+            .and_then(|l| l.find.as_deref())
+            .unwrap_or(&self.find)
     }
 
     /// The axis of a name, if the grid has it.

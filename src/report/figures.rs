@@ -139,7 +139,7 @@ const REGIME_CAPTION: &str = "Regimes over the friction coefficient μ (horizont
 
 const CRITICAL_CAPTION: &str = "The collapse thickness K_c(μ) (the smallest K at which the arch stands at friction μ) and the critical friction μ_c(K) (the smallest μ at which an arch of thickness K stands). Dots: bifurcations located in this run; open diamonds: the values printed in the paper, when the study is the paper's case.";
 
-const ACCURACY_CAPTION: &str = "Error of each critical value of a discrete arch of N voussoirs against the continuum value at the same K, μ and load (largest error over the cases with that N), against N (points of one quantity joined in order of N) and against the median solve time per case (one point per N; a thresholds case finds all four quantities in one analysis, so they share its time). The legend gives each quantity's observed order of convergence, the least-squares slope of log|error| against log N over the larger counts. The error need not fall monotonically: it depends on how near a joint of the model lies to the continuum's hinge or sliding section, and a count whose joints include those of a smaller one (512, 1024, 2048, ...) can give the same value. The dashed line marks the median solve time of the continuum analyses, whose error is zero by definition.";
+const ACCURACY_CAPTION: &str = "Error of each critical value of a discrete arch of N voussoirs against the continuum value at the same K, μ and load (largest error over the cases with that N), against N (points of one quantity joined in order of N) and against the median solve time per case (one point per N; a thresholds case finds all four quantities in one analysis, so they share its time). The legend gives each quantity's observed order of convergence, the least-squares slope of log|error| against log N over the larger counts. The error need not fall monotonically: it depends on how near a joint of the model lies to the continuum's hinge or sliding section, and a count whose joints include those of a smaller one (512, 1024, 2048, ...) can give the same value. The dashed line marks the median solve time of the continuum analyses (one line per find when the study has several), whose error is zero by definition.";
 
 fn sorted_distinct(v: impl Iterator<Item = f64>) -> Vec<f64> {
     let mut v: Vec<f64> = v.filter(|x| x.is_finite()).collect();
@@ -149,7 +149,7 @@ fn sorted_distinct(v: impl Iterator<Item = f64>) -> Vec<f64> {
 }
 
 fn regime_map(data: &RunData, lc: &str, on: &str) -> Option<RegimeMap> {
-    if data.manifest.find != "state" || !single_model(data) {
+    if data.manifest.find_of(lc) != "state" || !single_model(data) {
         return None;
     }
     let rows: Vec<_> = data
@@ -388,7 +388,7 @@ fn critical(data: &RunData, lc: &str, on: &str) -> Option<CriticalChart> {
         )
     };
     let mut panels = Vec::new();
-    match data.manifest.find.as_str() {
+    match data.manifest.find_of(lc) {
         "state" => {
             let fig = figdata::critical_figure(lc);
             let a = data.curve(&fig, figdata::K_CRIT_OF_MU);
@@ -735,6 +735,7 @@ pub fn quantity_label(q: &str) -> &'static str {
         "mu_rotational_mixed" => "μ, rotational/mixed",
         "mu_min" => "μ_min",
         "k_mixed_sliding" => "K, mixed/sliding",
+        "load_factor" => "λ (load factor)",
         _ => "value",
     }
 }
@@ -832,6 +833,7 @@ pub fn quantity_rank(q: &str) -> usize {
         "mu_rotational_mixed",
         "mu_min",
         "k_mixed_sliding",
+        "load_factor",
     ]
     .iter()
     .position(|c| *c == q)
@@ -858,7 +860,8 @@ fn accuracy(data: &RunData) -> Option<AccuracyChart> {
     }
     let orders = orders(&rows);
     let mut by_q: BTreeMap<(usize, String), AccuracySeries> = BTreeMap::new();
-    let mut cont_times = Vec::new();
+    // Continuum solve times by find: one find's quantities come from one analysis.
+    let mut cont_times: BTreeMap<&str, Vec<f64>> = BTreeMap::new();
     for r in &rows {
         let s = by_q
             .entry((quantity_rank(&r.quantity), r.quantity.clone()))
@@ -880,13 +883,29 @@ fn accuracy(data: &RunData) -> Option<AccuracyChart> {
             s.by_count.push((f64::from(r.voussoirs), r.max_abs_error));
             s.by_time.push((r.median_time_us, r.max_abs_error));
         }
-        cont_times.push(r.continuum_median_time_us);
+        let find = figdata::find_of_quantity(&r.quantity).unwrap_or("");
+        cont_times
+            .entry(find)
+            .or_default()
+            .push(r.continuum_median_time_us);
     }
-    cont_times.sort_by(f64::total_cmp);
+    let several = cont_times.len() > 1;
+    let continuum_times = cont_times
+        .into_iter()
+        .filter_map(|(find, mut t)| {
+            t.sort_by(f64::total_cmp);
+            let median = super::format::quantile(&t, 0.5);
+            let label = if several {
+                format!("continuum, {}", find.replace('_', " "))
+            } else {
+                "continuum".to_string()
+            };
+            median.is_finite().then_some((median, label))
+        })
+        .collect();
     Some(AccuracyChart {
         title: "Discrete arch against the continuum".into(),
         series: by_q.into_values().collect(),
-        continuum_time_us: Some(super::format::quantile(&cont_times, 0.5))
-            .filter(|t| t.is_finite()),
+        continuum_times,
     })
 }

@@ -284,6 +284,24 @@ fn find_text(f: &str) -> &'static str {
     }
 }
 
+/// The find of the study, or of each load case when they differ.
+fn finds_text(m: &super::data::ManifestView) -> String {
+    let finds: Vec<(&str, &str)> = m
+        .load_cases
+        .iter()
+        .map(|l| (l.name.as_str(), m.find_of(&l.name)))
+        .collect();
+    match finds.first() {
+        Some(&(_, f)) if finds.iter().all(|&(_, g)| g == f) => find_text(f).to_string(),
+        None => find_text(&m.find).to_string(),
+        Some(_) => finds
+            .iter()
+            .map(|(lc, f)| format!("load case {lc}: {}", find_text(f)))
+            .collect::<Vec<_>>()
+            .join("; "),
+    }
+}
+
 /// Builds the view model.
 pub fn build(data: &RunData, figs: &[FigureSpec], svgs: &[String]) -> ReportView {
     let m = &data.manifest;
@@ -328,7 +346,7 @@ pub fn build(data: &RunData, figs: &[FigureSpec], svgs: &[String]) -> ReportView
             "material",
             "rigid voussoirs, no tension, infinite compressive strength, Coulomb friction μ = tan φ",
         ),
-        item("find", find_text(&m.find)),
+        item("find", finds_text(m)),
         item("boundary tolerance", format!("{:e}", m.boundary_tolerance)),
     ];
     let grid = m
@@ -565,49 +583,48 @@ fn key_results(data: &RunData) -> (Vec<KeyResult>, String) {
         }
     }
     // Critical finds: the critical value of each case (about two dozen listed at most).
-    let col = match data.manifest.find.as_str() {
+    let col_of = |r: &crate::store::ResultRow| match r.find.as_str() {
         "thickness" => Some("k_crit"),
         "friction" => Some("mu_crit"),
         _ => None,
     };
-    if let Some(col) = col {
-        let found: Vec<(usize, &crate::store::ResultRow)> = data
-            .results
-            .iter()
-            .enumerate()
-            .filter(|(_, r)| r.outcome.as_deref() == Some("found"))
-            .collect();
-        let step = if found.len() <= 30 {
-            1
+    let found: Vec<(usize, &crate::store::ResultRow, &str)> = data
+        .results
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| r.outcome.as_deref() == Some("found"))
+        .filter_map(|(i, r)| Some((i, r, col_of(r)?)))
+        .collect();
+    let step = if found.len() <= 30 {
+        1
+    } else {
+        found.len().div_ceil(24)
+    };
+    for &(i, r, col) in found.iter().step_by(step) {
+        let (v, label) = if col == "k_crit" {
+            (
+                r.k_crit,
+                format!("K_c at μ = {}", r.mu.map_or("—".into(), given)),
+            )
         } else {
-            found.len().div_ceil(24)
+            (
+                r.mu_crit,
+                format!("μ_c at K = {}", r.k.map_or("—".into(), given)),
+            )
         };
-        for (i, r) in found.iter().step_by(step) {
-            let (v, label) = if col == "k_crit" {
-                (
-                    r.k_crit,
-                    format!("K_c at μ = {}", r.mu.map_or("—".into(), given)),
-                )
-            } else {
-                (
-                    r.mu_crit,
-                    format!("μ_c at K = {}", r.k.map_or("—".into(), given)),
-                )
-            };
-            let Some(v) = v else { continue };
-            let model = r.voussoirs.map_or(String::new(), |n| format!(", N = {n}"));
-            let printed = match (col, paper, r.mu) {
-                ("k_crit", true, Some(mu)) if mu.is_infinite() => Some(paper::K_C),
-                _ => None,
-            };
-            push(
-                &mut out,
-                format!("{label}{model}"),
-                v,
-                printed,
-                format!("results.parquet row {i} {col}"),
-            );
-        }
+        let Some(v) = v else { continue };
+        let model = r.voussoirs.map_or(String::new(), |n| format!(", N = {n}"));
+        let printed = match (col, paper, r.mu) {
+            ("k_crit", true, Some(mu)) if mu.is_infinite() => Some(paper::K_C),
+            _ => None,
+        };
+        push(
+            &mut out,
+            format!("{label}{model}"),
+            v,
+            printed,
+            format!("results.parquet row {i} {col}"),
+        );
     }
     let note = if out.is_empty() {
         if data.boundaries.is_none() {

@@ -28,7 +28,7 @@ pub struct ResultRow {
     pub case_id: u64,
     /// Load-case name.
     pub load_case: String,
-    /// `state`, `thickness`, `friction` or `thrust`.
+    /// `state`, `thickness`, `friction`, `thrust`, `thresholds` or `load_factor`.
     pub find: String,
     /// K = R/r given.
     pub k: Option<f64>,
@@ -80,6 +80,8 @@ pub struct ResultRow {
     pub mu_min: Option<f64>,
     /// K of the mixed/sliding bifurcation (thresholds find).
     pub k_mixed_sliding: Option<f64>,
+    /// Largest load factor λ of the live load (load_factor find; null when unbounded).
+    pub load_factor: Option<f64>,
     /// `ok` or `error`.
     pub status: String,
     /// Wall time of the analysis, µs.
@@ -99,6 +101,7 @@ impl ResultRow {
             "mu_rotational_mixed" => self.mu_rotational_mixed,
             "mu_min" => self.mu_min,
             "k_mixed_sliding" => self.k_mixed_sliding,
+            "load_factor" => self.load_factor,
             _ => None,
         }
     }
@@ -215,6 +218,7 @@ pub fn read_results(path: &Path) -> Result<Vec<ResultRow>> {
     let (tmin, tmax) = (f("thrust_min")?, f("thrust_max")?);
     let (kcr, murm) = (f("k_c_rotational")?, f("mu_rotational_mixed")?);
     let (mumin, kms) = (f("mu_min")?, f("k_mixed_sliding")?);
+    let load_factor = f("load_factor")?;
     let mut status = required(s("status")?, "status", path)?;
     let time = f("solve_time_us")?;
     let mut out = Vec::with_capacity(case_id.len());
@@ -248,6 +252,7 @@ pub fn read_results(path: &Path) -> Result<Vec<ResultRow>> {
             mu_rotational_mixed: murm[i],
             mu_min: mumin[i],
             k_mixed_sliding: kms[i],
+            load_factor: load_factor[i],
             status: std::mem::take(&mut status[i]),
             solve_time_us: time[i].unwrap_or(f64::NAN),
         });
