@@ -251,8 +251,9 @@ pub fn run_study(opts: &RunOptions) -> Result<RunSummary> {
     stages.engine_ms = ms(t);
 
     let t = Instant::now();
-    let mut df = store::results_frame(&plan, &results)?;
+    let mut df = pool.install(|| store::results_frame(&plan, &results))?;
     store::write_parquet(&mut df, &layout.results())?;
+    drop(df);
     stages.store_ms = ms(t);
 
     let t = Instant::now();
@@ -268,6 +269,10 @@ pub fn run_study(opts: &RunOptions) -> Result<RunSummary> {
     stages.boundaries_ms = ms(t);
 
     let ok = results.iter().filter(|r| r.status == Status::Ok).count() as u64;
+    let total = results.len() as u64;
+    // Figures and reports read the stored files: the engine's rows (hundreds of bytes a case)
+    // are not needed past this point.
+    drop(results);
     let mut info = RunInfo {
         name: plan.manifest.name.clone(),
         manifest: serde_json::to_value(&plan.manifest)?,
@@ -281,9 +286,9 @@ pub fn run_study(opts: &RunOptions) -> Result<RunSummary> {
         started_at,
         finished_at: String::new(),
         cases: CaseCounts {
-            total: results.len() as u64,
+            total,
             ok,
-            error: results.len() as u64 - ok,
+            error: total - ok,
         },
         separable: plan.is_separable_state_grid(),
         stages,

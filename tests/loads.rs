@@ -875,9 +875,16 @@ find: thresholds
     let run = dir.join("out/conv");
     let rows = store::read_results(&run.join("results.parquet")).unwrap();
     assert_eq!(rows.len(), 8);
-    let (gravity, wind): (Vec<_>, Vec<_>) = rows.iter().partition(|r| r.load_case == "gravity");
-    assert!(gravity.iter().all(|r| r.find == "thresholds" && r.k.is_none()));
-    assert!(wind.iter().all(|r| r.find == "load_factor" && r.mu == Some(0.4)));
+    let (gravity, wind): (Vec<_>, Vec<_>) = rows.iter().partition(|r| &*r.load_case == "gravity");
+    assert!(
+        gravity
+            .iter()
+            .all(|r| &*r.find == "thresholds" && r.k.is_none())
+    );
+    assert!(
+        wind.iter()
+            .all(|r| &*r.find == "load_factor" && r.mu == Some(0.4))
+    );
     // The continuum thresholds of the paper, in the same run as the load factor.
     let cont = gravity.iter().find(|r| r.voussoirs.is_none()).unwrap();
     assert!(close(cont.k_c_rotational.unwrap(), K_C, 1e-9));
@@ -900,7 +907,10 @@ find: thresholds
     )
     .load_factor
     .unwrap();
-    assert!(fine >= lc && fine - lc < 1e-7, "{lc} against N = 4096: {fine}");
+    assert!(
+        fine >= lc && fine - lc < 1e-7,
+        "{lc} against N = 4096: {fine}"
+    );
     assert!(close(lc, 0.05246891, 1e-8), "{lc}");
     for n in [8, 64, 512] {
         assert!(lambda(Some(n)) > lc, "N = {n}");
@@ -908,14 +918,21 @@ find: thresholds
     assert!(lambda(Some(512)) - lc < 1e-5 && lambda(Some(8)) - lc > 1e-3);
     // Each discrete case's reference is the continuum case of its own load case.
     let refs = store::read_reference(&run.join("reference.parquet")).unwrap();
-    let lf: Vec<_> = refs.iter().filter(|r| r.quantity == "load_factor").collect();
+    let lf: Vec<_> = refs
+        .iter()
+        .filter(|r| r.quantity == "load_factor")
+        .collect();
     assert_eq!(lf.len(), 3);
     assert!(lf.iter().all(|r| r.continuum_value == Some(lc)));
     assert_eq!(refs.iter().filter(|r| r.quantity == "mu_min").count(), 3);
     // The report tabulates the load factor's convergence beside the thresholds'.
     let md = std::fs::read_to_string(run.join("report.md")).unwrap();
     assert!(md.contains("### λ (load factor) (`load_factor`)"), "{md}");
-    let row = format!("| 512 | {:.10} | {:.3e} |", lambda(Some(512)), lambda(Some(512)) - lc);
+    let row = format!(
+        "| 512 | {:.10} | {:.3e} |",
+        lambda(Some(512)),
+        lambda(Some(512)) - lc
+    );
     assert!(md.contains(&row), "{row} not in the report");
     assert!(md.contains("load case wind: load_factor"), "{md}");
 }

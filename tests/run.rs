@@ -315,7 +315,10 @@ fn convergence_study_thresholds_approach_the_continuum() {
     let last = 24;
     assert!(lc[..25].iter().all(|l| l.as_deref() == Some("self_weight")));
     assert!(lc[25..].iter().all(|l| l.as_deref() == Some("horizontal")));
-    assert!(n[last].is_none() && n[49].is_none(), "the continuum is the last row");
+    assert!(
+        n[last].is_none() && n[49].is_none(),
+        "the continuum is the last row"
+    );
     assert!((kc[last].unwrap() - 1.113581813339).abs() < 1e-9);
     assert!((mu_rm[last].unwrap() - 0.395265252140).abs() < 1e-9);
     assert!((mu_min[last].unwrap() - 0.309215444330).abs() < 1e-9);

@@ -89,14 +89,14 @@ pub fn continuum_references(plan: &Plan, layout: &RunLayout) -> Result<Vec<Refer
     };
     let stored: HashMap<SceneKey, &ResultRow> = rows
         .iter()
-        .filter(|r| r.voussoirs.is_none() && r.status == "ok")
+        .filter(|r| r.voussoirs.is_none() && &*r.status == "ok")
         .filter_map(|r| Some((key_of(case_of(r)?.load_case, &case_of(r)?.scene), r)))
         .collect();
     let mut solved: HashMap<SceneKey, Solution> = HashMap::new();
     let mut out = Vec::new();
     for r in rows
         .iter()
-        .filter(|r| r.voussoirs.is_some() && r.status == "ok")
+        .filter(|r| r.voussoirs.is_some() && &*r.status == "ok")
     {
         let Some(case) = case_of(r) else {
             continue;

@@ -56,7 +56,7 @@ pub struct RegimeMap {
     pub k: Vec<f64>,
     /// Regime names per grid point, K-major: `regimes[ik * mu.len() + imu]` (None: no
     /// value).
-    pub regimes: Vec<Option<String>>,
+    pub regimes: Vec<Option<std::sync::Arc<str>>>,
     /// Located regime changes along μ at a grid K (every boundary point, so that the
     /// coloured regions meet where the boundaries were located, not half-way between grid
     /// points).

@@ -155,7 +155,7 @@ fn regime_map(data: &RunData, lc: &str, on: &str) -> Option<RegimeMap> {
     let rows: Vec<_> = data
         .results
         .iter()
-        .filter(|r| r.load_case == lc && r.find == "state")
+        .filter(|r| &*r.load_case == lc && &*r.find == "state")
         .collect();
     let mu = sorted_distinct(rows.iter().filter_map(|r| r.mu));
     let k = sorted_distinct(rows.iter().filter_map(|r| r.k));
@@ -404,7 +404,7 @@ fn critical(data: &RunData, lc: &str, on: &str) -> Option<CriticalChart> {
             let mut pts: Vec<(f64, f64)> = data
                 .results
                 .iter()
-                .filter(|r| r.load_case == lc)
+                .filter(|r| &*r.load_case == lc)
                 .filter_map(|r| {
                     Some((
                         r.mu.filter(|m| m.is_finite())?,
@@ -421,7 +421,7 @@ fn critical(data: &RunData, lc: &str, on: &str) -> Option<CriticalChart> {
             let mut pts: Vec<(f64, f64)> = data
                 .results
                 .iter()
-                .filter(|r| r.load_case == lc)
+                .filter(|r| &*r.load_case == lc)
                 .filter_map(|r| Some((r.k?, r.mu_crit.unwrap_or(f64::NAN))))
                 .collect();
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));

@@ -371,7 +371,7 @@ pub fn build(data: &RunData, figs: &[FigureSpec], svgs: &[String]) -> ReportView
         .collect();
     let mut by_outcome: BTreeMap<String, usize> = BTreeMap::new();
     for r in &data.results {
-        let key = if r.status != "ok" {
+        let key = if &*r.status != "ok" {
             "failed".to_string()
         } else if let Some(g) = &r.regime {
             format!("regime {g}")
@@ -583,7 +583,7 @@ fn key_results(data: &RunData) -> (Vec<KeyResult>, String) {
         }
     }
     // Critical finds: the critical value of each case (about two dozen listed at most).
-    let col_of = |r: &crate::store::ResultRow| match r.find.as_str() {
+    let col_of = |r: &crate::store::ResultRow| match &*r.find {
         "thickness" => Some("k_crit"),
         "friction" => Some("mu_crit"),
         _ => None,
@@ -733,8 +733,8 @@ fn boundary_tables(data: &RunData) -> (Vec<BoundaryGroup>, Vec<CollapsePoint>, S
 }
 
 fn timing(data: &RunData) -> Vec<TimingRow> {
-    let mut groups: BTreeMap<(Option<u32>, String), Vec<f64>> = BTreeMap::new();
-    for r in data.results.iter().filter(|r| r.status == "ok") {
+    let mut groups: BTreeMap<(Option<u32>, std::sync::Arc<str>), Vec<f64>> = BTreeMap::new();
+    for r in data.results.iter().filter(|r| &*r.status == "ok") {
         groups
             .entry((r.voussoirs, r.find.clone()))
             .or_default()

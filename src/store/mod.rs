@@ -185,6 +185,15 @@ pub fn read_parquet(path: &Path) -> Result<DataFrame> {
         .with_context(|| format!("cannot read {} as Parquet", path.display()))
 }
 
+/// Reads the named columns of a Parquet file (the others are not decoded).
+pub fn read_parquet_columns(path: &Path, columns: &[&str]) -> Result<DataFrame> {
+    let file = File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
+    ParquetReader::new(file)
+        .with_columns(Some(columns.iter().map(|c| c.to_string()).collect()))
+        .finish()
+        .with_context(|| format!("cannot read {} as Parquet", path.display()))
+}
+
 /// Rewrites one value of a float column of a Parquet file in place (atomically), leaving
 /// every other value and column as it was: how tests tamper with stored results.
 pub fn rewrite_f64_value(path: &Path, column: &str, row: usize, value: Option<f64>) -> Result<()> {
@@ -209,8 +218,7 @@ pub fn f64_column(df: &DataFrame, name: &str) -> Result<Vec<Option<f64>>> {
         .column(name)
         .with_context(|| format!("column `{name}` is missing"))?;
     let s = c.as_materialized_series().cast(&DataType::Float64)?;
-    let ca = s.f64()?;
-    Ok((0..ca.len()).map(|i| ca.get(i)).collect())
+    Ok(s.f64()?.iter().collect())
 }
 
 /// A nullable string column as a vector.
@@ -219,9 +227,7 @@ pub fn str_column(df: &DataFrame, name: &str) -> Result<Vec<Option<String>>> {
         .column(name)
         .with_context(|| format!("column `{name}` is missing"))?;
     let ca = c.as_materialized_series().str()?;
-    Ok((0..ca.len())
-        .map(|i| ca.get(i).map(str::to_string))
-        .collect())
+    Ok(ca.iter().map(|v| v.map(str::to_string)).collect())
 }
 
 /// A List(Float64) column as vectors (null lists become empty).
@@ -229,16 +235,20 @@ pub fn list_f64_column(df: &DataFrame, name: &str) -> Result<Vec<Vec<f64>>> {
     let c = df
         .column(name)
         .with_context(|| format!("column `{name}` is missing"))?;
-    let l = c.as_materialized_series().list()?.clone();
+    let l = c.as_materialized_series().list()?;
+    // A column of nulls (a state grid's hinges, say) needs no per-row work.
+    if l.null_count() == l.len() {
+        return Ok(vec![Vec::new(); l.len()]);
+    }
     let mut out = Vec::with_capacity(l.len());
-    for i in 0..l.len() {
-        out.push(match l.get_as_series(i) {
-            Some(s) => {
-                let ca = s.f64()?;
-                (0..ca.len())
-                    .map(|j| ca.get(j).unwrap_or(f64::NAN))
-                    .collect()
-            }
+    for s in l.amortized_iter() {
+        out.push(match s {
+            Some(s) => s
+                .as_ref()
+                .f64()?
+                .iter()
+                .map(|v| v.unwrap_or(f64::NAN))
+                .collect(),
             None => Vec::new(),
         });
     }
@@ -250,16 +260,19 @@ pub fn list_str_column(df: &DataFrame, name: &str) -> Result<Vec<Vec<String>>> {
     let c = df
         .column(name)
         .with_context(|| format!("column `{name}` is missing"))?;
-    let l = c.as_materialized_series().list()?.clone();
+    let l = c.as_materialized_series().list()?;
+    if l.null_count() == l.len() {
+        return Ok(vec![Vec::new(); l.len()]);
+    }
     let mut out = Vec::with_capacity(l.len());
-    for i in 0..l.len() {
-        out.push(match l.get_as_series(i) {
-            Some(s) => {
-                let ca = s.str()?;
-                (0..ca.len())
-                    .map(|j| ca.get(j).unwrap_or("").to_string())
-                    .collect()
-            }
+    for s in l.amortized_iter() {
+        out.push(match s {
+            Some(s) => s
+                .as_ref()
+                .str()?
+                .iter()
+                .map(|v| v.unwrap_or("").to_string())
+                .collect(),
             None => Vec::new(),
         });
     }
@@ -272,12 +285,10 @@ pub fn u64_column(df: &DataFrame, name: &str) -> Result<Vec<u64>> {
         .column(name)
         .with_context(|| format!("column `{name}` is missing"))?;
     let s = c.as_materialized_series().cast(&DataType::UInt64)?;
-    let ca = s.u64()?;
-    (0..ca.len())
-        .map(|i| {
-            ca.get(i)
-                .with_context(|| format!("column `{name}`: row {i} is null"))
-        })
+    s.u64()?
+        .iter()
+        .enumerate()
+        .map(|(i, v)| v.with_context(|| format!("column `{name}`: row {i} is null")))
         .collect()
 }
 
@@ -286,6 +297,5 @@ pub fn bool_column(df: &DataFrame, name: &str) -> Result<Vec<Option<bool>>> {
     let c = df
         .column(name)
         .with_context(|| format!("column `{name}` is missing"))?;
-    let ca = c.as_materialized_series().bool()?;
-    Ok((0..ca.len()).map(|i| ca.get(i)).collect())
+    Ok(c.as_materialized_series().bool()?.iter().collect())
 }

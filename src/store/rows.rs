@@ -3,10 +3,13 @@
 //! README and docs/report-files.md).
 
 use super::{
-    bool_column, f64_column, list_f64_column, list_str_column, read_parquet, str_column, u64_column,
+    bool_column, f64_column, list_f64_column, list_str_column, read_parquet, read_parquet_columns,
+    str_column, u64_column,
 };
 use anyhow::{Context as _, Result};
+use std::collections::HashMap;
 use std::path::Path;
+use std::sync::Arc;
 
 /// The hinges and sliding joints of a stored state (the four list columns).
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -21,15 +24,40 @@ pub struct JointLists {
     pub sliding_senses: Vec<String>,
 }
 
+/// A string column whose values repeat (a load case, a find, a regime) as shared strings: one
+/// allocation per distinct value, not one per row.
+fn shared_str_column(df: &polars::prelude::DataFrame, name: &str) -> Result<Vec<Option<Arc<str>>>> {
+    let c = df
+        .column(name)
+        .with_context(|| format!("column `{name}` is missing"))?;
+    let ca = c.as_materialized_series().str()?;
+    let mut seen: HashMap<&str, Arc<str>> = HashMap::new();
+    let mut last: Option<(&str, Arc<str>)> = None;
+    Ok(ca
+        .iter()
+        .map(|v| {
+            let v = v?;
+            if let Some((l, a)) = &last
+                && *l == v
+            {
+                return Some(a.clone());
+            }
+            let a = seen.entry(v).or_insert_with(|| Arc::from(v)).clone();
+            last = Some((v, a.clone()));
+            Some(a)
+        })
+        .collect())
+}
+
 /// One row of results.parquet, with the columns the report uses.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ResultRow {
     /// Case id.
     pub case_id: u64,
     /// Load-case name.
-    pub load_case: String,
+    pub load_case: Arc<str>,
     /// `state`, `thickness`, `friction`, `thrust`, `thresholds` or `load_factor`.
-    pub find: String,
+    pub find: Arc<str>,
     /// K = R/r given.
     pub k: Option<f64>,
     /// t/R_c given.
@@ -39,13 +67,13 @@ pub struct ResultRow {
     /// Half-embrace angle, degrees.
     pub half_angle_deg: f64,
     /// `annular` or `centreline`.
-    pub weight: String,
+    pub weight: Arc<str>,
     /// Voussoir count, `None` for the continuum.
     pub voussoirs: Option<u32>,
     /// `found`, `never_stands` or `always_stands` (critical finds).
-    pub outcome: Option<String>,
+    pub outcome: Option<Arc<str>>,
     /// Regime (state find).
-    pub regime: Option<String>,
+    pub regime: Option<Arc<str>>,
     /// Lower end of H^r over W_half.
     pub thrust_r_min: Option<f64>,
     /// Upper end of H^r over W_half.
@@ -61,7 +89,7 @@ pub struct ResultRow {
     /// Critical friction.
     pub mu_crit: Option<f64>,
     /// Mechanism of the critical state.
-    pub mechanism: Option<String>,
+    pub mechanism: Option<Arc<str>>,
     /// Crown thrust of the critical state over W_half.
     pub thrust_over_half_weight: Option<f64>,
     /// Crown moment of the critical state over W_half·r.
@@ -83,7 +111,7 @@ pub struct ResultRow {
     /// Largest load factor λ of the live load (load_factor find; null when unbounded).
     pub load_factor: Option<f64>,
     /// `ok` or `error`.
-    pub status: String,
+    pub status: Arc<str>,
     /// Wall time of the analysis, µs.
     pub solve_time_us: f64,
 }
@@ -177,32 +205,63 @@ fn joint_lists(df: &polars::prelude::DataFrame) -> Result<Vec<JointLists>> {
         .collect())
 }
 
-fn required(v: Vec<Option<String>>, name: &str, path: &Path) -> Result<Vec<String>> {
+fn required<T>(v: Vec<Option<T>>, name: &str, path: &Path) -> Result<Vec<T>> {
     v.into_iter()
         .enumerate()
         .map(|(i, s)| s.with_context(|| format!("{}: row {i} has no `{name}`", path.display())))
         .collect()
 }
 
-fn required_f64(v: Vec<Option<f64>>, name: &str, path: &Path) -> Result<Vec<f64>> {
-    v.into_iter()
-        .enumerate()
-        .map(|(i, s)| s.with_context(|| format!("{}: row {i} has no `{name}`", path.display())))
-        .collect()
-}
+/// The columns of results.parquet that make a [`ResultRow`].
+const RESULT_ROW_COLUMNS: [&str; 34] = [
+    "case_id",
+    "load_case",
+    "find",
+    "k",
+    "t_over_r",
+    "mu",
+    "half_angle_deg",
+    "weight",
+    "voussoirs",
+    "outcome",
+    "regime",
+    "thrust_r_min",
+    "thrust_r_max",
+    "thrust_s_min",
+    "thrust_s_max",
+    "k_crit",
+    "t_over_r_crit",
+    "mu_crit",
+    "mechanism",
+    "thrust_over_half_weight",
+    "crown_moment",
+    "hinge_angles_deg",
+    "hinge_faces",
+    "sliding_angles_deg",
+    "sliding_senses",
+    "thrust_min",
+    "thrust_max",
+    "k_c_rotational",
+    "mu_rotational_mixed",
+    "mu_min",
+    "k_mixed_sliding",
+    "load_factor",
+    "status",
+    "solve_time_us",
+];
 
-/// Reads results.parquet.
+/// Reads results.parquet (the columns of [`ResultRow`] only).
 pub fn read_results(path: &Path) -> Result<Vec<ResultRow>> {
-    let df = read_parquet(path)?;
+    let df = read_parquet_columns(path, &RESULT_ROW_COLUMNS)?;
     let cx = || format!("in {}", path.display());
     let f = |name: &str| f64_column(&df, name).with_context(cx);
-    let s = |name: &str| str_column(&df, name).with_context(cx);
+    let s = |name: &str| shared_str_column(&df, name).with_context(cx);
     let case_id = u64_column(&df, "case_id").with_context(cx)?;
-    let mut load_case = required(s("load_case")?, "load_case", path)?;
-    let mut find = required(s("find")?, "find", path)?;
+    let load_case = required(s("load_case")?, "load_case", path)?;
+    let find = required(s("find")?, "find", path)?;
     let (k, t_over_r, mu) = (f("k")?, f("t_over_r")?, f("mu")?);
-    let half = required_f64(f("half_angle_deg")?, "half_angle_deg", path)?;
-    let mut weight = required(s("weight")?, "weight", path)?;
+    let half = required(f("half_angle_deg")?, "half_angle_deg", path)?;
+    let weight = required(s("weight")?, "weight", path)?;
     let voussoirs = f("voussoirs")?;
     let (mut outcome, mut regime) = (s("outcome")?, s("regime")?);
     let (rmin, rmax, smin, smax) = (
@@ -219,19 +278,19 @@ pub fn read_results(path: &Path) -> Result<Vec<ResultRow>> {
     let (kcr, murm) = (f("k_c_rotational")?, f("mu_rotational_mixed")?);
     let (mumin, kms) = (f("mu_min")?, f("k_mixed_sliding")?);
     let load_factor = f("load_factor")?;
-    let mut status = required(s("status")?, "status", path)?;
+    let status = required(s("status")?, "status", path)?;
     let time = f("solve_time_us")?;
     let mut out = Vec::with_capacity(case_id.len());
     for (i, joints) in joints.into_iter().enumerate() {
         out.push(ResultRow {
             case_id: case_id[i],
-            load_case: std::mem::take(&mut load_case[i]),
-            find: std::mem::take(&mut find[i]),
+            load_case: load_case[i].clone(),
+            find: find[i].clone(),
             k: k[i],
             t_over_r: t_over_r[i],
             mu: mu[i],
             half_angle_deg: half[i],
-            weight: std::mem::take(&mut weight[i]),
+            weight: weight[i].clone(),
             voussoirs: voussoirs[i].map(|v| v as u32),
             outcome: outcome[i].take(),
             regime: regime[i].take(),
@@ -253,7 +312,7 @@ pub fn read_results(path: &Path) -> Result<Vec<ResultRow>> {
             mu_min: mumin[i],
             k_mixed_sliding: kms[i],
             load_factor: load_factor[i],
-            status: std::mem::take(&mut status[i]),
+            status: status[i].clone(),
             solve_time_us: time[i].unwrap_or(f64::NAN),
         });
     }
@@ -267,9 +326,9 @@ pub fn read_boundaries(path: &Path) -> Result<Vec<BoundaryRow>> {
     let f = |name: &str| f64_column(&df, name).with_context(cx);
     let s = |name: &str| str_column(&df, name).with_context(cx);
     let load_case = required(s("load_case")?, "load_case", path)?;
-    let mu = required_f64(f("mu")?, "mu", path)?;
-    let k = required_f64(f("k")?, "k", path)?;
-    let t = required_f64(f("t_over_r")?, "t_over_r", path)?;
+    let mu = required(f("mu")?, "mu", path)?;
+    let k = required(f("k")?, "k", path)?;
+    let t = required(f("t_over_r")?, "t_over_r", path)?;
     let low = required(s("regime_low")?, "regime_low", path)?;
     let high = required(s("regime_high")?, "regime_high", path)?;
     let axis = required(s("axis")?, "axis", path)?;
@@ -304,9 +363,9 @@ pub fn read_bifurcations(path: &Path) -> Result<Vec<BifurcationRow>> {
     let f = |name: &str| f64_column(&df, name).with_context(cx);
     let s = |name: &str| str_column(&df, name).with_context(cx);
     let load_case = required(s("load_case")?, "load_case", path)?;
-    let mu = required_f64(f("mu")?, "mu", path)?;
-    let k = required_f64(f("k")?, "k", path)?;
-    let t = required_f64(f("t_over_r")?, "t_over_r", path)?;
+    let mu = required(f("mu")?, "mu", path)?;
+    let k = required(f("k")?, "k", path)?;
+    let t = required(f("t_over_r")?, "t_over_r", path)?;
     let a = required(s("mechanism_a")?, "mechanism_a", path)?;
     let b = required(s("mechanism_b")?, "mechanism_b", path)?;
     let (thrust, moment) = (f("thrust_over_half_weight")?, f("crown_moment")?);
