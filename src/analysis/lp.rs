@@ -258,6 +258,11 @@ struct Tableau<'a, const D: usize> {
     /// Sign s_i of artificial row i: s_i x_i ≤ M.
     signs: [f64; D],
     m: usize,
+    /// The real rows scaled to unit normal, a_r/|a_r|, for pricing (zero for ignored rows).
+    unit: Vec<[f64; D]>,
+    /// Their right-hand sides b_r/|a_r|; +∞ for ignored rows and for the rows of the current
+    /// basis, so that pricing needs no test to pass over them.
+    unit_b: Vec<f64>,
 }
 
 impl<const D: usize> Tableau<'_, D> {
@@ -277,6 +282,26 @@ impl<const D: usize> Tableau<'_, D> {
             (self.b[k], 0.0)
         } else {
             (0.0, 1.0)
+        }
+    }
+
+    /// b_r/|a_r| of a real row (+∞ when it is ignored).
+    fn unit_rhs(&self, k: usize) -> f64 {
+        if self.inv_norm[k] > 0.0 {
+            self.b[k] * self.inv_norm[k]
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// Marks a real row as basic (`true`) or not for pricing.
+    fn set_basic(&mut self, k: usize, basic: bool) {
+        if k < self.m {
+            self.unit_b[k] = if basic {
+                f64::INFINITY
+            } else {
+                self.unit_rhs(k)
+            };
         }
     }
 
@@ -364,14 +389,23 @@ pub fn maximise<const D: usize>(
             inv_norm[r] = 1.0 / n;
         }
     }
-    let t = Tableau {
+    // Separate simple passes: each vectorises, which one pass with three pushes a row does not.
+    let unit = a
+        .iter()
+        .zip(&inv_norm)
+        .map(|(row, &inv)| row.map(|v| v * inv))
+        .collect();
+    let mut t = Tableau {
         a,
         b,
         inv_norm,
         signs,
         m,
+        unit,
+        unit_b: Vec::new(),
     };
-    Ok(simplex(c, &t, settings))
+    t.unit_b = (0..m).map(|k| t.unit_rhs(k)).collect();
+    Ok(simplex(c, &mut t, settings))
 }
 
 /// The state of one basis.
@@ -419,6 +453,44 @@ fn vertex<const D: usize>(
     Some(Vertex { x0, x1, y, lu })
 }
 
+/// The largest a·x − b over the rows and the first row that attains it ((−∞, usize::MAX) for
+/// no rows). Four running maxima over interleaved rows keep the comparisons independent of
+/// one another, so the loop is not bound by their latency; merging them by value, then by
+/// index, gives the same row as one scan in order.
+fn most_violated<const D: usize>(a: &[[f64; D]], b: &[f64], x: &[f64; D]) -> (f64, usize) {
+    const LANES: usize = 4;
+    let mut best = [(f64::NEG_INFINITY, usize::MAX); LANES];
+    let n = a.len().min(b.len());
+    let whole = n - n % LANES;
+    for (i, (rows, bs)) in a[..whole]
+        .chunks_exact(LANES)
+        .zip(b[..whole].chunks_exact(LANES))
+        .enumerate()
+    {
+        for l in 0..LANES {
+            let v = dot(&rows[l], x) - bs[l];
+            if v > best[l].0 {
+                best[l] = (v, i * LANES + l);
+            }
+        }
+    }
+    for k in whole..n {
+        let v = dot(&a[k], x) - b[k];
+        let l = k % LANES;
+        if v > best[l].0 {
+            best[l] = (v, k);
+        }
+    }
+    best.into_iter()
+        .fold((f64::NEG_INFINITY, usize::MAX), |m, c| {
+            if c.0 > m.0 || (c.0 == m.0 && c.1 < m.1) {
+                c
+            } else {
+                m
+            }
+        })
+}
+
 /// The entering row chosen by pricing, or `None` when no row is violated.
 struct Pricing {
     entering: Option<usize>,
@@ -441,18 +513,41 @@ fn price<const D: usize>(
     let mut best0: Option<(f64, usize)> = None;
     let mut max_violation = f64::NEG_INFINITY;
     if !phase1 {
-        // Phase 2: the M-part of every real row is zero, so only its finite violation counts
-        // (the same test as below, without the M-part branches, on the hot loop).
-        for (k, ((row, &inv), (&bk, &basic))) in
-            t.a.iter()
-                .zip(&t.inv_norm)
-                .zip(t.b.iter().zip(in_basis))
-                .enumerate()
-        {
-            if inv == 0.0 || basic {
+        // Phase 2: the M-part of every real row is zero, so only its finite violation counts;
+        // basic and ignored rows have b/|a| = +∞ and never win.
+        let mut best = (f64::NEG_INFINITY, usize::MAX);
+        if bland {
+            for (k, (row, &bk)) in t.unit.iter().zip(&t.unit_b).enumerate() {
+                let v0 = dot(row, &v.x0) - bk;
+                if v0 > tol0 && best0.is_none() {
+                    best0 = Some((v0, k));
+                }
+                best = if v0 > best.0 { (v0, k) } else { best };
+            }
+        } else {
+            best = most_violated(&t.unit, &t.unit_b, &v.x0);
+            if best.0 > tol0 {
+                best0 = Some(best);
+            }
+        }
+        max_violation = best.0;
+    }
+    if phase1 {
+        // Real rows have no M-part in b: their M-violation is a·x1/|a|. Ignored rows (a = 0
+        // here) and basic rows have b/|a| = +∞, so only a row whose M-violation is positive
+        // needs the basis test.
+        for (k, (row, &bk)) in t.unit.iter().zip(&t.unit_b).enumerate() {
+            let v1 = dot(row, &v.x1);
+            if v1 > tol1 {
+                if !in_basis[k] && best1.is_none_or(|(s, _)| !bland && v1 > s) {
+                    best1 = Some((v1, k));
+                }
                 continue;
             }
-            let v0 = (dot(row, &v.x0) - bk) * inv;
+            if v1 < -tol1 {
+                continue;
+            }
+            let v0 = dot(row, &v.x0) - bk;
             if v0 > max_violation {
                 max_violation = v0;
             }
@@ -484,19 +579,6 @@ fn price<const D: usize>(
             best0 = Some((v0, k));
         }
     };
-    if phase1 {
-        for (k, ((row, &inv), (&bk, &basic))) in
-            t.a.iter()
-                .zip(&t.inv_norm)
-                .zip(t.b.iter().zip(in_basis))
-                .enumerate()
-        {
-            if inv == 0.0 || basic {
-                continue;
-            }
-            consider(k, row, inv, bk, 0.0);
-        }
-    }
     for i in 0..D {
         let k = t.m + i;
         if in_basis[k] {
@@ -578,7 +660,11 @@ fn ratio_test<const D: usize>(
     pick.map(|k| (k, v.y[k].max(0.0) / u[k]))
 }
 
-fn simplex<const D: usize>(c: &[f64; D], t: &Tableau<'_, D>, settings: &Settings) -> Solution<D> {
+fn simplex<const D: usize>(
+    c: &[f64; D],
+    t: &mut Tableau<'_, D>,
+    settings: &Settings,
+) -> Solution<D> {
     let m = t.m;
     let mut basis = [0usize; D];
     for (i, k) in basis.iter_mut().enumerate() {
@@ -634,8 +720,10 @@ fn simplex<const D: usize>(c: &[f64; D], t: &Tableau<'_, D>, settings: &Settings
             degenerate_run = 0;
         }
         in_basis[basis[slot]] = false;
+        t.set_basic(basis[slot], false);
         basis[slot] = r;
         in_basis[r] = true;
+        t.set_basic(r, true);
         last = Some(v);
     }
     finish(
