@@ -815,6 +815,33 @@ mod tests {
         maximise(&c, a, b, &Settings::default()).unwrap()
     }
 
+    proptest::proptest! {
+        #[test]
+        fn most_violated_is_the_first_largest_of_one_scan(
+            rows in proptest::collection::vec(
+                (proptest::array::uniform3(-3i32..3), -2i32..2, proptest::bool::ANY),
+                0..23,
+            ),
+            x in proptest::array::uniform3(-2i32..2),
+        ) {
+            // Small integers make ties common; masked rows (b = +∞) never win.
+            let a: Vec<[f64; 3]> = rows.iter().map(|r| r.0.map(f64::from)).collect();
+            let b: Vec<f64> = rows
+                .iter()
+                .map(|r| if r.2 { f64::INFINITY } else { f64::from(r.1) })
+                .collect();
+            let x = x.map(f64::from);
+            let mut want = (f64::NEG_INFINITY, usize::MAX);
+            for (k, (row, bk)) in a.iter().zip(&b).enumerate() {
+                let v = dot(row, &x) - bk;
+                if v > want.0 {
+                    want = (v, k);
+                }
+            }
+            proptest::prop_assert_eq!(most_violated(&a, &b, &x), want);
+        }
+    }
+
     #[test]
     fn square_corner() {
         // max x + y, x ≤ 1, y ≤ 2, x + y ≥ −5.
