@@ -1,9 +1,12 @@
 //! Whole-grid costs (`cargo bench --bench grid`): the seed `state` grid through the engine
 //! (analysis only) and through the store, at several sizes to show the scaling in the number
-//! of grid points.
+//! of grid points; and whole runs (`archstudy run`: engine, Parquet, boundaries, figure data,
+//! figures and reports) of the seed study and of a 1001 × 1001 map over the same ranges.
 
 use archstudy::engine::{self, Progress};
+use archstudy::runner::{self, RunOptions};
 use archstudy::{manifest, plan, store};
+use divan::counter::ItemsCount;
 use divan::{Bencher, black_box};
 use std::path::Path;
 
@@ -24,7 +27,10 @@ fn seed_plan(side: usize) -> plan::Plan {
 #[divan::bench(args = [101, 201, 401, 1001], sample_count = 10)]
 fn state_grid_engine(bencher: Bencher, side: usize) {
     let plan = seed_plan(side);
-    bencher.bench(|| engine::run(black_box(&plan), Progress::Hidden).len());
+    // Points per second in the output: constant when the cost is linear in the points.
+    bencher
+        .counter(ItemsCount::new(plan.cases.len()))
+        .bench(|| engine::run(black_box(&plan), Progress::Hidden).len());
 }
 
 /// Building the results table of a side × side state grid (no file I/O).
@@ -32,5 +38,45 @@ fn state_grid_engine(bencher: Bencher, side: usize) {
 fn state_grid_results_frame(bencher: Bencher, side: usize) {
     let plan = seed_plan(side);
     let rows = engine::run(&plan, Progress::Hidden);
-    bencher.bench(|| store::results_frame(black_box(&plan), &rows).map(|df| df.height()));
+    bencher
+        .counter(ItemsCount::new(rows.len()))
+        .bench(|| store::results_frame(black_box(&plan), &rows).map(|df| df.height()));
+}
+
+/// One whole run of a manifest into a scratch directory (replaced by every run).
+fn run(bencher: Bencher, study: &Path) {
+    let out = std::env::temp_dir().join(format!("archstudy-bench-{}", std::process::id()));
+    let opts = RunOptions {
+        study: study.to_path_buf(),
+        out: out.clone(),
+        jobs: None,
+        progress: Progress::Hidden,
+        command_line: vec!["bench".into()],
+    };
+    bencher.bench(|| runner::run_study(black_box(&opts)).map(|s| s.info.cases.total));
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+/// `archstudy run studies/seed.yaml` (451 × 601 points) end to end.
+#[divan::bench(sample_count = 5)]
+fn seed_study_end_to_end(bencher: Bencher) {
+    run(
+        bencher,
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("studies/seed.yaml"),
+    );
+}
+
+/// A 1001 × 1001 state map over the seed ranges, end to end.
+#[divan::bench(sample_count = 5)]
+fn state_map_1001_end_to_end(bencher: Bencher) {
+    let dir = std::env::temp_dir().join(format!("archstudy-bench-m-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a scratch directory");
+    let study = dir.join("map1001.yaml");
+    std::fs::write(
+        &study,
+        "name: map1001\ngrid:\n  k: {from: 1.05, to: 1.5, steps: 1001}\n  mu: {from: 0.2, to: 0.8, steps: 1001}\n",
+    )
+    .expect("a scratch manifest");
+    run(bencher, &study);
+    let _ = std::fs::remove_dir_all(&dir);
 }
