@@ -935,4 +935,13 @@ find: thresholds
     );
     assert!(md.contains(&row), "{row} not in the report");
     assert!(md.contains("load case wind: load_factor"), "{md}");
+    // Key results: the continuum's values, each named by its stored cell.
+    let key = format!(
+        "| load factor λ at K = 1.1622 (t/R_c = 0.1500), μ = 0.4, continuum (wind) | {lc:.10} | — | — | `results.parquet row 7 load_factor` |"
+    );
+    assert!(md.contains(&key), "{key} not in the report");
+    assert!(
+        md.contains("| μ_min, sliding threshold, continuum (gravity) | 0.3092154443 | 0.309 |"),
+        "{md}"
+    );
 }

@@ -94,10 +94,7 @@ impl ManifestView {
     /// True for the paper's case: a semicircular arch with radial joints, annular weight, a
     /// continuum of joints and self-weight only (and no axis varying the arch).
     pub fn is_paper_case(&self) -> bool {
-        self.arch.shape == "circular"
-            && self.arch.joints == "radial"
-            && (self.arch.half_angle_deg - 90.0).abs() < 1e-12
-            && self.arch.weight == "annular"
+        self.is_paper_geometry()
             && self.arch.voussoir_count().is_none()
             && !self
                 .grid
@@ -113,6 +110,16 @@ impl ManifestView {
             .find(|l| l.name == lc)
             .and_then(|l| l.find.as_deref())
             .unwrap_or(&self.find)
+    }
+
+    /// True for the paper's arch whatever its joints: semicircular, radial joints, annular
+    /// weight and no half-angle axis (its continuum cases are the paper's).
+    pub fn is_paper_geometry(&self) -> bool {
+        self.arch.shape == "circular"
+            && self.arch.joints == "radial"
+            && (self.arch.half_angle_deg - 90.0).abs() < 1e-12
+            && self.arch.weight == "annular"
+            && !self.grid.iter().any(|a| a.name == "half_angle_deg")
     }
 
     /// The axis of a name, if the grid has it.

@@ -626,6 +626,79 @@ fn key_results(data: &RunData) -> (Vec<KeyResult>, String) {
             format!("results.parquet row {i} {col}"),
         );
     }
+    // The continuum's critical values of a thresholds or load-factor find (a study over the
+    // voussoir count measures its models against these); the paper's printed values beside
+    // the thresholds of its geometry.
+    let paper_geometry = data.manifest.is_paper_geometry();
+    for (i, r) in data.results.iter().enumerate().filter(|(_, r)| {
+        r.voussoirs.is_none()
+            && &*r.status == "ok"
+            && matches!(&*r.find, "thresholds" | "load_factor")
+    }) {
+        let on = if multi {
+            format!(" ({})", r.load_case)
+        } else {
+            String::new()
+        };
+        let cells: Vec<(String, Option<f64>, Option<Printed>, &str)> = if &*r.find == "thresholds" {
+            vec![
+                (
+                    "K_c at μ = ∞".into(),
+                    r.k_c_rotational,
+                    Some(paper::K_C),
+                    "k_c_rotational",
+                ),
+                (
+                    "μ of the rotational/mixed bifurcation".into(),
+                    r.mu_rotational_mixed,
+                    Some(paper::MU_ROTATIONAL_MIXED),
+                    "mu_rotational_mixed",
+                ),
+                (
+                    "μ_min, sliding threshold".into(),
+                    r.mu_min,
+                    Some(paper::MU_MIN),
+                    "mu_min",
+                ),
+                (
+                    "K of the mixed/sliding bifurcation".into(),
+                    r.k_mixed_sliding,
+                    Some(paper::K_MIXED_SLIDING),
+                    "k_mixed_sliding",
+                ),
+            ]
+        } else {
+            let at = match (r.k, r.t_over_r, r.mu) {
+                (Some(k), Some(t), Some(mu)) => format!(
+                    " at K = {} (t/R_c = {}), μ = {}",
+                    format::short(k),
+                    format::short(t),
+                    given(mu)
+                ),
+                _ => String::new(),
+            };
+            vec![(
+                format!("load factor λ{at}"),
+                r.load_factor,
+                None,
+                "load_factor",
+            )]
+        };
+        for (q, v, p, col) in cells {
+            let Some(v) = v else { continue };
+            let (paper_text, d) = compare(v, p.filter(|_| paper_geometry));
+            out.push(KeyResult {
+                quantity: format!("{q}, continuum{on}"),
+                value: value(v),
+                paper: paper_text,
+                difference: d,
+                source: format!("results.parquet row {i} {col}"),
+            });
+        }
+        if out.len() > 40 {
+            break;
+        }
+    }
     let note = if out.is_empty() {
         if data.boundaries.is_none() {
             "No boundaries were located in this run (boundaries.parquet is absent), so there are no thresholds to report.".into()
