@@ -364,10 +364,34 @@ pub fn build(data: &RunData, figs: &[FigureSpec], svgs: &[String]) -> ReportView
             }
         })
         .collect();
+    // A load case whose find finds K or μ itself has one case per value of the other axes.
     let load_cases = m
         .load_cases
         .iter()
-        .map(|l| format!("{} ({})", l.name, l.kind.replace('_', "-")))
+        .map(|l| {
+            let found: &[&str] = match m.find_of(&l.name) {
+                "thickness" => &["k", "t_over_r"],
+                "friction" => &["mu"],
+                "thresholds" => &["k", "t_over_r", "mu"],
+                _ => &[],
+            };
+            let skipped: Vec<&str> = m
+                .grid
+                .iter()
+                .filter(|a| found.contains(&a.name.as_str()))
+                .map(|a| axis_name(&a.name))
+                .collect();
+            let mut d = format!("{} ({}", l.name, l.kind.replace('_', "-"));
+            if !skipped.is_empty() {
+                d.push_str(&format!(
+                    "; its find, {}, finds {} itself",
+                    m.find_of(&l.name),
+                    skipped.join(" and ")
+                ));
+            }
+            d.push(')');
+            d
+        })
         .collect();
     let mut by_outcome: BTreeMap<String, usize> = BTreeMap::new();
     for r in &data.results {
