@@ -49,7 +49,9 @@ fn shared_str_column(df: &polars::prelude::DataFrame, name: &str) -> Result<Vec<
         .collect())
 }
 
-/// One row of results.parquet, with the columns the report uses.
+/// One row of results.parquet, with the columns the report and the figure data read back
+/// (the inputs, the regime or critical value compared with the continuum, status and time);
+/// the rest of a case is in the file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ResultRow {
     /// Case id.
@@ -64,10 +66,6 @@ pub struct ResultRow {
     pub t_over_r: Option<f64>,
     /// μ given (+inf for infinite friction).
     pub mu: Option<f64>,
-    /// Half-embrace angle, degrees.
-    pub half_angle_deg: f64,
-    /// `annular` or `centreline`.
-    pub weight: Arc<str>,
     /// Voussoir count, `None` for the continuum.
     pub voussoirs: Option<u32>,
     /// `found`, `never_stands` or `always_stands` (critical finds).
@@ -76,30 +74,12 @@ pub struct ResultRow {
     pub regime: Option<Arc<str>>,
     /// Lower end of H^r over W_half.
     pub thrust_r_min: Option<f64>,
-    /// Upper end of H^r over W_half.
-    pub thrust_r_max: Option<f64>,
-    /// Lower end of H^s over W_half.
-    pub thrust_s_min: Option<f64>,
-    /// Upper end of H^s over W_half.
-    pub thrust_s_max: Option<f64>,
     /// Collapse thickness ratio.
     pub k_crit: Option<f64>,
-    /// t/R_c at the collapse thickness.
-    pub t_over_r_crit: Option<f64>,
     /// Critical friction.
     pub mu_crit: Option<f64>,
-    /// Mechanism of the critical state.
-    pub mechanism: Option<Arc<str>>,
-    /// Crown thrust of the critical state over W_half.
-    pub thrust_over_half_weight: Option<f64>,
-    /// Crown moment of the critical state over W_half·r.
-    pub crown_moment: Option<f64>,
-    /// Hinges and sliding joints of the critical state.
-    pub joints: JointLists,
     /// Minimum admissible thrust over W_half (thrust find).
     pub thrust_min: Option<f64>,
-    /// Maximum admissible thrust over W_half (thrust find).
-    pub thrust_max: Option<f64>,
     /// Collapse thickness at infinite friction (thresholds find).
     pub k_c_rotational: Option<f64>,
     /// μ of the rotational/mixed bifurcation (thresholds find).
@@ -213,34 +193,20 @@ fn required<T>(v: Vec<Option<T>>, name: &str, path: &Path) -> Result<Vec<T>> {
 }
 
 /// The columns of results.parquet that make a [`ResultRow`].
-const RESULT_ROW_COLUMNS: [&str; 34] = [
+const RESULT_ROW_COLUMNS: [&str; 20] = [
     "case_id",
     "load_case",
     "find",
     "k",
     "t_over_r",
     "mu",
-    "half_angle_deg",
-    "weight",
     "voussoirs",
     "outcome",
     "regime",
     "thrust_r_min",
-    "thrust_r_max",
-    "thrust_s_min",
-    "thrust_s_max",
     "k_crit",
-    "t_over_r_crit",
     "mu_crit",
-    "mechanism",
-    "thrust_over_half_weight",
-    "crown_moment",
-    "hinge_angles_deg",
-    "hinge_faces",
-    "sliding_angles_deg",
-    "sliding_senses",
     "thrust_min",
-    "thrust_max",
     "k_c_rotational",
     "mu_rotational_mixed",
     "mu_min",
@@ -260,53 +226,32 @@ pub fn read_results(path: &Path) -> Result<Vec<ResultRow>> {
     let load_case = required(s("load_case")?, "load_case", path)?;
     let find = required(s("find")?, "find", path)?;
     let (k, t_over_r, mu) = (f("k")?, f("t_over_r")?, f("mu")?);
-    let half = required(f("half_angle_deg")?, "half_angle_deg", path)?;
-    let weight = required(s("weight")?, "weight", path)?;
     let voussoirs = f("voussoirs")?;
     let (mut outcome, mut regime) = (s("outcome")?, s("regime")?);
-    let (rmin, rmax, smin, smax) = (
-        f("thrust_r_min")?,
-        f("thrust_r_max")?,
-        f("thrust_s_min")?,
-        f("thrust_s_max")?,
-    );
-    let (k_crit, t_crit, mu_crit) = (f("k_crit")?, f("t_over_r_crit")?, f("mu_crit")?);
-    let mut mechanism = s("mechanism")?;
-    let (thrust, moment) = (f("thrust_over_half_weight")?, f("crown_moment")?);
-    let joints = joint_lists(&df).with_context(cx)?;
-    let (tmin, tmax) = (f("thrust_min")?, f("thrust_max")?);
+    let rmin = f("thrust_r_min")?;
+    let (k_crit, mu_crit) = (f("k_crit")?, f("mu_crit")?);
+    let tmin = f("thrust_min")?;
     let (kcr, murm) = (f("k_c_rotational")?, f("mu_rotational_mixed")?);
     let (mumin, kms) = (f("mu_min")?, f("k_mixed_sliding")?);
     let load_factor = f("load_factor")?;
     let status = required(s("status")?, "status", path)?;
     let time = f("solve_time_us")?;
     let mut out = Vec::with_capacity(case_id.len());
-    for (i, joints) in joints.into_iter().enumerate() {
+    for (i, &case_id) in case_id.iter().enumerate() {
         out.push(ResultRow {
-            case_id: case_id[i],
+            case_id,
             load_case: load_case[i].clone(),
             find: find[i].clone(),
             k: k[i],
             t_over_r: t_over_r[i],
             mu: mu[i],
-            half_angle_deg: half[i],
-            weight: weight[i].clone(),
             voussoirs: voussoirs[i].map(|v| v as u32),
             outcome: outcome[i].take(),
             regime: regime[i].take(),
             thrust_r_min: rmin[i],
-            thrust_r_max: rmax[i],
-            thrust_s_min: smin[i],
-            thrust_s_max: smax[i],
             k_crit: k_crit[i],
-            t_over_r_crit: t_crit[i],
             mu_crit: mu_crit[i],
-            mechanism: mechanism[i].take(),
-            thrust_over_half_weight: thrust[i],
-            crown_moment: moment[i],
-            joints,
             thrust_min: tmin[i],
-            thrust_max: tmax[i],
             k_c_rotational: kcr[i],
             mu_rotational_mixed: murm[i],
             mu_min: mumin[i],
