@@ -915,6 +915,21 @@ find: thresholds
     for n in [8, 64, 512] {
         assert!(lambda(Some(n)) > lc, "N = {n}");
     }
+    // The same λ from the other side: the state at a given λ (feasibility of all rows, not
+    // the largest λ) is stable just below it and collapses by a mixed mechanism just above.
+    let regime_at = |l: f64| {
+        let mut s = scene(
+            arch(k, Discretisation::Continuum),
+            mu(0.4),
+            Find::State,
+            ArchForm::default(),
+            Load::Horizontal,
+        );
+        s.lambda = l;
+        scene::solve(&s).regime
+    };
+    assert_eq!(regime_at(lc * (1.0 - 1e-7)), Some("stable"));
+    assert_eq!(regime_at(lc * (1.0 + 1e-7)), Some("mixed"));
     assert!(lambda(Some(512)) - lc < 1e-5 && lambda(Some(8)) - lc > 1e-3);
     // Each discrete case's reference is the continuum case of its own load case.
     let refs = store::read_reference(&run.join("reference.parquet")).unwrap();
