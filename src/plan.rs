@@ -63,8 +63,8 @@ pub fn build(manifest: Manifest) -> Result<Plan, PlanTooLarge> {
     let mut cases = Vec::with_capacity(requested as usize);
     let mut id = 0u64;
     for (lc, load_case) in manifest.load_cases.iter().enumerate() {
-        // The axes this load case spans stay at their first value for the others (never
-        // read: the scene finds that parameter itself).
+        // An axis this load case does not span has a single position (never read: the
+        // scene finds that parameter itself).
         let dims: Vec<usize> = manifest
             .grid
             .iter()
