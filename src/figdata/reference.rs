@@ -90,7 +90,10 @@ pub fn continuum_references(plan: &Plan, layout: &RunLayout) -> Result<Vec<Refer
     let stored: HashMap<SceneKey, &ResultRow> = rows
         .iter()
         .filter(|r| r.voussoirs.is_none() && &*r.status == "ok")
-        .filter_map(|r| Some((key_of(case_of(r)?.load_case, &case_of(r)?.scene), r)))
+        .filter_map(|r| {
+            let c = case_of(r)?;
+            Some((key_of(c.load_case, &c.scene), r))
+        })
         .collect();
     let mut solved: HashMap<SceneKey, Solution> = HashMap::new();
     let mut out = Vec::new();

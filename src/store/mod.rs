@@ -230,53 +230,46 @@ pub fn str_column(df: &DataFrame, name: &str) -> Result<Vec<Option<String>>> {
     Ok(ca.iter().map(|v| v.map(str::to_string)).collect())
 }
 
-/// A List(Float64) column as vectors (null lists become empty).
-pub fn list_f64_column(df: &DataFrame, name: &str) -> Result<Vec<Vec<f64>>> {
+/// A list column as vectors, each list's values converted by `values` (null lists become
+/// empty).
+fn list_column<T>(
+    df: &DataFrame,
+    name: &str,
+    values: impl Fn(&polars::prelude::Series) -> Result<Vec<T>>,
+) -> Result<Vec<Vec<T>>> {
     let c = df
         .column(name)
         .with_context(|| format!("column `{name}` is missing"))?;
     let l = c.as_materialized_series().list()?;
     // A column of nulls (a state grid's hinges, say) needs no per-row work.
     if l.null_count() == l.len() {
-        return Ok(vec![Vec::new(); l.len()]);
+        return Ok(std::iter::repeat_with(Vec::new).take(l.len()).collect());
     }
     let mut out = Vec::with_capacity(l.len());
     for s in l.amortized_iter() {
         out.push(match s {
-            Some(s) => s
-                .as_ref()
-                .f64()?
-                .iter()
-                .map(|v| v.unwrap_or(f64::NAN))
-                .collect(),
+            Some(s) => values(s.as_ref())?,
             None => Vec::new(),
         });
     }
     Ok(out)
 }
 
-/// A List(String) column as vectors (null lists become empty).
+/// A List(Float64) column as vectors (null lists become empty, null values NaN).
+pub fn list_f64_column(df: &DataFrame, name: &str) -> Result<Vec<Vec<f64>>> {
+    list_column(df, name, |s| {
+        Ok(s.f64()?.iter().map(|v| v.unwrap_or(f64::NAN)).collect())
+    })
+}
+
+/// A List(String) column as vectors (null lists become empty, null values "").
 pub fn list_str_column(df: &DataFrame, name: &str) -> Result<Vec<Vec<String>>> {
-    let c = df
-        .column(name)
-        .with_context(|| format!("column `{name}` is missing"))?;
-    let l = c.as_materialized_series().list()?;
-    if l.null_count() == l.len() {
-        return Ok(vec![Vec::new(); l.len()]);
-    }
-    let mut out = Vec::with_capacity(l.len());
-    for s in l.amortized_iter() {
-        out.push(match s {
-            Some(s) => s
-                .as_ref()
-                .str()?
-                .iter()
-                .map(|v| v.unwrap_or("").to_string())
-                .collect(),
-            None => Vec::new(),
-        });
-    }
-    Ok(out)
+    list_column(df, name, |s| {
+        Ok(s.str()?
+            .iter()
+            .map(|v| v.unwrap_or("").to_string())
+            .collect())
+    })
 }
 
 /// A non-null UInt64 column as a vector (nulls are an error).
