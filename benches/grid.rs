@@ -3,7 +3,7 @@
 //! of grid points; and whole runs (`archstudy run`: engine, Parquet, boundaries, figure data,
 //! figures and reports) of the seed study and of a 1001 × 1001 map over the same ranges.
 
-use archstudy::engine::{self, Progress};
+use archstudy::engine;
 use archstudy::runner::{self, RunOptions};
 use archstudy::{manifest, plan, store};
 use divan::counter::ItemsCount;
@@ -30,14 +30,14 @@ fn state_grid_engine(bencher: Bencher, side: usize) {
     // Points per second in the output: constant when the cost is linear in the points.
     bencher
         .counter(ItemsCount::new(plan.cases.len()))
-        .bench(|| engine::run(black_box(&plan), Progress::Hidden).len());
+        .bench(|| engine::run(black_box(&plan), &archstudy::progress::Silent).len());
 }
 
 /// Building the results table of a side × side state grid (no file I/O).
 #[divan::bench(args = [101, 401, 1001], sample_count = 5)]
 fn state_grid_results_frame(bencher: Bencher, side: usize) {
     let plan = seed_plan(side);
-    let rows = engine::run(&plan, Progress::Hidden);
+    let rows = engine::run(&plan, &archstudy::progress::Silent);
     bencher
         .counter(ItemsCount::new(rows.len()))
         .bench(|| store::results_frame(black_box(&plan), &rows).map(|df| df.height()));
@@ -47,11 +47,8 @@ fn state_grid_results_frame(bencher: Bencher, side: usize) {
 fn run(bencher: Bencher, study: &Path) {
     let out = std::env::temp_dir().join(format!("archstudy-bench-{}", std::process::id()));
     let opts = RunOptions {
-        study: study.to_path_buf(),
-        out: out.clone(),
-        jobs: None,
-        progress: Progress::Hidden,
         command_line: vec!["bench".into()],
+        ..RunOptions::new(study, &out)
     };
     bencher.bench(|| runner::run_study(black_box(&opts)).map(|s| s.info.cases.total));
     let _ = std::fs::remove_dir_all(&out);

@@ -14,9 +14,9 @@ mod unpack;
 pub use sums::{SUMS_FILE, SumEntry, SumsCheck, SumsError, check_sums, format_sums, parse_sums};
 pub use unpack::{Unpacked, unpack};
 
-use crate::cli::{ArchiveArgs, UsageError};
+use crate::error::UsageError;
 use crate::output::{RunLayout, temp_sibling};
-use crate::runner::sha256_hex;
+use crate::provenance::sha256_hex;
 use anyhow::{Context, Result, bail};
 use flate2::Compression;
 use flate2::write::GzEncoder;
@@ -24,7 +24,6 @@ use std::collections::BTreeSet;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
-use std::process::ExitCode;
 
 /// The files every run directory must hold (relative paths).
 pub const REQUIRED_FILES: [&str; 3] = ["manifest.yaml", "run.json", "results.parquet"];
@@ -204,11 +203,11 @@ pub struct ArchiveSummary {
 /// directory (in `out` when it is a directory).
 pub fn write_archive(run_dir: &Path, out: Option<&Path>) -> Result<ArchiveSummary> {
     if !run_dir.is_dir() {
-        return Err(UsageError {
-            option: "RUN_DIR",
-            value: run_dir.display().to_string(),
-            allowed: "a run directory written by `archstudy run`".into(),
-        }
+        return Err(UsageError::new(
+            "RUN_DIR",
+            run_dir.display(),
+            "a run directory written by `archstudy run`",
+        )
         .into());
     }
     let prov = check_run_dir(run_dir)?;
@@ -319,20 +318,4 @@ fn append_file<W: Write>(
     let mut h = header(tar::EntryType::Regular, 0o644, bytes.len() as u64, mtime);
     tar.append_data(&mut h, path, bytes)
         .with_context(|| format!("cannot add {path}"))
-}
-
-/// `archstudy archive` from the command line.
-pub fn archive_command(args: &ArchiveArgs) -> Result<ExitCode> {
-    let s = write_archive(&args.run_dir, args.output.as_deref())?;
-    for k in &s.skipped {
-        eprintln!("warning: {k} is not a regular file and was left out");
-    }
-    eprintln!(
-        "{} files and {SUMS_FILE} under {}/ ({} bytes) written to {}",
-        s.files,
-        s.top,
-        s.bytes,
-        s.path.display()
-    );
-    Ok(ExitCode::SUCCESS)
 }

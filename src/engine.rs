@@ -12,11 +12,10 @@ use crate::analysis::circular::SymmetricCircular;
 use crate::analysis::symmetric::{self, RotationalDomain, SlidingDomain};
 use crate::model::Discretisation;
 use crate::plan::{Case, Plan};
+use crate::progress::{Progress, Stage};
 use crate::scene::{self, Find, Solution};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use std::collections::HashMap;
-use std::io::IsTerminal;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::time::Instant;
 
@@ -54,28 +53,6 @@ pub struct CaseResult {
     pub message: Option<String>,
 }
 
-/// How to show progress.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Progress {
-    /// A bar on stderr when stderr is a terminal.
-    Auto,
-    /// Nothing.
-    Hidden,
-}
-
-fn progress_bar(len: u64, mode: Progress) -> ProgressBar {
-    if mode == Progress::Hidden || !std::io::stderr().is_terminal() {
-        return ProgressBar::with_draw_target(Some(len), ProgressDrawTarget::hidden());
-    }
-    let bar = ProgressBar::new(len);
-    if let Ok(style) = ProgressStyle::with_template(
-        "{spinner} analysing [{bar:40}] {pos}/{len} cases ({per_sec}, {eta} left)",
-    ) {
-        bar.set_style(style.progress_chars("=> "));
-    }
-    bar
-}
-
 fn panic_message(p: Box<dyn std::any::Any + Send>) -> String {
     if let Some(s) = p.downcast_ref::<&str>() {
         (*s).to_string()
@@ -106,21 +83,22 @@ fn checked(case: &Case, run: impl FnOnce() -> Solution) -> CaseResult {
 }
 
 /// Analyses every case of a plan; results are in plan order whatever the thread count.
-pub fn run(plan: &Plan, progress: Progress) -> Vec<CaseResult> {
-    let bar = progress_bar(plan.cases.len() as u64, progress);
+/// Progress is reported as the [`Stage::Analyse`] stage, counted in cases.
+pub fn run(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
+    progress.begin(Stage::Analyse, Some(plan.cases.len() as u64));
     let out = if plan.is_separable_state_grid() {
-        run_separable(plan, &bar)
+        run_separable(plan, progress)
     } else {
         plan.cases
             .par_iter()
             .map(|c| {
                 let r = checked(c, || scene::solve(&c.scene));
-                bar.inc(1);
+                progress.advance(1);
                 r
             })
             .collect()
     };
-    bar.finish_and_clear();
+    progress.end(Stage::Analyse);
     out
 }
 
@@ -132,31 +110,70 @@ struct GeomKey {
     k_bits: u64,
 }
 
-fn run_separable(plan: &Plan, bar: &ProgressBar) -> Vec<CaseResult> {
-    // Distinct rotational problems (geometry and K) and sliding problems (geometry and μ).
-    let mut rot_keys: Vec<GeomKey> = Vec::new();
-    let mut rot_index: HashMap<GeomKey, usize> = HashMap::new();
-    let mut sld_keys: Vec<(GeomKey, u64)> = Vec::new();
-    let mut sld_index: HashMap<(GeomKey, u64), usize> = HashMap::new();
-    let mut case_keys = Vec::with_capacity(plan.cases.len());
-    for c in &plan.cases {
-        let a = &c.scene.arch;
-        let rk = GeomKey {
-            half_angle_bits: a.half_angle.to_bits(),
-            joints: a.joints,
-            k_bits: a.k.to_bits(),
-        };
-        let sk = (GeomKey { k_bits: 0, ..rk }, c.scene.friction.mu().to_bits());
-        let ri = *rot_index.entry(rk).or_insert_with(|| {
-            rot_keys.push(rk);
-            rot_keys.len() - 1
-        });
-        let si = *sld_index.entry(sk).or_insert_with(|| {
-            sld_keys.push(sk);
-            sld_keys.len() - 1
-        });
-        case_keys.push((ri, si));
+/// The distinct rotational problems (geometry and K) and sliding problems (geometry and μ)
+/// of a separable grid, and for each case the index of its two problems.
+struct SeparableKeys {
+    rot: Vec<GeomKey>,
+    sld: Vec<(GeomKey, u64)>,
+    cases: Vec<(usize, usize)>,
+}
+
+impl SeparableKeys {
+    fn of(plan: &Plan) -> Self {
+        let mut rot: Vec<GeomKey> = Vec::new();
+        let mut rot_index: HashMap<GeomKey, usize> = HashMap::new();
+        let mut sld: Vec<(GeomKey, u64)> = Vec::new();
+        let mut sld_index: HashMap<(GeomKey, u64), usize> = HashMap::new();
+        let mut cases = Vec::with_capacity(plan.cases.len());
+        for c in &plan.cases {
+            let a = &c.scene.arch;
+            let rk = GeomKey {
+                half_angle_bits: a.half_angle.to_bits(),
+                joints: a.joints,
+                k_bits: a.k.to_bits(),
+            };
+            let sk = (GeomKey { k_bits: 0, ..rk }, c.scene.friction.mu().to_bits());
+            let ri = *rot_index.entry(rk).or_insert_with(|| {
+                rot.push(rk);
+                rot.len() - 1
+            });
+            let si = *sld_index.entry(sk).or_insert_with(|| {
+                sld.push(sk);
+                sld.len() - 1
+            });
+            cases.push((ri, si));
+        }
+        SeparableKeys { rot, sld, cases }
     }
+
+    /// How many cases share each rotational and each sliding domain, to split its cost.
+    fn uses(&self) -> (Vec<usize>, Vec<usize>) {
+        let mut rot_uses = vec![0usize; self.rot.len()];
+        let mut sld_uses = vec![0usize; self.sld.len()];
+        for &(r, s) in &self.cases {
+            rot_uses[r] += 1;
+            sld_uses[s] += 1;
+        }
+        (rot_uses, sld_uses)
+    }
+}
+
+/// A domain solved once for the cases that share it, with its solve time in µs, or the
+/// message of the panic that stopped it.
+type Timed<D> = Result<(D, f64), String>;
+
+fn timed<D>(solve: impl FnOnce() -> D) -> Timed<D> {
+    let t = Instant::now();
+    catch_unwind(AssertUnwindSafe(solve))
+        .map(|d| (d, t.elapsed().as_secs_f64() * 1e6))
+        .map_err(panic_message)
+}
+
+/// Every rotational and sliding domain of a separable grid, solved in parallel.
+fn separable_domains(
+    plan: &Plan,
+    keys: &SeparableKeys,
+) -> (Vec<Timed<RotationalDomain>>, Vec<Timed<SlidingDomain>>) {
     let weight = plan.manifest.arch.weight;
     let sample = plan.cases.first().map(|c| c.scene.arch);
     let arch_for = |g: &GeomKey, k: f64| crate::model::Arch {
@@ -165,48 +182,40 @@ fn run_separable(plan: &Plan, bar: &ProgressBar) -> Vec<CaseResult> {
         weight,
         joints: g.joints,
     };
-    // Each domain solve is timed; a panic there marks the cases that use it as failed.
-    let rot: Vec<Result<(RotationalDomain, f64), String>> = rot_keys
+    let rot = keys
+        .rot
         .par_iter()
         .map(|g| {
-            let t = Instant::now();
-            catch_unwind(AssertUnwindSafe(|| {
-                symmetric::rotational_domain(&SymmetricCircular::new(&arch_for(
-                    g,
-                    f64::from_bits(g.k_bits),
-                )))
-            }))
-            .map(|d| (d, t.elapsed().as_secs_f64() * 1e6))
-            .map_err(panic_message)
+            let arch = arch_for(g, f64::from_bits(g.k_bits));
+            timed(|| symmetric::rotational_domain(&SymmetricCircular::new(&arch)))
         })
         .collect();
-    let sld: Vec<Result<(SlidingDomain, f64), String>> = sld_keys
+    let sld = keys
+        .sld
         .par_iter()
         .map(|(g, mu_bits)| {
-            let t = Instant::now();
             // H^s does not depend on K; any K > 1 gives the same joints and weights.
             let arch = arch_for(g, sample.map_or(2.0, |a| a.k.max(1.0 + 1e-9)));
             let phi = crate::model::Friction::new(f64::from_bits(*mu_bits))
                 .unwrap_or(crate::model::Friction::INFINITE)
                 .angle();
-            catch_unwind(AssertUnwindSafe(|| {
-                symmetric::sliding_domain(&SymmetricCircular::new(&arch), phi)
-            }))
-            .map(|d| (d, t.elapsed().as_secs_f64() * 1e6))
-            .map_err(panic_message)
+            timed(|| symmetric::sliding_domain(&SymmetricCircular::new(&arch), phi))
         })
         .collect();
-    // How many cases share each domain, to split its cost.
-    let mut rot_uses = vec![0usize; rot.len()];
-    let mut sld_uses = vec![0usize; sld.len()];
-    for &(r, s) in &case_keys {
-        rot_uses[r] += 1;
-        sld_uses[s] += 1;
-    }
+    (rot, sld)
+}
+
+/// A symmetric self-weight `state` grid: each domain solved once (timed; a panic there marks
+/// the cases that use it as failed), then a comparison per case. A case's solve time is its
+/// own comparison plus its share of both domain solves.
+fn run_separable(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
+    let keys = SeparableKeys::of(plan);
+    let (rot, sld) = separable_domains(plan, &keys);
+    let (rot_uses, sld_uses) = keys.uses();
     let results: Vec<CaseResult> = plan
         .cases
         .par_iter()
-        .zip(case_keys.par_iter())
+        .zip(keys.cases.par_iter())
         .map(|(c, &(ri, si))| {
             let r = match (&rot[ri], &sld[si]) {
                 (Ok((rd, rt)), Ok((sd, st))) => {
@@ -225,7 +234,7 @@ fn run_separable(plan: &Plan, bar: &ProgressBar) -> Vec<CaseResult> {
                     message: Some(m.clone()),
                 },
             };
-            bar.inc(1);
+            progress.advance(1);
             r
         })
         .collect();

@@ -1,6 +1,6 @@
-//! The `archstudy` binary: a thin layer over the library.
+//! The `archstudy` binary: a thin layer over the library's command-line module.
 
-use archstudy::cli::Cli;
+use archstudy::app::Cli;
 use clap::Parser;
 use std::process::ExitCode;
 

@@ -14,15 +14,14 @@
 pub mod compare;
 
 use crate::archive::{self, Provenance, REQUIRED_FILES, SUMS_FILE, check_sums, parse_sums};
-use crate::cli::{UsageError, VerifyArgs};
-use crate::engine::Progress;
+use crate::error::UsageError;
+use crate::provenance;
 use crate::runner::{self, RunOptions};
 use crate::store;
 use anyhow::{Context, Result};
 use compare::{ColumnVerdict, TableComparison, compare_tables};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::process::ExitCode;
 
 /// Options of `verify`, as domain values.
 #[derive(Debug, Clone)]
@@ -35,48 +34,16 @@ pub struct VerifyOptions {
     pub tolerance: f64,
 }
 
-impl VerifyArgs {
-    /// The validated options.
-    pub fn options(&self) -> Result<VerifyOptions, UsageError> {
-        if !(self.tolerance.is_finite() && self.tolerance >= 0.0) {
-            return Err(UsageError {
-                option: "--tolerance",
-                value: self.tolerance.to_string(),
-                allowed: "the tolerance must be a finite number ≥ 0".into(),
-            });
-        }
-        Ok(VerifyOptions {
-            target: self.target.clone(),
-            rerun: !self.no_rerun,
-            tolerance: self.tolerance,
-        })
-    }
-}
-
-/// `archstudy verify` from the command line: exit 0 when everything agrees, 1 otherwise.
-pub fn verify_command(args: &VerifyArgs) -> Result<ExitCode> {
-    let opts = args.options()?;
-    let mut out = std::io::stdout().lock();
-    let agrees = verify(&opts, &mut out)?;
-    out.flush()?;
-    Ok(if agrees {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::from(1)
-    })
-}
-
 /// Verifies an archive or a run directory, writing the verdicts to `out`; true when the
 /// integrity check passes and (unless not re-running) every stored table agrees.
 pub fn verify(opts: &VerifyOptions, out: &mut dyn Write) -> Result<bool> {
     let target = &opts.target;
     if !target.exists() {
-        return Err(UsageError {
-            option: "ARCHIVE|RUN_DIR",
-            value: target.display().to_string(),
-            allowed: "an archive made by `archstudy archive`, or a run directory (no such file)"
-                .into(),
-        }
+        return Err(UsageError::new(
+            "ARCHIVE|RUN_DIR",
+            target.display(),
+            "an archive made by `archstudy archive`, or a run directory (no such file)",
+        )
         .into());
     }
     let is_archive = !target.is_dir();
@@ -204,13 +171,13 @@ fn provenance(p: &Provenance, out: &mut dyn Write) -> Result<()> {
     let unknown = || "unknown".to_string();
     let stored_version = p.archstudy_version.clone().unwrap_or_else(unknown);
     let stored_commit = p.git_commit.clone().unwrap_or_else(unknown);
-    let this_commit = runner::git_commit().unwrap_or_else(unknown);
+    let this_commit = provenance::git_commit().unwrap_or_else(unknown);
     writeln!(
         out,
         "made by: archstudy {stored_version} (commit {stored_commit}); this build: archstudy {} (commit {this_commit})",
-        runner::version()
+        provenance::version()
     )?;
-    if stored_version != runner::version() {
+    if stored_version != provenance::version() {
         writeln!(
             out,
             "  note: the archstudy version differs from this build; comparing anyway"
@@ -231,11 +198,8 @@ fn rerun_and_compare(dir: &Path, tolerance: f64, out: &mut dyn Write) -> Result<
         .tempdir()
         .context("cannot create a temporary directory for the re-run")?;
     let opts = RunOptions {
-        study: dir.join("manifest.yaml"),
-        out: temp.path().to_path_buf(),
-        jobs: None,
-        progress: Progress::Hidden,
         command_line: std::env::args().collect(),
+        ..RunOptions::new(dir.join("manifest.yaml"), temp.path())
     };
     let summary = match runner::run_study(&opts) {
         Ok(s) => s,

@@ -1,7 +1,7 @@
 //! `archstudy archive` and `archstudy verify` end to end, on a tiny study.
 
-use archstudy::engine::Progress;
-use archstudy::runner::{self, RunOptions, sha256_hex};
+use archstudy::provenance::sha256_hex;
+use archstudy::runner::{self, RunOptions};
 use archstudy::store::{self, ColumnData};
 use flate2::Compression;
 use flate2::read::GzDecoder;
@@ -34,7 +34,7 @@ fn tiny_run(root: &Path) -> PathBuf {
         study: manifest,
         out: root.join("out"),
         jobs: Some(1),
-        progress: Progress::Hidden,
+        progress: std::sync::Arc::new(archstudy::progress::Silent),
         command_line: vec!["test".into()],
     })
     .unwrap();

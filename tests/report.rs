@@ -2,7 +2,6 @@
 //! `archstudy report` on a copied run, and the figure files.
 
 use archstudy::analysis::symmetric::{self, Critical, CriticalState};
-use archstudy::engine::Progress;
 use archstudy::model::{Arch, Friction, t_over_r_from_k};
 use archstudy::output::RunLayout;
 use archstudy::runner::{self, RunOptions};
@@ -45,7 +44,7 @@ fn run_small(dir: &Path) -> PathBuf {
         study: manifest,
         out: dir.join("out"),
         jobs: Some(1),
-        progress: Progress::Hidden,
+        progress: std::sync::Arc::new(archstudy::progress::Silent),
         command_line: vec!["archstudy".into(), "run".into(), "small.yaml".into()],
     };
     runner::run_study(&opts).unwrap().dir
@@ -592,7 +591,7 @@ fn convergence_report_has_an_error_table_and_an_order_per_threshold() {
         study: manifest,
         out: d.join("out"),
         jobs: Some(1),
-        progress: Progress::Hidden,
+        progress: std::sync::Arc::new(archstudy::progress::Silent),
         command_line: vec!["archstudy".into(), "run".into(), "conv.yaml".into()],
     };
     let run = runner::run_study(&opts).unwrap().dir;

@@ -2,7 +2,7 @@
 //! `<64 hex digits>  <path>` line per file, paths relative to the archive's top directory,
 //! `/`-separated, sorted), so `sha256sum -c SHA256SUMS` checks an unpacked archive too.
 
-use crate::runner::sha256_hex;
+use crate::provenance::sha256_hex;
 use anyhow::{Context, Result};
 use std::collections::BTreeMap;
 use std::path::Path;

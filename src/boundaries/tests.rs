@@ -4,7 +4,7 @@
 use super::*;
 use crate::analysis::symmetric;
 use crate::analysis::{Face, MechanismKind as M, Regime as R};
-use crate::engine::{self, Progress};
+use crate::engine;
 use crate::manifest;
 use crate::model::{Arch, Friction};
 use std::path::Path;
@@ -17,7 +17,7 @@ const K_BIF: f64 = 1.220507754643;
 fn run(yaml: &str) -> (Plan, Located) {
     let m = manifest::parse(yaml, Path::new("test.yaml")).expect("valid manifest");
     let plan = crate::plan::build(m).expect("small plan");
-    let results = engine::run(&plan, Progress::Hidden);
+    let results = engine::run(&plan, &crate::progress::Silent);
     let located = locate(&plan, &results);
     (plan, located)
 }

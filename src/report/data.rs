@@ -2,7 +2,7 @@
 //! boundaries.parquet, bifurcations.parquet and the figure data. Nothing is recomputed.
 
 use crate::output::RunLayout;
-use crate::runner::RunInfo;
+use crate::provenance::RunInfo;
 use crate::store::{
     self, BifurcationRow, BoundaryRow, CurvePoint, MechanismRow, ReferenceRow, ResultRow, StateRow,
 };

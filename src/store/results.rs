@@ -385,7 +385,7 @@ fn block_frame<'a>(plan: &'a Plan, rows: &'a [CaseResult]) -> Result<DataFrame> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::engine::{self, Progress};
+    use crate::engine;
     use std::path::Path;
 
     #[test]
@@ -398,7 +398,7 @@ mod tests {
         )
         .unwrap();
         let plan = crate::plan::build(m).unwrap();
-        let rows = engine::run(&plan, Progress::Hidden);
+        let rows = engine::run(&plan, &crate::progress::Silent);
         let whole = frame_in_blocks(&plan, &rows, usize::MAX).unwrap();
         let blocks = frame_in_blocks(&plan, &rows, 7).unwrap();
         assert_eq!(whole.height(), 143);

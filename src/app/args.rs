@@ -1,6 +1,7 @@
-//! The command line: clap arguments as typed, turned into domain values at the edge.
+//! The command line as typed (clap), turned into the library's domain values at the edge.
 
 use crate::analysis::forms::FormError;
+use crate::error::UsageError;
 use crate::model::{
     Arch, ArchForm, Discretisation, Friction, JointOrientation, Load, ModelError, Shape,
     WeightModel, k_from_t_over_r,
@@ -8,6 +9,7 @@ use crate::model::{
 use crate::scene::{Find, Scene};
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
+use std::sync::Arc;
 
 /// Limit analysis of masonry arches with finite Coulomb friction.
 #[derive(Debug, Parser)]
@@ -152,24 +154,8 @@ pub struct SolveArgs {
     pub json: bool,
 }
 
-/// A bad option value: names the option, the value and what is allowed.
-#[derive(Debug, thiserror::Error)]
-#[error("invalid value '{value}' for '{option}': {allowed}")]
-pub struct UsageError {
-    /// The option as typed, e.g. `--k`.
-    pub option: &'static str,
-    /// The value given.
-    pub value: String,
-    /// What is allowed.
-    pub allowed: String,
-}
-
 fn usage(option: &'static str, value: impl ToString, allowed: impl ToString) -> UsageError {
-    UsageError {
-        option,
-        value: value.to_string(),
-        allowed: allowed.to_string(),
-    }
+    UsageError::new(option, value, allowed)
 }
 
 /// Parses a friction coefficient: a number ≥ 0 or `inf`.
@@ -352,5 +338,46 @@ impl SolveArgs {
                 ),
             )),
         }
+    }
+}
+
+impl RunArgs {
+    /// The validated options of the run, reporting progress to `progress`.
+    pub fn options(
+        &self,
+        progress: Arc<dyn crate::progress::Progress>,
+    ) -> Result<crate::runner::RunOptions, UsageError> {
+        if let Some(0) = self.jobs {
+            return Err(usage(
+                "--jobs",
+                0,
+                "the number of threads must be at least 1",
+            ));
+        }
+        Ok(crate::runner::RunOptions {
+            study: self.study.clone(),
+            out: self.out.clone(),
+            jobs: self.jobs,
+            progress,
+            command_line: std::env::args().collect(),
+        })
+    }
+}
+
+impl VerifyArgs {
+    /// The validated options.
+    pub fn options(&self) -> Result<crate::verify::VerifyOptions, UsageError> {
+        if !(self.tolerance.is_finite() && self.tolerance >= 0.0) {
+            return Err(usage(
+                "--tolerance",
+                self.tolerance,
+                "the tolerance must be a finite number ≥ 0",
+            ));
+        }
+        Ok(crate::verify::VerifyOptions {
+            target: self.target.clone(),
+            rerun: !self.no_rerun,
+            tolerance: self.tolerance,
+        })
     }
 }

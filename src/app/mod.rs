@@ -1,0 +1,136 @@
+//! The command line: the only code that sees clap or prints. It turns arguments into the
+//! library's options, shows progress, and writes what each command returns.
+
+pub mod args;
+mod progress;
+
+pub use args::{Cli, Command};
+
+use crate::error::UsageError;
+use crate::{archive, report, runner, scene, verify};
+use anyhow::Result;
+use args::{ArchiveArgs, CheckArgs, ReportArgs, RunArgs, SolveArgs, VerifyArgs};
+use std::io::Write;
+use std::process::ExitCode;
+use std::sync::Arc;
+
+/// Exit status for an error: 2 for bad usage or input, 1 for a failed run.
+pub fn exit_code(err: &anyhow::Error) -> u8 {
+    if err.chain().any(|c| {
+        c.is::<UsageError>()
+            || c.is::<crate::manifest::ManifestError>()
+            || c.is::<crate::plan::PlanTooLarge>()
+            || c.is::<crate::report::data::RunDirError>()
+    }) {
+        2
+    } else {
+        1
+    }
+}
+
+/// Runs a parsed command line.
+pub fn run(cli: Cli) -> Result<ExitCode> {
+    match cli.command {
+        Command::Solve(args) => solve(&args),
+        Command::Run(args) => run_study(&args),
+        Command::Check(args) => check(&args),
+        Command::Report(args) => render(&args),
+        Command::Archive(args) => pack(&args),
+        Command::Verify(args) => check_archive(&args),
+    }
+}
+
+/// Writes text to standard output; a closed pipe (e.g. `| head`) is not an error.
+fn print_out(text: &str) -> Result<()> {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|_| out.flush()) {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        Err(e) => Err(e.into()),
+        Ok(()) => Ok(()),
+    }
+}
+
+fn solve(args: &SolveArgs) -> Result<ExitCode> {
+    let scene = args.scene()?;
+    let sol = scene::solve(&scene);
+    let text = if args.json {
+        serde_json::to_string_pretty(&sol)? + "\n"
+    } else {
+        scene::summary(&sol)
+    };
+    print_out(&text)?;
+    Ok(ExitCode::SUCCESS)
+}
+
+fn run_study(args: &RunArgs) -> Result<ExitCode> {
+    let shown: Arc<dyn crate::progress::Progress> = if args.quiet {
+        Arc::new(crate::progress::Silent)
+    } else {
+        Arc::new(progress::Shown::on_stderr())
+    };
+    let opts = args.options(shown)?;
+    let summary = runner::run_study(&opts)?;
+    eprintln!(
+        "{} cases ({} ok, {} failed) in {:.2} s; written to {}",
+        summary.info.cases.total,
+        summary.info.cases.ok,
+        summary.info.cases.error,
+        summary.wall_s,
+        summary.dir.display()
+    );
+    if summary.info.cases.error > 0 {
+        eprintln!(
+            "warning: {} cases failed; their rows carry status `error` and a message",
+            summary.info.cases.error
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn check(args: &CheckArgs) -> Result<ExitCode> {
+    let summary = runner::check(&args.study)?;
+    print_out(&format!(
+        "{}manifest sha256: {}\n",
+        summary.plan, summary.manifest_sha256
+    ))?;
+    Ok(ExitCode::SUCCESS)
+}
+
+fn render(args: &ReportArgs) -> Result<ExitCode> {
+    let s = report::render_run(&args.run_dir)?;
+    eprintln!(
+        "{} figures; wrote {} and {}",
+        s.figures,
+        s.html.display(),
+        s.markdown.display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+fn pack(args: &ArchiveArgs) -> Result<ExitCode> {
+    let s = archive::write_archive(&args.run_dir, args.output.as_deref())?;
+    for k in &s.skipped {
+        eprintln!("warning: {k} is not a regular file and was left out");
+    }
+    eprintln!(
+        "{} files and {} under {}/ ({} bytes) written to {}",
+        s.files,
+        archive::SUMS_FILE,
+        s.top,
+        s.bytes,
+        s.path.display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+fn check_archive(args: &VerifyArgs) -> Result<ExitCode> {
+    let opts = args.options()?;
+    let mut out = std::io::stdout().lock();
+    let agrees = verify::verify(&opts, &mut out)?;
+    out.flush()?;
+    Ok(if agrees {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
