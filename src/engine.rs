@@ -238,10 +238,6 @@ fn run_separable(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
             r
         })
         .collect();
-    debug_assert!(
-        results
-            .iter()
-            .all(|r| r.solution.find == Find::State.as_str())
-    );
+    debug_assert!(results.iter().all(|r| r.solution.find == Find::State));
     results
 }

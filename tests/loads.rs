@@ -3,10 +3,11 @@
 //! the manifest keys, the command-line options and the stored columns.
 
 use crate::common::{archstudy, manifest, scratch, solve_json, stderr};
+use archstudy::analysis::{Face, MechanismKind, Regime};
 use archstudy::model::{
     Arch, ArchForm, Discretisation, Friction, JointOrientation, Load, Shape, WeightModel,
 };
-use archstudy::scene::{self, Find, Scene, Solution};
+use archstudy::scene::{self, Find, Outcome, Scene, Solution};
 use archstudy::store;
 use std::path::Path;
 
@@ -72,13 +73,13 @@ fn general_route_reproduces_the_reference_values() {
         let what = format!("{form:?} {load:?}");
         let s = |find: Find, a: Arch, m: Friction| scene::solve(&scene(a, m, find, form, load));
         let t = s(Find::Thickness, a, Friction::INFINITE);
-        assert_eq!(t.outcome, Some("found"), "{what}");
+        assert_eq!(t.outcome, Some(Outcome::Found), "{what}");
         let kc = t.k_crit.unwrap();
         assert!(close(kc, K_C, 1e-9), "{what}: K_c = {kc}");
         assert!(close(t.t_over_r_crit.unwrap(), T_OVER_R_C, 1e-9));
         assert!(close(t.thrust_over_half_weight.unwrap(), MU_ROT, 1e-9));
-        assert_eq!(t.mechanism, Some("rotational"));
-        let haunch = t.hinges.iter().find(|h| h.face == "intrados").unwrap();
+        assert_eq!(t.mechanism, Some(MechanismKind::Rotational));
+        let haunch = t.hinges.iter().find(|h| h.face == Face::Intrados).unwrap();
         assert!(
             close(haunch.angle_deg.abs(), HAUNCH, 1e-6),
             "{:?}",
@@ -91,7 +92,7 @@ fn general_route_reproduces_the_reference_values() {
         let f = s(Find::Friction, a.with_k(1.4), Friction::INFINITE);
         let mu_min = f.mu_crit.unwrap();
         assert!(close(mu_min, MU_MIN, 1e-9), "{what}: μ_min = {mu_min}");
-        assert_eq!(f.mechanism, Some("sliding"));
+        assert_eq!(f.mechanism, Some(MechanismKind::Sliding));
         let angles: Vec<f64> = f.sliding_joints.iter().map(|j| j.angle_deg).collect();
         assert!(close(angles[2], 28.63619468, 1e-6) && close(angles[3], 90.0, 1e-9));
         // K at the mixed/sliding bifurcation: the collapse thickness at μ_min.
@@ -101,7 +102,7 @@ fn general_route_reproduces_the_reference_values() {
         let sym = scene::solve(&Scene::new(a, mu(0.35), Find::Thickness));
         let general = s(Find::Thickness, a, mu(0.35));
         assert!(close(general.k_crit.unwrap(), sym.k_crit.unwrap(), 1e-9));
-        assert_eq!(general.mechanism, Some("mixed"));
+        assert_eq!(general.mechanism, Some(MechanismKind::Mixed));
     }
 }
 
@@ -190,13 +191,17 @@ fn one_voussoir_under_a_horizontal_load_by_hand() {
                 close(s.load_factor.unwrap(), overturn, 1e-12),
                 "K = {k}: {s:?}"
             );
-            assert_eq!(s.mechanism, Some("rotational"));
-            let hinges: Vec<(f64, &str)> = s.hinges.iter().map(|h| (h.angle_deg, h.face)).collect();
+            assert_eq!(s.mechanism, Some(MechanismKind::Rotational));
+            let hinges: Vec<(f64, &str)> = s
+                .hinges
+                .iter()
+                .map(|h| (h.angle_deg, h.face.as_str()))
+                .collect();
             assert_eq!(hinges, vec![(90.0, "extrados")], "K = {k}");
             let m = 0.5 * overturn;
             let s = lambda_max(a, mu(m), form, Load::Horizontal);
             assert!(close(s.load_factor.unwrap(), m, 1e-12), "K = {k}: {s:?}");
-            assert_eq!(s.mechanism, Some("sliding"));
+            assert_eq!(s.mechanism, Some(MechanismKind::Sliding));
         }
     }
 }
@@ -212,7 +217,7 @@ fn horizontal_load_factor_vanishes_at_k_c_and_grows_with_k() {
         )
     };
     let below = h(K_C - 1e-7, Friction::INFINITE);
-    assert_eq!(below.outcome, Some("never_stands"));
+    assert_eq!(below.outcome, Some(Outcome::NeverStands));
     assert!(below.load_factor.is_none() && !below.load_factor_unbounded);
     let at = h(K_C + 1e-9, Friction::INFINITE).load_factor.unwrap();
     assert!(at > 0.0 && at < 1e-8, "λ = {at}");
@@ -224,15 +229,18 @@ fn horizontal_load_factor_vanishes_at_k_c_and_grows_with_k() {
     }
     // A thick arch with ample friction: four hinges, alternating faces.
     let thick = h(1.5, Friction::INFINITE);
-    assert_eq!(thick.mechanism, Some("rotational"));
-    let faces: Vec<&str> = thick.hinges.iter().map(|h| h.face).collect();
+    assert_eq!(thick.mechanism, Some(MechanismKind::Rotational));
+    let faces: Vec<&str> = thick.hinges.iter().map(|h| h.face.as_str()).collect();
     assert_eq!(faces.len(), 4, "{:?}", thick.hinges);
     assert!(faces.windows(2).all(|w| w[0] != w[1]), "{faces:?}");
     // Low friction: the same arch slides at a springing.
     let low = h(1.5, mu(0.4));
     assert!(low.load_factor.unwrap() < thick.load_factor.unwrap());
     assert!(
-        matches!(low.mechanism, Some("mixed" | "sliding")),
+        matches!(
+            low.mechanism,
+            Some(MechanismKind::Mixed | MechanismKind::Sliding)
+        ),
         "{low:?}"
     );
     assert!(
@@ -262,12 +270,12 @@ fn point_load_goes_straight_into_the_support_near_the_springings() {
     let edge = (1.0 / k).asin().to_degrees();
     for at in [90.0, -90.0, edge + 0.5, -(edge + 0.5)] {
         let s = p(at);
-        assert_eq!(s.outcome, Some("unbounded"), "at {at}°");
+        assert_eq!(s.outcome, Some(Outcome::Unbounded), "at {at}°");
         assert!(s.load_factor.is_none() && s.load_factor_unbounded);
     }
     for at in [0.0, 30.0, -30.0, edge - 0.5] {
         let s = p(at);
-        assert_eq!(s.outcome, Some("found"), "at {at}°");
+        assert_eq!(s.outcome, Some(Outcome::Found), "at {at}°");
         assert!(s.load_factor.unwrap() > 0.0 && !s.load_factor_unbounded);
     }
     // Symmetric positions give the same λ; the load's joint is a hinge of the mechanism.
@@ -276,7 +284,7 @@ fn point_load_goes_straight_into_the_support_near_the_springings() {
     assert!(
         l.hinges
             .iter()
-            .any(|h| close(h.angle_deg, 30.0, 1e-9) && h.face == "extrados")
+            .any(|h| close(h.angle_deg, 30.0, 1e-9) && h.face == Face::Extrados)
     );
     // The command line says so in JSON.
     let v = solve_json(&[
@@ -341,7 +349,7 @@ fn pointed_arch_collapses_with_the_crown_rising() {
     assert!(
         t.hinges
             .iter()
-            .any(|h| h.angle_deg == 0.0 && h.face == "intrados"),
+            .any(|h| h.angle_deg == 0.0 && h.face == Face::Intrados),
         "{t:?}"
     );
     // Thicker than that it stands, thinner it does not.
@@ -355,8 +363,8 @@ fn pointed_arch_collapses_with_the_crown_rising() {
         ))
         .regime
     };
-    assert_eq!(state(k + 1e-6), Some("stable"));
-    assert_eq!(state(k - 1e-6), Some("rotational"));
+    assert_eq!(state(k + 1e-6), Some(Regime::Stable));
+    assert_eq!(state(k - 1e-6), Some(Regime::Rotational));
     // Continuum and voussoirs again.
     let fine = scene::solve(&scene(
         arch(1.2, Discretisation::Voussoirs(512)),
@@ -475,8 +483,16 @@ boundaries: {tolerance: 1.0e-8}
             Some("mu") => (at(k, m - step), at(k, m + step)),
             other => panic!("axis {other:?}"),
         };
-        assert_eq!(lo.mechanism, ma[i].as_deref(), "row {i}");
-        assert_eq!(hi.mechanism, mb[i].as_deref(), "row {i}");
+        assert_eq!(
+            lo.mechanism.map(|m| m.as_str()),
+            ma[i].as_deref(),
+            "row {i}"
+        );
+        assert_eq!(
+            hi.mechanism.map(|m| m.as_str()),
+            mb[i].as_deref(),
+            "row {i}"
+        );
         assert!(
             close(
                 blf[i].unwrap(),
@@ -560,7 +576,11 @@ load_cases:
                 Load::Horizontal,
             )
         });
-        assert_eq!(s.regime, regime[i].as_deref(), "row {i}");
+        assert_eq!(
+            s.regime.map(|r| r.as_str()),
+            regime[i].as_deref(),
+            "row {i}"
+        );
     }
     // Boundaries are located on the general route too, each between its two regimes.
     let b = store::read_parquet(&dir.join("out/st/boundaries.parquet")).unwrap();
@@ -848,7 +868,7 @@ fn load_factor_agrees_with_the_work_equation_of_its_mechanism() {
             ArchForm::default(),
             load,
         );
-        assert_eq!(s.mechanism, Some("mixed"), "{load:?}");
+        assert_eq!(s.mechanism, Some(MechanismKind::Mixed), "{load:?}");
         assert_eq!(s.mechanism_dof, Some(1));
         assert!(s.work_loads.unwrap() > 0.0);
         assert!(s.work_residual.unwrap() < 1e-9, "{load:?}: {s:?}");
@@ -928,8 +948,8 @@ find: thresholds
         s.lambda = l;
         scene::solve(&s).regime
     };
-    assert_eq!(regime_at(lc * (1.0 - 1e-7)), Some("stable"));
-    assert_eq!(regime_at(lc * (1.0 + 1e-7)), Some("mixed"));
+    assert_eq!(regime_at(lc * (1.0 - 1e-7)), Some(Regime::Stable));
+    assert_eq!(regime_at(lc * (1.0 + 1e-7)), Some(Regime::Mixed));
     assert!(lambda(Some(512)) - lc < 1e-5 && lambda(Some(8)) - lc > 1e-3);
     // Each discrete case's reference is the continuum case of its own load case.
     let refs = store::read_reference(&run.join("reference.parquet")).unwrap();

@@ -18,10 +18,10 @@ use super::{Bifurcation, BoundaryPoint, Counter, EdgeAxis};
 use crate::analysis::forms::ArchModel;
 use crate::analysis::general::{self, Settings};
 use crate::analysis::symmetric::CriticalState;
-use crate::analysis::{Face, Hinge, Mechanism, MechanismKind, Regime, Sense, SlidingJoint};
+use crate::analysis::{Mechanism, MechanismKind, Regime};
 use crate::engine::CaseResult;
 use crate::model::Friction;
-use crate::scene::{self, Find, Scene, Solution};
+use crate::scene::{self, Find, Outcome, Scene, Solution};
 use std::f64::consts::FRAC_PI_2;
 
 /// What is compared between the ends of an edge.
@@ -32,7 +32,7 @@ enum Label {
     /// A limit state with its mechanism kind (other studies).
     Found(Option<MechanismKind>),
     /// Any other outcome (unbounded, never or always stands, failed).
-    Other(&'static str),
+    Other(Outcome),
 }
 
 fn label(find: Find, s: &Solution) -> Option<Label> {
@@ -40,46 +40,15 @@ fn label(find: Find, s: &Solution) -> Option<Label> {
         return s.regime().map(Label::Regime);
     }
     match s.outcome? {
-        "found" => Some(Label::Found(s.mechanism.and_then(kind))),
+        Outcome::Found => Some(Label::Found(s.mechanism)),
         other => Some(Label::Other(other)),
-    }
-}
-
-fn kind(s: &str) -> Option<MechanismKind> {
-    match s {
-        "rotational" => Some(MechanismKind::Rotational),
-        "mixed" => Some(MechanismKind::Mixed),
-        "sliding" => Some(MechanismKind::Sliding),
-        _ => None,
     }
 }
 
 /// The limit state of a stored answer, rebuilt from its records.
 fn critical_state(s: &Solution, k: f64, mu: f64) -> Option<CriticalState> {
-    let hinges = s
-        .hinges
-        .iter()
-        .map(|h| Hinge {
-            angle_deg: h.angle_deg,
-            face: if h.face == "intrados" {
-                Face::Intrados
-            } else {
-                Face::Extrados
-            },
-        })
-        .collect();
-    let sliding = s
-        .sliding_joints
-        .iter()
-        .map(|j| SlidingJoint {
-            angle_deg: j.angle_deg,
-            sense: if j.sense == "outward" {
-                Sense::Outward
-            } else {
-                Sense::Inward
-            },
-        })
-        .collect();
+    let hinges = s.hinges.clone();
+    let sliding = s.sliding_joints.clone();
     Some(CriticalState {
         k: s.k_crit.unwrap_or(k),
         mu: s.mu_crit.unwrap_or(mu),

@@ -15,7 +15,7 @@ use super::{Bifurcation, Counter};
 use crate::analysis::symmetric::{Critical, CriticalState};
 use crate::analysis::{Mechanism, MechanismKind};
 use crate::engine::CaseResult;
-use crate::scene::Solution;
+use crate::scene::{Outcome as Answered, Solution};
 use std::f64::consts::FRAC_PI_2;
 
 /// The parameter a one-dimensional study sweeps.
@@ -45,17 +45,9 @@ fn outcome(c: &Critical) -> Outcome {
 
 fn stored_outcome(s: &Solution) -> Option<Outcome> {
     match s.outcome? {
-        "found" => {
-            let kind = match s.mechanism? {
-                "rotational" => MechanismKind::Rotational,
-                "mixed" => MechanismKind::Mixed,
-                "sliding" => MechanismKind::Sliding,
-                _ => return None,
-            };
-            Some(Outcome::Found(kind))
-        }
-        "never_stands" => Some(Outcome::Never),
-        "always_stands" => Some(Outcome::Always),
+        Answered::Found => Some(Outcome::Found(s.mechanism?)),
+        Answered::NeverStands => Some(Outcome::Never),
+        Answered::AlwaysStands => Some(Outcome::Always),
         _ => None,
     }
 }

@@ -2,7 +2,8 @@
 //! every load case with a live part, every form other than the circular arch with radial
 //! joints, and every `load_factor` question (DESIGN.md §1).
 
-use super::{Find, Scene, Solution, hinge_records, sliding_records};
+use super::{Find, Outcome as Answered, Scene, Solution, finite};
+use crate::analysis::Mechanism;
 use crate::analysis::forms::ArchModel;
 use crate::analysis::general::{
     self, Critical, CrownState, LoadFactor, Outcome, RegimeReport, Settings,
@@ -10,7 +11,6 @@ use crate::analysis::general::{
 use crate::analysis::kinematics::{
     FlowRule, LimitState, mechanism_modes, pattern_of, work_equation,
 };
-use crate::analysis::{Mechanism, Regime};
 use crate::model::{JointOrientation, Load, Shape};
 
 /// The largest K at which the scene's form exists and a point load still sits at a joint
@@ -32,10 +32,6 @@ fn k_max(scene: &Scene) -> f64 {
     k
 }
 
-fn finite(x: f64) -> Option<f64> {
-    x.is_finite().then_some(x)
-}
-
 /// Records a limit state: mechanism, crown force and moment (m = −M₀, the crown joint lying
 /// on x = 0), hinges and sliding joints.
 fn set_state(out: &mut Solution, crown: &CrownState, mechanism: Option<&Mechanism>) {
@@ -43,9 +39,9 @@ fn set_state(out: &mut Solution, crown: &CrownState, mechanism: Option<&Mechanis
     out.crown_moment = finite(-crown.moment_about_centre);
     out.crown_shear = finite(crown.shear_over_half_weight);
     if let Some(m) = mechanism {
-        out.mechanism = Some(m.kind.as_str());
-        out.hinges = hinge_records(&m.hinges);
-        out.sliding_joints = sliding_records(&m.sliding_joints);
+        out.mechanism = Some(m.kind);
+        out.hinges = m.hinges.clone();
+        out.sliding_joints = m.sliding_joints.clone();
     }
 }
 
@@ -87,21 +83,21 @@ fn set_work(
     }
 }
 
-fn outcome_of(o: Outcome) -> &'static str {
+fn outcome_of(o: Outcome) -> Answered {
     match o {
-        Outcome::Solved => "found",
-        Outcome::Infeasible => "never_stands",
-        Outcome::Unbounded => "unbounded",
-        Outcome::NotConverged => "not_converged",
-        Outcome::Failed(_) => "failed",
+        Outcome::Solved => Answered::Found,
+        Outcome::Infeasible => Answered::NeverStands,
+        Outcome::Unbounded => Answered::Unbounded,
+        Outcome::NotConverged => Answered::NotConverged,
+        Outcome::Failed(_) => Answered::Failed,
     }
 }
 
 fn set_critical(out: &mut Solution, c: &Critical) -> Option<general::LimitState> {
     out.outcome = Some(match c {
-        Critical::Found(_) => "found",
-        Critical::NeverStands => "never_stands",
-        Critical::AlwaysStands => "always_stands",
+        Critical::Found(_) => Answered::Found,
+        Critical::NeverStands => Answered::NeverStands,
+        Critical::AlwaysStands => Answered::AlwaysStands,
         Critical::Failed(o) => outcome_of(*o),
     });
     let s = c.found()?.clone();
@@ -153,12 +149,12 @@ pub(super) fn solve(scene: &Scene, out: &mut Solution) {
         return;
     }
     let Ok(model) = ArchModel::new(scene.arch, scene.form, scene.load) else {
-        out.outcome = Some("invalid");
+        out.outcome = Some(Answered::Invalid);
         return;
     };
     match scene.find {
         Find::State => {
-            out.regime = regime(&model, scene).regime.map(Regime::as_str);
+            out.regime = regime(&model, scene).regime;
         }
         Find::Friction => {
             let c = general::friction(&model, &settings);
@@ -186,7 +182,7 @@ pub(super) fn solve(scene: &Scene, out: &mut Solution) {
         }
         // The extreme thrust states and the thresholds are defined for symmetric self-weight
         // on the circular arch with radial joints only.
-        Find::Thrust | Find::Thresholds => out.outcome = Some("unsupported"),
+        Find::Thrust | Find::Thresholds => out.outcome = Some(Answered::Unsupported),
         Find::Thickness => {}
     }
 }

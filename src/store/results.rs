@@ -1,24 +1,24 @@
 //! results.parquet: one row per case (schema in the README).
 
 use super::TableBuilder;
+use crate::analysis::{Hinge, SlidingJoint};
 use crate::engine::CaseResult;
 use crate::plan::Plan;
-use crate::scene::{HingeRecord, SlidingRecord};
 use anyhow::Result;
 use polars::prelude::DataFrame;
 use rayon::prelude::*;
 
-pub(crate) fn hinge_angles(h: &[HingeRecord]) -> Vec<f64> {
+pub(crate) fn hinge_angles(h: &[Hinge]) -> Vec<f64> {
     h.iter().map(|h| h.angle_deg).collect()
 }
-pub(crate) fn hinge_faces(h: &[HingeRecord]) -> Vec<&'static str> {
-    h.iter().map(|h| h.face).collect()
+pub(crate) fn hinge_faces(h: &[Hinge]) -> Vec<&'static str> {
+    h.iter().map(|h| h.face.as_str()).collect()
 }
-pub(crate) fn sliding_angles(s: &[SlidingRecord]) -> Vec<f64> {
+pub(crate) fn sliding_angles(s: &[SlidingJoint]) -> Vec<f64> {
     s.iter().map(|s| s.angle_deg).collect()
 }
-pub(crate) fn sliding_senses(s: &[SlidingRecord]) -> Vec<&'static str> {
-    s.iter().map(|s| s.sense).collect()
+pub(crate) fn sliding_senses(s: &[SlidingJoint]) -> Vec<&'static str> {
+    s.iter().map(|s| s.sense.as_str()).collect()
 }
 
 /// One column: its name, its values so far and how to read a value from a row.
@@ -41,6 +41,20 @@ enum Spec<'a> {
 }
 
 impl<'a> Spec<'a> {
+    fn reserve(&mut self, n: usize) {
+        match self {
+            Spec::U64(_, v, _) => v.reserve(n),
+            Spec::F64(_, v, _) => v.reserve(n),
+            Spec::OptF64(_, v, _) => v.reserve(n),
+            Spec::OptU32(_, v, _) => v.reserve(n),
+            Spec::Bool(_, v, _) => v.reserve(n),
+            Spec::Str(_, v, _) => v.reserve(n),
+            Spec::OptStr(_, v, _) => v.reserve(n),
+            Spec::ListF64(_, v, _) => v.reserve(n),
+            Spec::ListStr(_, v, _) => v.reserve(n),
+        }
+    }
+
     fn push(&mut self, r: &'a CaseResult) {
         match self {
             Spec::U64(_, v, g) => v.push(g(r)),
@@ -69,6 +83,24 @@ impl<'a> Spec<'a> {
         }
     }
 }
+
+/// Constructors of the columns of one type: a name and how to read the value from a row.
+macro_rules! column {
+    ($fn_name:ident, $variant:ident, $t:ty) => {
+        fn $fn_name<'a>(name: &'static str, get: impl Fn(&'a CaseResult) -> $t + 'a) -> Spec<'a> {
+            Spec::$variant(name, Vec::new(), Box::new(get))
+        }
+    };
+}
+column!(u64_col, U64, u64);
+column!(f64_col, F64, f64);
+column!(opt_f64, OptF64, Option<f64>);
+column!(opt_u32, OptU32, Option<u32>);
+column!(bool_col, Bool, bool);
+column!(str_col, Str, &'a str);
+column!(opt_str, OptStr, Option<&'a str>);
+column!(list_f64, ListF64, Vec<f64>);
+column!(list_str, ListStr, Vec<&'static str>);
 
 /// Rows per independently built block of the results table: a fixed size, so that the
 /// blocks, and the file written from them, do not depend on the number of threads.
@@ -99,278 +131,96 @@ fn frame_in_blocks(plan: &Plan, rows: &[CaseResult], block_rows: usize) -> Resul
     Ok(df)
 }
 
-fn block_frame<'a>(plan: &'a Plan, rows: &'a [CaseResult]) -> Result<DataFrame> {
+/// The columns of results.parquet that echo the case's inputs, in order.
+fn input_columns<'a>(plan: &'a Plan) -> Vec<Spec<'a>> {
     let m = &plan.manifest;
-    let n = rows.len();
-    let mut specs: Vec<Spec<'a>> = vec![
-        Spec::U64(
-            "case_id",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.case_id),
-        ),
-        Spec::Str(
-            "load_case",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| m.load_cases[r.load_case].name.as_str()),
-        ),
-        Spec::Str(
-            "load_kind",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| m.load_cases[r.load_case].kind.as_str()),
-        ),
-        Spec::Str(
-            "find",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.find),
-        ),
-        Spec::OptF64(
-            "k",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.k),
-        ),
-        Spec::OptF64(
-            "t_over_r",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.t_over_r),
-        ),
-        Spec::OptF64(
-            "mu",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| {
-                if r.solution.mu_infinite {
-                    Some(f64::INFINITY)
-                } else {
-                    r.solution.mu
-                }
-            }),
-        ),
-        Spec::F64(
-            "half_angle_deg",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.half_angle_deg),
-        ),
-        Spec::Str(
-            "weight",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.weight),
-        ),
-        Spec::OptU32(
-            "voussoirs",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.voussoirs),
-        ),
+    vec![
+        u64_col("case_id", |r| r.case_id),
+        str_col("load_case", |r| m.load_cases[r.load_case].name.as_str()),
+        str_col("load_kind", |r| m.load_cases[r.load_case].kind.as_str()),
+        str_col("find", |r| r.solution.find.as_str()),
+        opt_f64("k", |r| r.solution.k),
+        opt_f64("t_over_r", |r| r.solution.t_over_r),
+        opt_f64("mu", |r| {
+            if r.solution.mu_infinite {
+                Some(f64::INFINITY)
+            } else {
+                r.solution.mu
+            }
+        }),
+        f64_col("half_angle_deg", |r| r.solution.half_angle_deg),
+        str_col("weight", |r| r.solution.weight.as_str()),
+        opt_u32("voussoirs", |r| r.solution.voussoirs),
         // Form and load case (docs/loads-and-geometries.md).
-        Spec::Str(
-            "shape",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.shape),
-        ),
-        Spec::OptF64(
-            "eccentricity",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.eccentricity),
-        ),
-        Spec::Str(
-            "joints",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.joints),
-        ),
-        Spec::Str(
-            "load",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.load),
-        ),
-        Spec::OptF64(
-            "at_deg",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.at_deg),
-        ),
-        Spec::OptF64(
-            "lambda",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.lambda),
-        ),
-        Spec::OptStr(
-            "outcome",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.outcome),
-        ),
-        Spec::OptStr(
-            "regime",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.regime),
-        ),
-        Spec::OptF64(
-            "thrust_r_min",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.thrust_r_min),
-        ),
-        Spec::OptF64(
-            "thrust_r_max",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.thrust_r_max),
-        ),
-        Spec::OptF64(
-            "thrust_s_min",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.thrust_s_min),
-        ),
-        Spec::OptF64(
-            "thrust_s_max",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.thrust_s_max),
-        ),
-        Spec::OptF64(
-            "k_crit",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.k_crit),
-        ),
-        Spec::OptF64(
-            "t_over_r_crit",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.t_over_r_crit),
-        ),
-        Spec::OptF64(
-            "mu_crit",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.mu_crit),
-        ),
-        Spec::OptStr(
-            "mechanism",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.mechanism),
-        ),
-        Spec::OptF64(
-            "thrust_over_half_weight",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.thrust_over_half_weight),
-        ),
-        Spec::OptF64(
-            "crown_moment",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.crown_moment),
-        ),
-        Spec::OptF64(
-            "crown_shear",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.crown_shear),
-        ),
-        Spec::OptF64(
-            "load_factor",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.load_factor),
-        ),
-        Spec::Bool(
-            "load_factor_unbounded",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.load_factor_unbounded),
-        ),
-        Spec::ListF64(
-            "hinge_angles_deg",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| hinge_angles(&r.solution.hinges)),
-        ),
-        Spec::ListStr(
-            "hinge_faces",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| hinge_faces(&r.solution.hinges)),
-        ),
-        Spec::ListF64(
-            "sliding_angles_deg",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| sliding_angles(&r.solution.sliding_joints)),
-        ),
-        Spec::ListStr(
-            "sliding_senses",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| sliding_senses(&r.solution.sliding_joints)),
-        ),
-        Spec::OptF64(
-            "work_loads",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.work_loads),
-        ),
-        Spec::OptF64(
-            "work_friction",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.work_friction),
-        ),
-        Spec::OptF64(
-            "work_residual",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.work_residual),
-        ),
-        Spec::OptU32(
-            "mechanism_dof",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.mechanism_dof),
-        ),
-        Spec::OptF64(
-            "k_c_rotational",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.k_c_rotational),
-        ),
-        Spec::OptF64(
-            "mu_rotational_mixed",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.mu_rotational_mixed),
-        ),
-        Spec::OptF64(
-            "mu_min",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.mu_min),
-        ),
-        Spec::OptF64(
-            "k_mixed_sliding",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.k_mixed_sliding),
-        ),
-        Spec::OptF64(
-            "thrust_min",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.thrust_min),
-        ),
-        Spec::OptF64(
-            "thrust_max",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.thrust_max),
-        ),
-        Spec::ListF64(
-            "hinges_min_angles_deg",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| hinge_angles(&r.solution.hinges_min)),
-        ),
-        Spec::ListStr(
-            "hinges_min_faces",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| hinge_faces(&r.solution.hinges_min)),
-        ),
-        Spec::ListF64(
-            "hinges_max_angles_deg",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| hinge_angles(&r.solution.hinges_max)),
-        ),
-        Spec::ListStr(
-            "hinges_max_faces",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| hinge_faces(&r.solution.hinges_max)),
-        ),
-        Spec::Str(
-            "status",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.status.as_str()),
-        ),
-        Spec::OptStr(
-            "message",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.message.as_deref()),
-        ),
-        Spec::F64(
-            "solve_time_us",
-            Vec::with_capacity(n),
-            Box::new(|r: &'a CaseResult| r.solution.solve_time_us),
-        ),
-    ];
+        str_col("shape", |r| r.solution.shape),
+        opt_f64("eccentricity", |r| r.solution.eccentricity),
+        str_col("joints", |r| r.solution.joints),
+        str_col("load", |r| r.solution.load),
+        opt_f64("at_deg", |r| r.solution.at_deg),
+        opt_f64("lambda", |r| r.solution.lambda),
+    ]
+}
+
+/// The columns of results.parquet that hold the answer, in order.
+fn answer_columns<'a>() -> Vec<Spec<'a>> {
+    let s = |r: &'a CaseResult| &r.solution;
+    vec![
+        opt_str("outcome", move |r| s(r).outcome.map(|o| o.as_str())),
+        opt_str("regime", move |r| s(r).regime.map(|g| g.as_str())),
+        opt_f64("thrust_r_min", move |r| s(r).thrust_r_min),
+        opt_f64("thrust_r_max", move |r| s(r).thrust_r_max),
+        opt_f64("thrust_s_min", move |r| s(r).thrust_s_min),
+        opt_f64("thrust_s_max", move |r| s(r).thrust_s_max),
+        opt_f64("k_crit", move |r| s(r).k_crit),
+        opt_f64("t_over_r_crit", move |r| s(r).t_over_r_crit),
+        opt_f64("mu_crit", move |r| s(r).mu_crit),
+        opt_str("mechanism", move |r| s(r).mechanism.map(|m| m.as_str())),
+        opt_f64("thrust_over_half_weight", move |r| {
+            s(r).thrust_over_half_weight
+        }),
+        opt_f64("crown_moment", move |r| s(r).crown_moment),
+        opt_f64("crown_shear", move |r| s(r).crown_shear),
+        opt_f64("load_factor", move |r| s(r).load_factor),
+        bool_col("load_factor_unbounded", move |r| s(r).load_factor_unbounded),
+        list_f64("hinge_angles_deg", move |r| hinge_angles(&s(r).hinges)),
+        list_str("hinge_faces", move |r| hinge_faces(&s(r).hinges)),
+        list_f64("sliding_angles_deg", move |r| {
+            sliding_angles(&s(r).sliding_joints)
+        }),
+        list_str("sliding_senses", move |r| {
+            sliding_senses(&s(r).sliding_joints)
+        }),
+        opt_f64("work_loads", move |r| s(r).work_loads),
+        opt_f64("work_friction", move |r| s(r).work_friction),
+        opt_f64("work_residual", move |r| s(r).work_residual),
+        opt_u32("mechanism_dof", move |r| s(r).mechanism_dof),
+        opt_f64("k_c_rotational", move |r| s(r).k_c_rotational),
+        opt_f64("mu_rotational_mixed", move |r| s(r).mu_rotational_mixed),
+        opt_f64("mu_min", move |r| s(r).mu_min),
+        opt_f64("k_mixed_sliding", move |r| s(r).k_mixed_sliding),
+        opt_f64("thrust_min", move |r| s(r).thrust_min),
+        opt_f64("thrust_max", move |r| s(r).thrust_max),
+        list_f64("hinges_min_angles_deg", move |r| {
+            hinge_angles(&s(r).hinges_min)
+        }),
+        list_str("hinges_min_faces", move |r| hinge_faces(&s(r).hinges_min)),
+        list_f64("hinges_max_angles_deg", move |r| {
+            hinge_angles(&s(r).hinges_max)
+        }),
+        list_str("hinges_max_faces", move |r| hinge_faces(&s(r).hinges_max)),
+        str_col("status", |r| r.status.as_str()),
+        opt_str("message", |r| r.message.as_deref()),
+        f64_col("solve_time_us", move |r| s(r).solve_time_us),
+    ]
+}
+
+/// One block of the results table, built in one pass over its rows.
+fn block_frame<'a>(plan: &'a Plan, rows: &'a [CaseResult]) -> Result<DataFrame> {
+    let mut specs = input_columns(plan);
+    specs.extend(answer_columns());
+    for s in specs.iter_mut() {
+        s.reserve(rows.len());
+    }
     for r in rows {
         for s in specs.iter_mut() {
             s.push(r);

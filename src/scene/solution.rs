@@ -1,0 +1,289 @@
+//! The answer to one scene: the record shared by `archstudy solve --json` and the rows of
+//! results.parquet. Its kinds (find, weight, regime, mechanism, outcome, faces, senses) are
+//! enums; they become strings only where they are written (JSON, Parquet).
+
+use super::{Find, Scene};
+use crate::analysis::kinematics::collapse_mechanism;
+use crate::analysis::symmetric::{Critical, CriticalState};
+use crate::analysis::{Hinge, MechanismKind, Regime, SlidingJoint};
+use crate::model::{Arch, WeightModel};
+use serde::Serialize;
+use std::fmt;
+
+/// What became of an analysis that looks for a critical value, a thrust or a load factor.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Outcome {
+    /// The value was found.
+    Found,
+    /// No admissible state exists (the arch cannot stand).
+    NeverStands,
+    /// The arch stands whatever the swept quantity (no critical value).
+    AlwaysStands,
+    /// Every load factor λ ≥ 0 lets the arch stand.
+    Unbounded,
+    /// The general route did not converge.
+    NotConverged,
+    /// The general route failed.
+    Failed,
+    /// The form does not exist for these inputs.
+    Invalid,
+    /// The find is not defined for this scene.
+    Unsupported,
+}
+
+impl Outcome {
+    /// Every outcome.
+    pub const ALL: [Outcome; 8] = [
+        Outcome::Found,
+        Outcome::NeverStands,
+        Outcome::AlwaysStands,
+        Outcome::Unbounded,
+        Outcome::NotConverged,
+        Outcome::Failed,
+        Outcome::Invalid,
+        Outcome::Unsupported,
+    ];
+
+    /// The stored name, e.g. `never_stands`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Outcome::Found => "found",
+            Outcome::NeverStands => "never_stands",
+            Outcome::AlwaysStands => "always_stands",
+            Outcome::Unbounded => "unbounded",
+            Outcome::NotConverged => "not_converged",
+            Outcome::Failed => "failed",
+            Outcome::Invalid => "invalid",
+            Outcome::Unsupported => "unsupported",
+        }
+    }
+
+    /// Parses a stored name.
+    pub fn parse(s: &str) -> Option<Self> {
+        Outcome::ALL.into_iter().find(|o| o.as_str() == s)
+    }
+
+    /// The outcome of a closed-form critical value.
+    pub fn of_critical(c: &Critical) -> Self {
+        match c {
+            Critical::Found(_) => Outcome::Found,
+            Critical::NeverStands => Outcome::NeverStands,
+            Critical::AlwaysStands => Outcome::AlwaysStands,
+        }
+    }
+}
+
+impl fmt::Display for Outcome {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// The answer for one scene: every key of `archstudy solve --json`, `null` where a value does
+/// not exist (an empty domain, an unbounded end, a quantity the find does not produce).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Solution {
+    /// The question asked.
+    pub find: Find,
+    /// K = R/r given (null for `thickness`).
+    pub k: Option<f64>,
+    /// t/R_c given (null for `thickness`).
+    pub t_over_r: Option<f64>,
+    /// μ given (null for infinite friction and for `friction`).
+    pub mu: Option<f64>,
+    /// True when μ is infinite.
+    pub mu_infinite: bool,
+    /// Half-embrace angle α in degrees.
+    pub half_angle_deg: f64,
+    /// The weight model.
+    pub weight: WeightModel,
+    /// Voussoir count, null for the continuum.
+    pub voussoirs: Option<u32>,
+    /// `circular` or `pointed`.
+    pub shape: &'static str,
+    /// Eccentricity e of a pointed arch (null for a circular one).
+    pub eccentricity: Option<f64>,
+    /// `radial` or `vertical` joint planes.
+    pub joints: &'static str,
+    /// The load case kind: `self_weight`, `horizontal` or `point`.
+    pub load: &'static str,
+    /// Position of a point load, degrees from the crown (null for other loads).
+    pub at_deg: Option<f64>,
+    /// The given load factor λ of the live part (null for self-weight and for `load_factor`).
+    pub lambda: Option<f64>,
+    /// `found`, `never_stands` or `always_stands` for critical finds (`found` or `never_stands`
+    /// for thrust; `found`, `unbounded` or `never_stands` for load_factor; `failed` or
+    /// `not_converged` when the general route could not decide), null for state.
+    pub outcome: Option<Outcome>,
+    /// Regime (state find).
+    pub regime: Option<Regime>,
+    /// Lower end of H^r over W_half.
+    pub thrust_r_min: Option<f64>,
+    /// Upper end of H^r over W_half.
+    pub thrust_r_max: Option<f64>,
+    /// Lower end of H^s over W_half.
+    pub thrust_s_min: Option<f64>,
+    /// Upper end of H^s over W_half.
+    pub thrust_s_max: Option<f64>,
+    /// Collapse thickness (thickness find).
+    pub k_crit: Option<f64>,
+    /// t/R_c at the collapse thickness.
+    pub t_over_r_crit: Option<f64>,
+    /// Critical friction (friction find).
+    pub mu_crit: Option<f64>,
+    /// `rotational`, `mixed` or `sliding` at the critical state.
+    pub mechanism: Option<MechanismKind>,
+    /// Crown thrust of the critical state over W_half.
+    pub thrust_over_half_weight: Option<f64>,
+    /// Crown moment m/(W_half·r) of the critical state: the line of thrust crosses the crown
+    /// joint at height m/h over r (with h = thrust_over_half_weight).
+    pub crown_moment: Option<f64>,
+    /// Vertical force F_y/W_half at the crown of the critical state (general route only: zero
+    /// under symmetric loading, null on the closed-form route).
+    pub crown_shear: Option<f64>,
+    /// Largest load factor λ (multiples of the total weight) of the live load (load_factor
+    /// find); null when unbounded or when no λ ≥ 0 lets the arch stand.
+    pub load_factor: Option<f64>,
+    /// True when every λ ≥ 0 lets the arch stand (load_factor find).
+    pub load_factor_unbounded: bool,
+    /// Hinges of the critical state.
+    pub hinges: Vec<Hinge>,
+    /// Sliding joints of the critical state.
+    pub sliding_joints: Vec<SlidingJoint>,
+    /// dL^(a): work of the loads on the collapse mechanism of the critical state (eq. 11),
+    /// over W_half·r for a field whose largest block-corner speed is 1.
+    pub work_loads: Option<f64>,
+    /// dL^(r,t) = −μ Σ R^n |dr^t| over the sliding joints of that mechanism (eq. 11), same units.
+    pub work_friction: Option<f64>,
+    /// |dL^(a) + dL^(r,t)| over the scale of the block works: about 0 when the state and its
+    /// mechanism satisfy eq. (11).
+    pub work_residual: Option<f64>,
+    /// Degrees of freedom of the blocks between the active joints of the critical state (2 for
+    /// a symmetric five-joint state: the collapse mechanism is its symmetric mode).
+    pub mechanism_dof: Option<u32>,
+    /// Collapse thickness at μ = ∞ (thresholds find).
+    pub k_c_rotational: Option<f64>,
+    /// μ of the rotational/mixed bifurcation: the critical friction at K_c (thresholds find).
+    pub mu_rotational_mixed: Option<f64>,
+    /// μ_min: below it H^s is empty for every K (thresholds find).
+    pub mu_min: Option<f64>,
+    /// K of the mixed/sliding bifurcation: the collapse thickness at μ_min (thresholds find).
+    pub k_mixed_sliding: Option<f64>,
+    /// Minimum admissible thrust over W_half (thrust find).
+    pub thrust_min: Option<f64>,
+    /// Maximum admissible thrust over W_half (null when unbounded).
+    pub thrust_max: Option<f64>,
+    /// Hinges of the minimum-thrust state.
+    pub hinges_min: Vec<Hinge>,
+    /// Hinges of the maximum-thrust state.
+    pub hinges_max: Vec<Hinge>,
+    /// Sliding joints of the minimum-thrust state.
+    pub sliding_joints_min: Vec<SlidingJoint>,
+    /// Sliding joints of the maximum-thrust state.
+    pub sliding_joints_max: Vec<SlidingJoint>,
+    /// Wall time of the analysis in microseconds.
+    pub solve_time_us: f64,
+}
+
+/// `x` when finite, else null.
+pub(super) fn finite(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+impl Solution {
+    /// The inputs of a scene with every output null.
+    pub fn empty(scene: &Scene) -> Self {
+        let a = &scene.arch;
+        let (k, t) = if scene.find.needs_k() {
+            (Some(a.k), Some(a.t_over_r()))
+        } else {
+            (None, None)
+        };
+        let mu = if scene.find.needs_mu() {
+            finite(scene.friction.mu())
+        } else {
+            None
+        };
+        Solution {
+            find: scene.find,
+            k,
+            t_over_r: t,
+            mu,
+            mu_infinite: scene.find.needs_mu() && scene.friction.is_infinite(),
+            half_angle_deg: a.half_angle_deg(),
+            weight: a.weight,
+            voussoirs: a.joints.voussoirs(),
+            shape: scene.form.shape.as_str(),
+            eccentricity: match scene.form.shape {
+                crate::model::Shape::Pointed { eccentricity } => Some(eccentricity),
+                crate::model::Shape::Circular => None,
+            },
+            joints: scene.form.joints.as_str(),
+            load: scene.load.as_str(),
+            at_deg: scene.load.at_deg(),
+            lambda: (scene.load.is_live() && scene.find != Find::LoadFactor)
+                .then_some(scene.lambda),
+            outcome: None,
+            regime: None,
+            thrust_r_min: None,
+            thrust_r_max: None,
+            thrust_s_min: None,
+            thrust_s_max: None,
+            k_crit: None,
+            t_over_r_crit: None,
+            mu_crit: None,
+            mechanism: None,
+            thrust_over_half_weight: None,
+            crown_moment: None,
+            crown_shear: None,
+            load_factor: None,
+            load_factor_unbounded: false,
+            hinges: Vec::new(),
+            sliding_joints: Vec::new(),
+            work_loads: None,
+            work_friction: None,
+            work_residual: None,
+            mechanism_dof: None,
+            k_c_rotational: None,
+            mu_rotational_mixed: None,
+            mu_min: None,
+            k_mixed_sliding: None,
+            thrust_min: None,
+            thrust_max: None,
+            hinges_min: Vec::new(),
+            hinges_max: Vec::new(),
+            sliding_joints_min: Vec::new(),
+            sliding_joints_max: Vec::new(),
+            solve_time_us: 0.0,
+        }
+    }
+
+    /// Records a critical value's outcome and, when found, its limit state.
+    pub(super) fn set_critical(&mut self, c: &Critical) -> Option<CriticalState> {
+        self.outcome = Some(Outcome::of_critical(c));
+        let s = c.found()?.clone();
+        self.mechanism = Some(s.mechanism.kind);
+        self.thrust_over_half_weight = finite(s.thrust_over_half_weight);
+        self.crown_moment = finite(s.crown_moment);
+        self.hinges = s.mechanism.hinges.clone();
+        self.sliding_joints = s.mechanism.sliding_joints.clone();
+        Some(s)
+    }
+
+    /// The collapse mechanism of a found critical state and its work equation.
+    pub(super) fn set_mechanism(&mut self, arch: &Arch, s: &CriticalState) {
+        let m = collapse_mechanism(arch, s);
+        self.mechanism_dof = Some(m.mechanism_dof);
+        if let Some(w) = m.work {
+            self.work_loads = finite(w.work_loads);
+            self.work_friction = finite(w.work_friction);
+            self.work_residual = finite(w.work_residual);
+        }
+    }
+
+    /// The regime (state find).
+    pub fn regime(&self) -> Option<Regime> {
+        self.regime
+    }
+}
