@@ -24,6 +24,7 @@ pub mod plan;
 pub mod plot;
 pub mod progress;
 pub mod provenance;
+pub mod records;
 pub mod report;
 pub mod runner;
 pub mod scene;

@@ -3,8 +3,8 @@
 
 use super::TableBuilder;
 use crate::analysis::symmetric::CriticalState;
-use crate::boundaries::Located;
 use crate::plan::Plan;
+use crate::records::Located;
 use anyhow::Result;
 use polars::prelude::DataFrame;
 
@@ -169,8 +169,8 @@ pub fn bifurcations_frame(plan: &Plan, located: &Located) -> Result<DataFrame> {
 mod tests {
     use super::*;
     use crate::analysis::{Regime, symmetric};
-    use crate::boundaries::{Bifurcation, BoundaryPoint, EdgeAxis};
     use crate::model::{Arch, Friction};
+    use crate::records::{Bifurcation, BoundaryPoint, EdgeAxis};
     use polars::prelude::DataType;
     use std::path::Path;
 
