@@ -48,7 +48,12 @@ fn src() -> PathBuf {
 /// The top-level module a source file belongs to (`lib` for lib.rs, `main` for main.rs).
 fn module_of(file: &Path) -> String {
     let rel = file.strip_prefix(src()).unwrap();
-    let first = rel.components().next().unwrap().as_os_str().to_string_lossy();
+    let first = rel
+        .components()
+        .next()
+        .unwrap()
+        .as_os_str()
+        .to_string_lossy();
     first.trim_end_matches(".rs").to_string()
 }
 

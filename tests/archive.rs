@@ -1,7 +1,7 @@
 //! `archstudy archive` and `archstudy verify` end to end, on a tiny study.
 
+use crate::common::run_study;
 use archstudy::provenance::sha256_hex;
-use archstudy::runner::{self, RunOptions};
 use archstudy::store::{self, ColumnData};
 use flate2::Compression;
 use flate2::read::GzDecoder;
@@ -28,20 +28,11 @@ find: state
 
 /// Runs the tiny study under `root/out/tiny` and adds a nested file, as figures would be.
 fn tiny_run(root: &Path) -> PathBuf {
-    let manifest = root.join("tiny.yaml");
-    std::fs::write(&manifest, TINY).unwrap();
-    let summary = runner::run_study(&RunOptions {
-        study: manifest,
-        out: root.join("out"),
-        jobs: Some(1),
-        progress: std::sync::Arc::new(archstudy::progress::Silent),
-        command_line: vec!["test".into()],
-    })
-    .unwrap();
-    let plots = summary.dir.join("plots");
+    let dir = run_study(root, "tiny.yaml", TINY);
+    let plots = dir.join("plots");
     std::fs::create_dir_all(&plots).unwrap();
     std::fs::write(plots.join("regime_map.svg"), "<svg/>\n").unwrap();
-    summary.dir
+    dir
 }
 
 /// The files of a run directory, relative, sorted bytewise (the archive's order).

@@ -1,6 +1,7 @@
 //! `archstudy run` writes boundaries.parquet and bifurcations.parquet (schema in
 //! docs/boundaries-schema.md) and records the refinement cost in run.json.
 
+use approx::abs_diff_eq;
 use archstudy::store::{f64_column, list_f64_column, read_parquet, str_column};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -75,8 +76,8 @@ fn run_writes_boundaries_bifurcations_and_their_cost() {
         (0.309215444330, 1.220507754643, "sliding", "mixed"),
     ];
     for (i, (m, kk, ma, mb)) in expected.into_iter().enumerate() {
-        assert!((mu[i].unwrap() - m).abs() < 1e-8, "{mu:?}");
-        assert!((k[i].unwrap() - kk).abs() < 1e-8, "{k:?}");
+        assert!(abs_diff_eq!(mu[i].unwrap(), m, epsilon = 1e-8), "{mu:?}");
+        assert!(abs_diff_eq!(k[i].unwrap(), kk, epsilon = 1e-8), "{k:?}");
         assert_eq!((a[i].as_deref(), bm[i].as_deref()), (Some(ma), Some(mb)));
     }
     let sliding = list_f64_column(&f, "sliding_angles_deg").unwrap();

@@ -50,3 +50,48 @@ pub fn solve_json(args: &[&str]) -> serde_json::Value {
     assert!(o.status.success(), "{}", stderr(&o));
     serde_json::from_slice(&o.stdout).expect("valid JSON")
 }
+
+/// Reference values of the semicircular arch (radial joints, annular weight, continuum),
+/// computed to 12 digits by two independent routes; the paper prints 4–5 of them.
+pub mod reference {
+    /// Collapse thickness K_c at large μ (paper 1.1136).
+    pub const K_C: f64 = 1.113581813339;
+    /// t/R_c at K_c.
+    pub const T_OVER_R_C: f64 = 0.107478038107;
+    /// μ of the rotational/mixed bifurcation = H/W_half at K_c (paper 0.395).
+    pub const MU_ROT: f64 = 0.395265252140;
+    /// μ_min: below it no equilibrium (paper 0.309).
+    pub const MU_MIN: f64 = 0.309215444330;
+    /// K of the mixed/sliding bifurcation (paper 1.2205).
+    pub const K_BIF: f64 = 1.220507754643;
+    /// Haunch hinge at K_c, degrees from the crown.
+    pub const HAUNCH_DEG: f64 = 54.48397403;
+    /// Inner sliding joint at μ_min, degrees from the crown (paper 29°).
+    pub const SLIDING_DEG: f64 = 28.63619468;
+    /// Haunch hinge of the minimum-thrust state at K = 1.35, degrees (paper 63°).
+    pub const HAUNCH_MIN_THRUST_DEG: f64 = 63.2903024;
+}
+
+/// Runs a manifest text as a study into `dir/out/`, on one thread, and returns the run
+/// directory.
+pub fn run_study(dir: &Path, file: &str, text: &str) -> PathBuf {
+    let study = manifest(dir, file, text);
+    let opts = archstudy::runner::RunOptions {
+        jobs: Some(1),
+        command_line: vec!["archstudy".into(), "run".into(), file.into()],
+        ..archstudy::runner::RunOptions::new(study, dir.join("out"))
+    };
+    archstudy::runner::run_study(&opts)
+        .expect("the study runs")
+        .dir
+}
+
+/// Asserts that a command was refused as bad usage or input: exit status 2 and a message on
+/// standard error that contains every one of `names` (the option, key or file, the value).
+pub fn assert_usage_error(o: &Output, names: &[&str]) {
+    let e = stderr(o);
+    assert_eq!(o.status.code(), Some(2), "not a usage error: {e}");
+    for n in names {
+        assert!(e.contains(n), "the message does not name `{n}`: {e}");
+    }
+}

@@ -1,10 +1,11 @@
 //! Figures and reports: the Markdown golden file, key results against the stored values,
 //! `archstudy report` on a copied run, and the figure files.
 
+use crate::common::{assert_usage_error, run_study, scratch};
 use archstudy::analysis::symmetric::{self, Critical, CriticalState};
 use archstudy::model::{Arch, Friction, t_over_r_from_k};
 use archstudy::output::RunLayout;
-use archstudy::runner::{self, RunOptions};
+use archstudy::runner;
 use archstudy::store::{self, TableBuilder};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -28,26 +29,9 @@ scenes:
   - {k: 1.08, mu: 0.5}
 ";
 
-/// A fresh scratch directory for one test.
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("archstudy-report-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 /// Runs the small study into `dir`, with a fixed command line and one thread.
 fn run_small(dir: &Path) -> PathBuf {
-    let manifest = dir.join("small.yaml");
-    std::fs::write(&manifest, SMALL_STUDY).unwrap();
-    let opts = RunOptions {
-        study: manifest,
-        out: dir.join("out"),
-        jobs: Some(1),
-        progress: std::sync::Arc::new(archstudy::progress::Silent),
-        command_line: vec!["archstudy".into(), "run".into(), "small.yaml".into()],
-    };
-    runner::run_study(&opts).unwrap().dir
+    run_study(dir, "small.yaml", SMALL_STUDY)
 }
 
 fn found(c: Critical) -> Option<CriticalState> {
@@ -439,20 +423,14 @@ fn report_command_on_a_missing_run_directory_is_a_usage_error() {
         .arg(d.join("no-such-run"))
         .output()
         .unwrap();
-    assert_eq!(out.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        err.contains("is not a run directory") && err.contains("no-such-run"),
-        "{err}"
-    );
+    assert_usage_error(&out, &["is not a run directory", "no-such-run"]);
     // A directory without run.json is refused the same way.
     let out = Command::new(env!("CARGO_BIN_EXE_archstudy"))
         .args(["report"])
         .arg(&d)
         .output()
         .unwrap();
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("run.json"));
+    assert_usage_error(&out, &["run.json"]);
     let _ = std::fs::remove_dir_all(&d);
 }
 
@@ -584,17 +562,8 @@ find: thresholds
 
 #[test]
 fn convergence_report_has_an_error_table_and_an_order_per_threshold() {
-    let d = scratch("convergence");
-    let manifest = d.join("conv.yaml");
-    std::fs::write(&manifest, CONVERGENCE_STUDY).unwrap();
-    let opts = RunOptions {
-        study: manifest,
-        out: d.join("out"),
-        jobs: Some(1),
-        progress: std::sync::Arc::new(archstudy::progress::Silent),
-        command_line: vec!["archstudy".into(), "run".into(), "conv.yaml".into()],
-    };
-    let run = runner::run_study(&opts).unwrap().dir;
+    let d = scratch("convergence-report");
+    let run = run_study(&d, "conv.yaml", CONVERGENCE_STUDY);
     let refs = store::read_reference(&RunLayout::at(&run).reference()).unwrap();
     assert_eq!(
         refs.len(),
