@@ -5,6 +5,7 @@ mod boundaries;
 mod figures;
 mod results;
 mod rows;
+mod schema;
 mod table;
 
 pub use boundaries::{bifurcations_frame, boundaries_frame};
@@ -17,14 +18,15 @@ pub use rows::{
     BifurcationRow, BoundaryRow, JointLists, ResultRow, read_bifurcations, read_boundaries,
     read_results,
 };
+pub use schema::column_doc;
 pub use table::{ColumnData, Table, TableColumn, read_table, table_from_frame};
 
 use anyhow::Context as _;
 use anyhow::Result;
 use polars::prelude::{
-    AnyValue, Column, DataFrame, DataType, Float64Type, IntoSeries, ListBuilderTrait,
-    ListPrimitiveChunkedBuilder, ListStringChunkedBuilder, ParquetCompression, ParquetReader,
-    ParquetWriter, Scalar, SerReader,
+    AnyValue, Column, DataFrame, DataType, Float64Type, IntoSeries, KeyValueMetadata,
+    ListBuilderTrait, ListPrimitiveChunkedBuilder, ListStringChunkedBuilder, ParquetCompression,
+    ParquetReader, ParquetWriter, Scalar, SerReader,
 };
 use std::fs::File;
 use std::path::Path;
@@ -163,8 +165,10 @@ pub fn write_parquet(df: &mut DataFrame, path: &Path) -> Result<()> {
     let result = (|| -> Result<()> {
         let file =
             File::create(&tmp).with_context(|| format!("cannot create {}", tmp.display()))?;
+        let metadata = KeyValueMetadata::Static(vec![schema::stored_schema(df)]);
         ParquetWriter::new(file)
             .with_compression(ParquetCompression::Lz4Raw)
+            .with_key_value_metadata(Some(metadata))
             .finish(df)
             .with_context(|| format!("cannot write {}", tmp.display()))?;
         std::fs::rename(&tmp, path)

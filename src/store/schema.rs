@@ -1,0 +1,207 @@
+//! The Arrow schema stored in every Parquet file archstudy writes (its `ARROW:schema` key):
+//! plain string and list types that every mainstream reader opens (pandas with pyarrow 18
+//! and newer, polars, DuckDB, R arrow), and each column's unit and meaning as field metadata
+//! (`unit`, `description`).
+
+use polars::prelude::{ArrowField, ArrowSchema, CompatLevel, DataFrame, PlSmallStr};
+use polars_parquet::write::{KeyValue, schema_to_metadata_key};
+use std::collections::BTreeMap;
+
+/// Unit and meaning of a stored column, by name; the same name means the same thing in every
+/// table of a run.
+pub fn column_doc(name: &str) -> Option<(&'static str, &'static str)> {
+    let doc = match name {
+        "case_id" => ("", "position of the case in the plan"),
+        "load_case" => ("", "load case name"),
+        "load_kind" | "load" => ("", "load case kind: self_weight, horizontal or point"),
+        "find" => (
+            "",
+            "what the case computes: state, thickness, friction, thrust, thresholds or load_factor",
+        ),
+        "k" => (
+            "R/r",
+            "thickness ratio K = R/r (extrados over intrados radius)",
+        ),
+        "t_over_r" => (
+            "t/R_c",
+            "thickness over centreline radius, 2(K - 1)/(K + 1)",
+        ),
+        "mu" => ("", "friction coefficient μ = tan φ (inf: no sliding)"),
+        "half_angle_deg" => ("deg", "half-embrace angle α (90: semicircular)"),
+        "weight" => (
+            "",
+            "weight model: annular (true sector weights) or centreline",
+        ),
+        "voussoirs" => ("", "voussoir count; null for the continuum"),
+        "shape" => ("", "outline: circular or pointed"),
+        "eccentricity" => (
+            "ρ_c",
+            "eccentricity e of a pointed arch's centres, over the centreline radius",
+        ),
+        "joints" => ("", "joint planes: radial or vertical"),
+        "at_deg" => (
+            "deg",
+            "position of the point load, from the crown, positive to the right",
+        ),
+        "lambda" => ("W_total", "given load factor λ of the live load"),
+        "outcome" => (
+            "",
+            "found, never_stands, always_stands, unbounded, not_converged, failed, invalid or unsupported",
+        ),
+        "regime" => ("", "stable, rotational, mixed, sliding or none"),
+        "regime_low" => ("", "regime on the lower-value side of the crossing"),
+        "regime_high" => ("", "regime on the higher-value side of the crossing"),
+        "thrust_r_min" | "thrust_r_max" => ("W_half", "end of the rotational thrust domain H^r"),
+        "thrust_s_min" | "thrust_s_max" => ("W_half", "end of the sliding thrust domain H^s"),
+        "k_crit" => ("R/r", "collapse thickness K_c"),
+        "t_over_r_crit" => ("t/R_c", "t/R_c at the collapse thickness"),
+        "mu_crit" => ("", "critical friction coefficient μ_c"),
+        "mechanism" => ("", "collapse mechanism: rotational, mixed or sliding"),
+        "mechanism_a" => (
+            "",
+            "mechanism on the lower-μ (or lower-value) side of the bifurcation",
+        ),
+        "mechanism_b" => (
+            "",
+            "mechanism on the higher-μ (or higher-value) side of the bifurcation",
+        ),
+        "thrust_over_half_weight" => ("W_half", "horizontal crown thrust H of the limit state"),
+        "crown_moment" => ("W_half·r", "crown moment m of the limit state"),
+        "crown_shear" => ("W_half", "vertical force at the crown of the limit state"),
+        "load_factor" => ("W_total", "largest load factor λ of the live load"),
+        "load_factor_unbounded" => ("", "true when every λ ≥ 0 lets the arch stand"),
+        "hinge_angles_deg" | "hinges_min_angles_deg" | "hinges_max_angles_deg" => {
+            ("deg", "hinge joints, from the crown, increasing")
+        }
+        "hinge_faces" | "hinges_min_faces" | "hinges_max_faces" => {
+            ("", "face of each hinge: intrados or extrados")
+        }
+        "sliding_angles_deg" => ("deg", "sliding joints, from the crown"),
+        "sliding_senses" => (
+            "",
+            "sense of each sliding joint: outward or inward (crown-side part)",
+        ),
+        "work_loads" => (
+            "W_half·r",
+            "work of the loads on the collapse mechanism (eq. 11), largest corner speed 1",
+        ),
+        "work_friction" => (
+            "W_half·r",
+            "friction dissipation -μ Σ R^n |dr^t| of the mechanism (eq. 11)",
+        ),
+        "work_residual" => (
+            "",
+            "|work of loads + friction| over the scale of the block works",
+        ),
+        "mechanism_dof" => (
+            "",
+            "degrees of freedom of the blocks between the active joints",
+        ),
+        "k_c_rotational" => ("R/r", "collapse thickness at μ = ∞"),
+        "mu_rotational_mixed" => ("", "μ of the rotational/mixed bifurcation"),
+        "mu_min" => ("", "μ_min: below it no thickness stands"),
+        "k_mixed_sliding" => ("R/r", "K of the mixed/sliding bifurcation"),
+        "thrust_min" => ("W_half", "minimum admissible crown thrust"),
+        "thrust_max" => ("W_half", "maximum admissible crown thrust"),
+        "status" => ("", "ok, or error when the analysis failed"),
+        "message" => ("", "why the analysis failed"),
+        "solve_time_us" => ("µs", "the case's own analysis time"),
+        "axis" => ("", "grid axis of the crossed edge: k or mu"),
+        "on_collapse_curve" => ("", "true when one side of the crossing is stable"),
+        _ => return None,
+    };
+    Some(doc)
+}
+
+/// The `ARROW:schema` key of a table: the key of [`stored_arrow_schema`].
+pub fn stored_schema(df: &DataFrame) -> KeyValue {
+    schema_to_metadata_key(&stored_arrow_schema(df))
+}
+
+/// The Arrow schema stored with a table: each column with the plain (non-view) Arrow type of
+/// its polars type and, where known, its unit and meaning.
+pub fn stored_arrow_schema(df: &DataFrame) -> ArrowSchema {
+    let fields = df.schema().iter().map(|(name, dtype)| {
+        let field: ArrowField = dtype.to_arrow_field(name.clone(), CompatLevel::oldest());
+        match column_doc(name.as_str()) {
+            Some((unit, meaning)) => {
+                let mut m = BTreeMap::new();
+                if !unit.is_empty() {
+                    m.insert(
+                        PlSmallStr::from_static("unit"),
+                        PlSmallStr::from_static(unit),
+                    );
+                }
+                m.insert(
+                    PlSmallStr::from_static("description"),
+                    PlSmallStr::from_static(meaning),
+                );
+                field.with_metadata(m)
+            }
+            None => field,
+        }
+    });
+    fields.collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{TableBuilder, read_parquet, str_column, write_parquet};
+    use polars::prelude::ArrowDataType;
+    use polars_parquet::read::read_metadata;
+
+    #[test]
+    fn stored_types_are_plain_and_columns_carry_their_units() {
+        let mut df = TableBuilder::new()
+            .f64("k", vec![1.2, 1.3])
+            .str("regime", vec!["stable", "mixed"])
+            .list_str("hinge_faces", vec![vec!["intrados"], vec![]])
+            .finish()
+            .unwrap();
+        let schema = super::stored_arrow_schema(&df);
+        let field = |n: &str| schema.get(n).unwrap().clone();
+        assert_eq!(field("regime").dtype, ArrowDataType::LargeUtf8);
+        match &field("hinge_faces").dtype {
+            ArrowDataType::LargeList(inner) => assert_eq!(inner.dtype, ArrowDataType::LargeUtf8),
+            other => panic!("hinge_faces stored as {other:?}"),
+        }
+        let k = field("k");
+        let meta = k.metadata.as_deref().unwrap();
+        assert_eq!(meta.get("unit").map(|s| s.as_str()), Some("R/r"));
+        assert!(meta.contains_key("description"));
+
+        // The file carries exactly that schema, and polars reads its own files back.
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("t.parquet");
+        write_parquet(&mut df, &path).unwrap();
+        let meta = read_metadata(&mut std::fs::File::open(&path).unwrap()).unwrap();
+        let stored: Vec<_> = meta
+            .key_value_metadata()
+            .iter()
+            .flatten()
+            .filter(|kv| kv.key == "ARROW:schema")
+            .collect();
+        assert_eq!(stored, vec![&super::stored_schema(&df)]);
+        let back = read_parquet(&path).unwrap();
+        assert_eq!(
+            str_column(&back, "regime").unwrap(),
+            vec![Some("stable".to_string()), Some("mixed".to_string())]
+        );
+    }
+
+    #[test]
+    fn every_documented_column_has_a_meaning() {
+        for name in [
+            "k",
+            "mu",
+            "regime",
+            "hinge_faces",
+            "solve_time_us",
+            "mechanism_b",
+        ] {
+            let (_, meaning) = super::column_doc(name).unwrap();
+            assert!(!meaning.is_empty(), "{name}");
+        }
+        assert!(super::column_doc("no_such_column").is_none());
+    }
+}
