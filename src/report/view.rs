@@ -1,8 +1,8 @@
 //! The view model of both reports: every number already formatted, so the templates only
 //! lay out text. Built from the stored data of a run and the rendered figures.
 
+use super::charts::{self as figures, FigureSpec};
 use super::data::RunData;
-use super::figures::{self, FigureSpec};
 use super::format::{self, diff, given, micros, millis, num, value};
 use super::paper::{self, Printed};
 use crate::store::BoundaryRow;
