@@ -8,6 +8,7 @@ pub mod convergence;
 pub mod data;
 pub mod format;
 pub mod paper;
+pub mod tables;
 pub mod view;
 
 /// The chart builders under their former name.
