@@ -3,7 +3,7 @@
 //! or extrados and sliding joints with an arrow giving the sense of the crown-side part.
 
 use super::style::{self, LabelPlacer, LegendItem, Mark, palette};
-use super::{Figure, PlotContext};
+use super::{Figure, PlotContext, Window, XyChart as Chart};
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
@@ -59,14 +59,8 @@ fn window(d: &StateDrawing) -> ((f64, f64), (f64, f64)) {
     ((-x1 - pad, x1 + pad), (y0 - pad, y1 + pad))
 }
 
-/// The chart a state is drawn on: x and y over r, at equal scales.
-type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
-
 /// The plotting area of a [`Chart`].
 type Plot<DB> = DrawingArea<DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
-
-/// The data window: ranges of x and y over r.
-type Window = ((f64, f64), (f64, f64));
 
 impl Figure for StateDrawing {
     fn size(&self) -> (u32, u32) {

@@ -1,9 +1,9 @@
 //! The labels of the regime map: the bifurcations' values, the collapse curve's mechanisms
 //! and the regions' names, each placed where it fits best.
 
-use super::{Chart, REGIME_ORDER, RegimeMap, Window};
-use crate::plot::PlotContext;
+use super::{REGIME_ORDER, RegimeMap};
 use crate::plot::style::{self, LabelPlacer, PixelBox, clip_polyline, palette};
+use crate::plot::{PlotContext, Window, XyChart as Chart};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};

@@ -3,10 +3,9 @@
 //! mechanism, other regime boundaries, and the bifurcation points with their values.
 
 use super::style::{self, LegendItem, Mark, clip_polyline, decimals_for, palette};
-use super::{Figure, PlotContext};
+use super::{Figure, PlotContext, Window, XyChart as Chart};
 use crate::model::{k_from_t_over_r, t_over_r_from_k};
 use plotters::coord::Shift;
-use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::collections::BTreeMap;
@@ -72,12 +71,6 @@ pub struct RegimeMap {
 
 mod labels;
 mod raster;
-
-/// The chart the regime map is drawn on: μ across, K up.
-type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
-
-/// The ranges of μ and K the map spans.
-type Window = ((f64, f64), (f64, f64));
 
 impl Figure for RegimeMap {
     fn size(&self) -> (u32, u32) {
