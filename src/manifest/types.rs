@@ -6,6 +6,7 @@ use crate::model::{
 use crate::scene::Find;
 use serde::Serialize;
 
+/// The kind of a load case.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum LoadKind {
