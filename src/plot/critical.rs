@@ -2,7 +2,7 @@
 //! points and, for the paper's case, the paper's printed values as markers.
 
 use super::style::{self, LabelPlacer, LegendItem, Mark, clip_polyline, decimals_for, palette};
-use super::{Figure, PlotContext};
+use super::{Figure, PlotContext, XyChart};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -75,6 +75,7 @@ fn panel_ranges(p: &CriticalPanel) -> Option<((f64, f64), (f64, f64))> {
     Some(((x0, x1), (y0 - pad, y1 + pad)))
 }
 
+/// One panel: its curve, axes and marks, or a note when it has nothing to show.
 fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     root: &DrawingArea<DB, Shift>,
@@ -118,6 +119,17 @@ fn draw_panel<DB: DrawingBackend>(
             palette::INK.stroke_width(ctx.upx(2.2)),
         ))?;
     }
+    draw_marks(root, &chart, ctx, p)
+}
+
+/// The bifurcations (dots) and the paper's values (diamonds), with their labels placed
+/// off the markers.
+fn draw_marks<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    chart: &XyChart<DB>,
+    ctx: &PlotContext,
+    p: &CriticalPanel,
+) -> DrawResult<(), DB> {
     let (xr, yr) = chart.plotting_area().get_pixel_range();
     let mut placer = LabelPlacer::new((
         xr.start + ctx.px(3.0),

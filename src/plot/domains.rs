@@ -3,7 +3,7 @@
 //! eqs. 4a/4b, and the domains H^r, H^s and their intersection as shaded bands.
 
 use super::style::{self, LabelPlacer, LegendItem, Mark, clip_polyline, decimals_for, palette};
-use super::{Figure, PlotContext};
+use super::{Figure, PlotContext, Window, XyChart as Chart};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -87,9 +87,8 @@ impl Figure for DomainsChart {
     ) -> DrawResult<(), DB> {
         let legend = self.legend();
         let upper = style::above_legend(root, ctx, &legend)?;
-        let (w, _) = ctx.pixels();
-        let (x0, x1) = (0.0, self.alpha_deg);
-        let (y0, y1) = (0.0, y_top(self));
+        let w = ((0.0, self.alpha_deg), (0.0, y_top(self)));
+        let ((x0, x1), (y0, y1)) = w;
         let mut chart = ChartBuilder::on(&upper)
             .caption(&self.title, ctx.font(17.0))
             .margin(ctx.px(10.0))
@@ -97,8 +96,23 @@ impl Figure for DomainsChart {
             .y_label_area_size(ctx.px(72.0))
             .margin_right(ctx.px(120.0))
             .build_cartesian_2d(x0..x1, y0..y1)?;
-        let clamp = |v: f64| v.clamp(y0, y1);
         // Bands first, under everything.
+        self.draw_bands(&mut chart, ctx, w)?;
+        draw_mesh(&mut chart, ctx, w)?;
+        self.draw_curves(&mut chart, ctx, w)?;
+        self.draw_brackets(root, &chart, ctx, w)
+    }
+}
+
+impl DomainsChart {
+    /// The domains as shaded bands: Hʳ, Hˢ and their intersection, edged.
+    fn draw_bands<DB: DrawingBackend>(
+        &self,
+        chart: &mut Chart<DB>,
+        ctx: &PlotContext,
+        ((x0, x1), (y0, y1)): Window,
+    ) -> DrawResult<(), DB> {
+        let clamp = |v: f64| v.clamp(y0, y1);
         let band = |r: (f64, f64), c: RGBColor, a: f64| {
             Rectangle::new([(x0, clamp(r.0)), (x1, clamp(r.1))], c.mix(a).filled())
         };
@@ -108,8 +122,7 @@ impl Figure for DomainsChart {
         if let Some(s) = self.h_s {
             chart.draw_series([band(s, palette::SKY, S_ALPHA)])?;
         }
-        let both = self.intersection();
-        if let Some(b) = both {
+        if let Some(b) = self.intersection() {
             chart.draw_series([band(b, palette::GREEN, BOTH_ALPHA)])?;
             for y in [b.0, b.1] {
                 if y.is_finite() && y >= y0 && y <= y1 {
@@ -120,20 +133,17 @@ impl Figure for DomainsChart {
                 }
             }
         }
-        let fx = |v: &f64| format!("{v:.0}");
-        let fy = |v: &f64| format!("{:.*}", decimals_for(y1 - y0), v);
-        chart
-            .configure_mesh()
-            .x_desc("joint angle θ from the crown (degrees)")
-            .y_desc("crown thrust H / W_half")
-            .x_label_formatter(&fx)
-            .y_label_formatter(&fy)
-            .label_style(ctx.font(13.0))
-            .axis_desc_style(ctx.font(14.0))
-            .set_all_tick_mark_size(ctx.px(5.0))
-            .light_line_style(TRANSPARENT)
-            .bold_line_style(BLACK.mix(0.08).stroke_width(1))
-            .draw()?;
+        Ok(())
+    }
+
+    /// The bounds against θ: lower bounds solid, upper bounds dashed, with dots at the
+    /// joints of a discrete arch.
+    fn draw_curves<DB: DrawingBackend>(
+        &self,
+        chart: &mut Chart<DB>,
+        ctx: &PlotContext,
+        ((x0, x1), (y0, y1)): Window,
+    ) -> DrawResult<(), DB> {
         for c in &self.curves {
             let color = c.family.color();
             let st = color.stroke_width(ctx.upx(2.0));
@@ -157,16 +167,28 @@ impl Figure for DomainsChart {
                 }
             }
         }
-        // Brackets at the right: which thrusts each domain admits.
+        Ok(())
+    }
+
+    /// Brackets at the right: which thrusts each domain admits, labelled in one column right
+    /// of all brackets, each label at its bracket's middle.
+    fn draw_brackets<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        chart: &Chart<DB>,
+        ctx: &PlotContext,
+        ((_, x1), (y0, y1)): Window,
+    ) -> DrawResult<(), DB> {
+        let clamp = |v: f64| v.clamp(y0, y1);
+        let (w, _) = ctx.pixels();
         let (xr, yr) = chart.plotting_area().get_pixel_range();
         let mut placer = LabelPlacer::new((xr.end, yr.start, w as i32, yr.end));
         let brackets = [
             (self.h_r, "Hʳ", palette::ORANGE, 12.0),
             (self.h_s, "Hˢ", palette::SKY, 28.0),
-            (both, "Hʳ ∩ Hˢ", palette::GREEN, 44.0),
+            (self.intersection(), "Hʳ ∩ Hˢ", palette::GREEN, 44.0),
         ];
         let font = ctx.font(13.0).pos(Pos::new(HPos::Left, VPos::Center));
-        // Labels in one column right of all brackets, each at its bracket's middle.
         let label_x = xr.end + ctx.px(60.0);
         for (range, label, color, off) in brackets {
             let Some((a, b)) = range else { continue };
@@ -200,6 +222,28 @@ impl Figure for DomainsChart {
         }
         Ok(())
     }
+}
+
+/// The axes and the grid lines of θ and H/W_half.
+fn draw_mesh<DB: DrawingBackend>(
+    chart: &mut Chart<DB>,
+    ctx: &PlotContext,
+    ((_, _), (y0, y1)): Window,
+) -> DrawResult<(), DB> {
+    let fx = |v: &f64| format!("{v:.0}");
+    let fy = |v: &f64| format!("{:.*}", decimals_for(y1 - y0), v);
+    chart
+        .configure_mesh()
+        .x_desc("joint angle θ from the crown (degrees)")
+        .y_desc("crown thrust H / W_half")
+        .x_label_formatter(&fx)
+        .y_label_formatter(&fy)
+        .label_style(ctx.font(13.0))
+        .axis_desc_style(ctx.font(14.0))
+        .set_all_tick_mark_size(ctx.px(5.0))
+        .light_line_style(TRANSPARENT)
+        .bold_line_style(BLACK.mix(0.08).stroke_width(1))
+        .draw()
 }
 
 impl DomainsChart {

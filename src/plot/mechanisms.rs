@@ -86,11 +86,11 @@ impl Frame {
     }
 }
 
+/// The result of drawing on a backend.
+type Drawn<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+
 /// Draws the figure into a drawing area.
-fn draw<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    fig: &MechanismFigure,
-) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, fig: &MechanismFigure) -> Drawn<DB> {
     root.fill(&WHITE)?;
     let (w, h) = root.dim_in_pixel();
     let (w, h) = (f64::from(w), f64::from(h));
@@ -109,137 +109,16 @@ fn draw<DB: DrawingBackend>(
         w - 2.0 * margin,
         h - title_h - 2.0 * margin,
     );
-
-    let size = (b[1] - b[0]).max(b[3] - b[2]);
-    // Supports: a ground line along each springing joint, hatched on the ground side.
-    for sup in &d.supports {
-        let (i, e) = (sup.intrados, sup.extrados);
-        let along = [e[0] - i[0], e[1] - i[1]];
-        let len = along[0].hypot(along[1]).max(1e-12);
-        let t = [along[0] / len, along[1] / len];
-        let g = sup.into_ground;
-        let ext = 0.3 * len + 0.02 * size;
-        let a = [i[0] - ext * t[0], i[1] - ext * t[1]];
-        let z = [e[0] + ext * t[0], e[1] + ext * t[1]];
-        root.draw(&PathElement::new(
-            vec![frame.px(a), frame.px(z)],
-            GROUND.stroke_width(2),
-        ))?;
-        let ticks = 8;
-        let tick = 0.1 * (z[0] - a[0]).hypot(z[1] - a[1]);
-        for k in 0..=ticks {
-            let s = f64::from(k) / f64::from(ticks);
-            let p = [a[0] + s * (z[0] - a[0]), a[1] + s * (z[1] - a[1])];
-            let q = [
-                p[0] + tick * (g[0] - 0.6 * t[0]),
-                p[1] + tick * (g[1] - 0.6 * t[1]),
-            ];
-            root.draw(&PathElement::new(
-                vec![frame.px(p), frame.px(q)],
-                GROUND.stroke_width(1),
-            ))?;
-        }
-    }
-
-    // The arch before the displacement (dashed), then the fixed parts, then the blocks.
-    for o in &d.outlines {
-        root.draw(&DashedPathElement::new(
-            frame.path(&o.original, true),
-            6,
-            4,
-            ORIGINAL.stroke_width(1),
-        ))?;
-    }
-    for o in d.outlines.iter().filter(|o| o.fixed) {
-        root.draw(&Polygon::new(
-            frame.path(&o.original, false),
-            FIXED_FILL.filled(),
-        ))?;
-        root.draw(&PathElement::new(
-            frame.path(&o.original, true),
-            GROUND.stroke_width(1),
-        ))?;
-    }
-    for o in d.outlines.iter().filter(|o| !o.fixed) {
-        root.draw(&Polygon::new(
-            frame.path(&o.displaced, false),
-            BLOCK_FILL.filled(),
-        ))?;
-        root.draw(&PathElement::new(
-            frame.path(&o.displaced, true),
-            BLOCK_EDGE.stroke_width(2),
-        ))?;
-    }
-
-    for [i, e] in &d.voussoir_joints {
-        root.draw(&PathElement::new(
-            vec![frame.px(*i), frame.px(*e)],
-            BLOCK_EDGE.stroke_width(1),
-        ))?;
-    }
-
-    // Sliding joints: an arrow along the joint on the crown side, in the direction the
-    // crown-side part moves relative to the springing-side part.
-    for s in &d.slides {
-        // No arrow where the joint does not slip in this mode.
-        let dir = match s.sense {
-            Some(Sense::Outward) => 1.0,
-            Some(Sense::Inward) => -1.0,
-            None => 0.0,
-        };
-        let len = 0.16 * size;
-        // Crown side: left of the joint for θ ≥ 0, i.e. against the normal (cos θ, −sin θ).
-        let nrm = [s.along[1], -s.along[0]];
-        let off = 0.045 * size * s.crown_side;
-        let c = [s.centre[0] - off * nrm[0], s.centre[1] - off * nrm[1]];
-        let (t0, t1) = if dir == 0.0 {
-            (c, c)
-        } else {
-            (
-                [
-                    c[0] - 0.5 * len * dir * s.along[0],
-                    c[1] - 0.5 * len * dir * s.along[1],
-                ],
-                [
-                    c[0] + 0.5 * len * dir * s.along[0],
-                    c[1] + 0.5 * len * dir * s.along[1],
-                ],
-            )
-        };
-        root.draw(&PathElement::new(
-            vec![frame.px(t0), frame.px(t1)],
-            SLIDE.stroke_width(3),
-        ))?;
-        if dir != 0.0 {
-            let head = 0.35 * len;
-            let u = [dir * s.along[0], dir * s.along[1]];
-            for side in [1.0, -1.0] {
-                let (ca, sa) = (0.94_f64, 0.34_f64 * side);
-                let back = [-(ca * u[0] - sa * u[1]), -(sa * u[0] + ca * u[1])];
-                let q = [t1[0] + head * back[0], t1[1] + head * back[1]];
-                root.draw(&PathElement::new(
-                    vec![frame.px(t1), frame.px(q)],
-                    SLIDE.stroke_width(3),
-                ))?;
-            }
-        }
-        // The joint itself, drawn on the arch.
-        root.draw(&Circle::new(frame.px(s.centre), 3, SLIDE.filled()))?;
-    }
-
-    // Hinges: filled where the joint rotates, hollow where it stays closed in this mode.
-    for hm in &d.hinges {
-        let r = (0.012 * w.min(h)).max(3.0) as i32;
-        let at = frame.px(hm.displaced);
-        if hm.relative_rotation.abs() > ACTIVE_TOL {
-            root.draw(&Circle::new(at, r, HINGE.filled()))?;
-            root.draw(&Circle::new(at, r, BLACK.stroke_width(1)))?;
-        } else {
-            root.draw(&Circle::new(at, r, WHITE.filled()))?;
-            root.draw(&Circle::new(at, r, ORIGINAL.stroke_width(2)))?;
-        }
-    }
-
+    let p = Panel {
+        root,
+        frame,
+        drawing: d,
+        size: (b[1] - b[0]).max(b[3] - b[2]),
+    };
+    p.draw_supports()?;
+    p.draw_blocks()?;
+    p.draw_slides()?;
+    p.draw_hinges((0.012 * w.min(h)).max(3.0) as i32)?;
     if text {
         let big = (0.045 * h).max(12.0);
         let small = (0.032 * h).max(10.0);
@@ -255,6 +134,162 @@ fn draw<DB: DrawingBackend>(
         ))?;
     }
     Ok(())
+}
+
+/// One mechanism drawn in a drawing area: the area, the map to its pixels, the geometry and
+/// the size of the drawing (in r), which sets the length of ticks and arrows.
+struct Panel<'a, DB: DrawingBackend> {
+    root: &'a DrawingArea<DB, Shift>,
+    frame: Frame,
+    drawing: &'a MechanismDrawing,
+    size: f64,
+}
+
+impl<DB: DrawingBackend> Panel<'_, DB> {
+    /// Supports: a ground line along each springing joint, hatched on the ground side.
+    fn draw_supports(&self) -> Drawn<DB> {
+        let (root, frame, size) = (self.root, &self.frame, self.size);
+        for sup in &self.drawing.supports {
+            let (i, e) = (sup.intrados, sup.extrados);
+            let along = [e[0] - i[0], e[1] - i[1]];
+            let len = along[0].hypot(along[1]).max(1e-12);
+            let t = [along[0] / len, along[1] / len];
+            let g = sup.into_ground;
+            let ext = 0.3 * len + 0.02 * size;
+            let a = [i[0] - ext * t[0], i[1] - ext * t[1]];
+            let z = [e[0] + ext * t[0], e[1] + ext * t[1]];
+            root.draw(&PathElement::new(
+                vec![frame.px(a), frame.px(z)],
+                GROUND.stroke_width(2),
+            ))?;
+            let ticks = 8;
+            let tick = 0.1 * (z[0] - a[0]).hypot(z[1] - a[1]);
+            for k in 0..=ticks {
+                let s = f64::from(k) / f64::from(ticks);
+                let p = [a[0] + s * (z[0] - a[0]), a[1] + s * (z[1] - a[1])];
+                let q = [
+                    p[0] + tick * (g[0] - 0.6 * t[0]),
+                    p[1] + tick * (g[1] - 0.6 * t[1]),
+                ];
+                root.draw(&PathElement::new(
+                    vec![frame.px(p), frame.px(q)],
+                    GROUND.stroke_width(1),
+                ))?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The arch before the displacement (dashed), then the fixed parts, then the displaced
+    /// blocks, then the joints between voussoirs.
+    fn draw_blocks(&self) -> Drawn<DB> {
+        let (root, frame, d) = (self.root, &self.frame, self.drawing);
+        for o in &d.outlines {
+            root.draw(&DashedPathElement::new(
+                frame.path(&o.original, true),
+                6,
+                4,
+                ORIGINAL.stroke_width(1),
+            ))?;
+        }
+        for o in d.outlines.iter().filter(|o| o.fixed) {
+            root.draw(&Polygon::new(
+                frame.path(&o.original, false),
+                FIXED_FILL.filled(),
+            ))?;
+            root.draw(&PathElement::new(
+                frame.path(&o.original, true),
+                GROUND.stroke_width(1),
+            ))?;
+        }
+        for o in d.outlines.iter().filter(|o| !o.fixed) {
+            root.draw(&Polygon::new(
+                frame.path(&o.displaced, false),
+                BLOCK_FILL.filled(),
+            ))?;
+            root.draw(&PathElement::new(
+                frame.path(&o.displaced, true),
+                BLOCK_EDGE.stroke_width(2),
+            ))?;
+        }
+        for [i, e] in &d.voussoir_joints {
+            root.draw(&PathElement::new(
+                vec![frame.px(*i), frame.px(*e)],
+                BLOCK_EDGE.stroke_width(1),
+            ))?;
+        }
+        Ok(())
+    }
+
+    /// Sliding joints: an arrow along the joint on the crown side, in the direction the
+    /// crown-side part moves relative to the springing-side part.
+    fn draw_slides(&self) -> Drawn<DB> {
+        let (root, frame, size) = (self.root, &self.frame, self.size);
+        for s in &self.drawing.slides {
+            // No arrow where the joint does not slip in this mode.
+            let dir = match s.sense {
+                Some(Sense::Outward) => 1.0,
+                Some(Sense::Inward) => -1.0,
+                None => 0.0,
+            };
+            let len = 0.16 * size;
+            // Crown side: left of the joint for θ ≥ 0, i.e. against the normal (cos θ, −sin θ).
+            let nrm = [s.along[1], -s.along[0]];
+            let off = 0.045 * size * s.crown_side;
+            let c = [s.centre[0] - off * nrm[0], s.centre[1] - off * nrm[1]];
+            let (t0, t1) = if dir == 0.0 {
+                (c, c)
+            } else {
+                (
+                    [
+                        c[0] - 0.5 * len * dir * s.along[0],
+                        c[1] - 0.5 * len * dir * s.along[1],
+                    ],
+                    [
+                        c[0] + 0.5 * len * dir * s.along[0],
+                        c[1] + 0.5 * len * dir * s.along[1],
+                    ],
+                )
+            };
+            root.draw(&PathElement::new(
+                vec![frame.px(t0), frame.px(t1)],
+                SLIDE.stroke_width(3),
+            ))?;
+            if dir != 0.0 {
+                let head = 0.35 * len;
+                let u = [dir * s.along[0], dir * s.along[1]];
+                for side in [1.0, -1.0] {
+                    let (ca, sa) = (0.94_f64, 0.34_f64 * side);
+                    let back = [-(ca * u[0] - sa * u[1]), -(sa * u[0] + ca * u[1])];
+                    let q = [t1[0] + head * back[0], t1[1] + head * back[1]];
+                    root.draw(&PathElement::new(
+                        vec![frame.px(t1), frame.px(q)],
+                        SLIDE.stroke_width(3),
+                    ))?;
+                }
+            }
+            // The joint itself, drawn on the arch.
+            root.draw(&Circle::new(frame.px(s.centre), 3, SLIDE.filled()))?;
+        }
+        Ok(())
+    }
+
+    /// Hinges of radius `r` pixels: filled where the joint rotates, hollow where it stays
+    /// closed in this mode.
+    fn draw_hinges(&self, r: i32) -> Drawn<DB> {
+        let root = self.root;
+        for hm in &self.drawing.hinges {
+            let at = self.frame.px(hm.displaced);
+            if hm.relative_rotation.abs() > ACTIVE_TOL {
+                root.draw(&Circle::new(at, r, HINGE.filled()))?;
+                root.draw(&Circle::new(at, r, BLACK.stroke_width(1)))?;
+            } else {
+                root.draw(&Circle::new(at, r, WHITE.filled()))?;
+                root.draw(&Circle::new(at, r, ORIGINAL.stroke_width(2)))?;
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Mechanisms side by side (e.g. the non-associative mechanisms at a bifurcation and the

@@ -16,6 +16,7 @@ pub mod state;
 mod style;
 
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
 pub use style::LegendItem;
@@ -97,6 +98,12 @@ impl PlotContext {
         style::font_with(size * self.scale, st)
     }
 }
+
+/// A chart with linear axes of floats, as every figure but the mechanisms draws on.
+pub(crate) type XyChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// The data ranges of a chart: (x0, x1) and (y0, y1).
+pub(crate) type Window = ((f64, f64), (f64, f64));
 
 /// Drawing failed (a backend error, reported as text).
 #[derive(Debug, thiserror::Error)]

@@ -3,8 +3,9 @@
 //! or extrados and sliding joints with an arrow giving the sense of the crown-side part.
 
 use super::style::{self, LabelPlacer, LegendItem, Mark, palette};
-use super::{Figure, PlotContext};
+use super::{Figure, PlotContext, Window, XyChart as Chart};
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
@@ -58,6 +59,9 @@ fn window(d: &StateDrawing) -> ((f64, f64), (f64, f64)) {
     ((-x1 - pad, x1 + pad), (y0 - pad, y1 + pad))
 }
 
+/// The plotting area of a [`Chart`].
+type Plot<DB> = DrawingArea<DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
 impl Figure for StateDrawing {
     fn size(&self) -> (u32, u32) {
         (820, 600)
@@ -70,8 +74,34 @@ impl Figure for StateDrawing {
     ) -> DrawResult<(), DB> {
         let legend = self.legend();
         let upper = style::above_legend(root, ctx, &legend)?;
+        let top = self.draw_titles(&upper, ctx)?;
+        let area = upper.margin(top, ctx.px(4.0), ctx.px(10.0), ctx.px(10.0));
+        let w = self.equal_scales(area.dim_in_pixel());
+        let ((x0, x1), (y0, y1)) = w;
+        let chart = ChartBuilder::on(&area).build_cartesian_2d(x0..x1, y0..y1)?;
+        let plot = chart.plotting_area();
+        self.draw_arch(plot, ctx)?;
+        self.draw_supports(plot, ctx)?;
+        self.draw_sliding_joints(root, &chart, ctx)?;
+        self.draw_line_of_thrust(root, &chart, ctx, w)?;
+        self.draw_hinges(root, &chart, ctx)?;
+        if let Some(note) = &self.note {
+            let f = ctx.font(14.0).pos(Pos::new(HPos::Center, VPos::Center));
+            let c = chart.backend_coord(&(0.0, 0.45));
+            root.draw(&Text::new(note.clone(), c, f))?;
+        }
+        Ok(())
+    }
+}
+
+impl StateDrawing {
+    /// The title and the subtitle lines; returns the height they take.
+    fn draw_titles<DB: DrawingBackend>(
+        &self,
+        upper: &DrawingArea<DB, Shift>,
+        ctx: &PlotContext,
+    ) -> DrawResult<i32, DB> {
         let (w, _) = ctx.pixels();
-        // Title and subtitle.
         let title_font = ctx.font(17.0).pos(Pos::new(HPos::Center, VPos::Top));
         upper.draw(&Text::new(
             self.title.clone(),
@@ -88,19 +118,26 @@ impl Figure for StateDrawing {
             ))?;
             y += ctx.px(19.0);
         }
-        let top = y + ctx.px(6.0);
-        let area = upper.margin(top, ctx.px(4.0), ctx.px(10.0), ctx.px(10.0));
-        let (aw, ah) = area.dim_in_pixel();
-        // Equal scales: widen the window in the direction with room to spare.
-        let ((mut x0, mut x1), (mut y0, mut y1)) = window(self);
+        Ok(y + ctx.px(6.0))
+    }
+
+    /// The data window widened in the direction with room to spare, so that x and y have
+    /// equal scales in an area of `(aw, ah)` pixels.
+    fn equal_scales(&self, (aw, ah): (u32, u32)) -> Window {
+        let ((x0, x1), (y0, y1)) = window(self);
         let s = (f64::from(aw) / (x1 - x0)).min(f64::from(ah) / (y1 - y0));
         let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
         let (hw, hh) = (0.5 * f64::from(aw) / s, 0.5 * f64::from(ah) / s);
-        (x0, x1, y0, y1) = (cx - hw, cx + hw, cy - hh, cy + hh);
-        let chart = ChartBuilder::on(&area).build_cartesian_2d(x0..x1, y0..y1)?;
-        let plot = chart.plotting_area();
+        ((cx - hw, cx + hw), (cy - hh, cy + hh))
+    }
+
+    /// The arch, outlined, with the joints between its voussoirs.
+    fn draw_arch<DB: DrawingBackend>(
+        &self,
+        plot: &Plot<DB>,
+        ctx: &PlotContext,
+    ) -> DrawResult<(), DB> {
         let (k, a) = (self.k, self.alpha_deg);
-        // The arch.
         let mut outline = arc(k, -a, a, 360);
         outline.extend(arc(1.0, a, -a, 360));
         plot.draw(&Polygon::new(outline.clone(), palette::STONE.filled()))?;
@@ -113,7 +150,16 @@ impl Figure for StateDrawing {
                 palette::INK.stroke_width(ctx.upx(1.0).max(1)),
             ))?;
         }
-        // Supports under the springings: a hatched strip beyond each springing joint.
+        Ok(())
+    }
+
+    /// Supports under the springings: a hatched strip beyond each springing joint.
+    fn draw_supports<DB: DrawingBackend>(
+        &self,
+        plot: &Plot<DB>,
+        ctx: &PlotContext,
+    ) -> DrawResult<(), DB> {
+        let (k, a) = (self.k, self.alpha_deg);
         let thick = k - 1.0;
         for side in [-1.0, 1.0] {
             let t = (side * a).to_radians();
@@ -146,13 +192,25 @@ impl Figure for StateDrawing {
                 ))?;
             }
         }
-        // Sliding joints.
+        Ok(())
+    }
+
+    /// Sliding joints, each with an arrow on its crown side, radial, in the sense in which
+    /// the crown side moves.
+    fn draw_sliding_joints<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        chart: &Chart<DB>,
+        ctx: &PlotContext,
+    ) -> DrawResult<(), DB> {
+        let k = self.k;
+        let thick = k - 1.0;
+        let plot = chart.plotting_area();
         for (t, sense) in &self.sliding {
             plot.draw(&PathElement::new(
                 vec![at(1.0, *t), at(k, *t)],
                 palette::SLIDING_LINE.stroke_width(ctx.upx(3.5)),
             ))?;
-            // Arrow on the crown side of the joint, radial, in the sense of the crown side.
             let mid = 0.5 * (1.0 + k);
             let rad = t.to_radians();
             let tang = (rad.cos(), -rad.sin());
@@ -177,17 +235,26 @@ impl Figure for StateDrawing {
                 2.2,
             )?;
         }
-        // The line of thrust.
+        Ok(())
+    }
+
+    /// The line of thrust and, for a discrete arch, its pressure points at the joints: only
+    /// there is the line bound to the section; within a voussoir it may leave it.
+    fn draw_line_of_thrust<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        chart: &Chart<DB>,
+        ctx: &PlotContext,
+        ((x0, x1), (y0, y1)): Window,
+    ) -> DrawResult<(), DB> {
         if self.line_of_thrust.len() >= 2 {
             for piece in style::clip_polyline(&self.line_of_thrust, (x0, x1), (y0, y1)) {
-                plot.draw(&PathElement::new(
+                chart.plotting_area().draw(&PathElement::new(
                     piece,
                     palette::RED.stroke_width(ctx.upx(2.4)),
                 ))?;
             }
         }
-        // Pressure points at the joints of a discrete arch: only there is the line bound to
-        // the section; within a voussoir it may leave it.
         if !self.voussoir_joints_deg.is_empty() {
             for &(x, y) in &self.line_of_thrust {
                 let t = x.atan2(y).to_degrees();
@@ -206,9 +273,24 @@ impl Figure for StateDrawing {
                 }
             }
         }
-        // Hinges.
-        let (xr, yr) = plot.get_pixel_range();
-        let mut placer = LabelPlacer::new((xr.start, yr.start, xr.end, yr.end));
+        Ok(())
+    }
+
+    /// Hinges as dots, then the angle of every hinge and sliding joint.
+    fn draw_hinges<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        chart: &Chart<DB>,
+        ctx: &PlotContext,
+    ) -> DrawResult<(), DB> {
+        let k = self.k;
+        let (xr, yr) = chart.plotting_area().get_pixel_range();
+        let mut labels = AngleLabels {
+            placer: LabelPlacer::new((xr.start, yr.start, xr.end, yr.end)),
+            labelled: Vec::new(),
+            symmetric: self.is_symmetric(),
+            font: ctx.font(12.5),
+        };
         let face_radius = |f: &str| if f == "intrados" { 1.0 } else { k };
         let hinge_px: Vec<(i32, i32)> = self
             .hinges
@@ -217,61 +299,77 @@ impl Figure for StateDrawing {
             .collect();
         for p in &hinge_px {
             let r = ctx.px(7.0);
-            placer.block((p.0 - r, p.1 - r, p.0 + r, p.1 + r));
+            labels.placer.block((p.0 - r, p.1 - r, p.0 + r, p.1 + r));
         }
         for p in &hinge_px {
             style::dot(root, ctx, *p, 5.5, palette::INK)?;
         }
-        // Angle labels on the right half (the state is symmetric or the left is labelled too).
-        let symmetric = self.hinges.iter().all(|(t, f)| {
+        let gap = 0.09 * k;
+        for (t, f) in &self.hinges {
+            let r = if f == "intrados" { 1.0 - gap } else { k + gap };
+            labels.draw(root, chart, ctx, (*t, r, palette::INK))?;
+        }
+        for (t, _) in &self.sliding {
+            labels.draw(root, chart, ctx, (*t, k + gap, palette::SLIDING_LINE))?;
+        }
+        Ok(())
+    }
+
+    /// True when every hinge and sliding joint has its mirror image.
+    fn is_symmetric(&self) -> bool {
+        self.hinges.iter().all(|(t, f)| {
             self.hinges
                 .iter()
                 .any(|(u, g)| (u + t).abs() < 1e-6 && f == g)
         }) && self
             .sliding
             .iter()
-            .all(|(t, _)| self.sliding.iter().any(|(u, _)| (u + t).abs() < 1e-6));
-        let mut labelled: Vec<f64> = Vec::new();
-        let font = ctx.font(12.5);
-        let mut label = |t: f64, radius_out: f64, color: RGBColor| -> DrawResult<(), DB> {
-            // One label per joint, on the right half when the state is symmetric.
-            if (symmetric && t < -1e-9) || labelled.iter().any(|&u| (u - t).abs() < 1e-6) {
-                return Ok(());
-            }
-            labelled.push(t);
-            let text = format!("{:.1}°", t);
-            let (tw, th) = style::text_block_size(&font, std::slice::from_ref(&text), 1.0);
-            let p = chart.backend_coord(&at(radius_out, t));
-            let cands = [
-                (p.0 - tw / 2, p.1 - th / 2),
-                (p.0, p.1 - th),
-                (p.0 - tw, p.1 - th),
-                (p.0, p.1),
-                (p.0 - tw, p.1),
-                (p.0 + ctx.px(8.0), p.1 - th / 2),
-                (p.0 - tw - ctx.px(8.0), p.1 - th / 2),
-            ];
-            let pos = placer.place(tw, th, &cands);
-            root.draw(&Text::new(
-                text,
-                pos,
-                font.color(&color).pos(Pos::new(HPos::Left, VPos::Top)),
-            ))?;
-            Ok(())
-        };
-        let gap = 0.09 * k;
-        for (t, f) in &self.hinges {
-            let r = if f == "intrados" { 1.0 - gap } else { k + gap };
-            label(*t, r, palette::INK)?;
+            .all(|(t, _)| self.sliding.iter().any(|(u, _)| (u + t).abs() < 1e-6))
+    }
+}
+
+/// The angle labels of the hinges and sliding joints: one per joint, on the right half when
+/// the state is symmetric (else the left is labelled too).
+struct AngleLabels {
+    placer: LabelPlacer,
+    /// Angles already labelled.
+    labelled: Vec<f64>,
+    symmetric: bool,
+    font: TextStyle<'static>,
+}
+
+impl AngleLabels {
+    /// Labels joint `t` (degrees) near radius `radius_out`, in `color`.
+    fn draw<DB: DrawingBackend>(
+        &mut self,
+        root: &DrawingArea<DB, Shift>,
+        chart: &Chart<DB>,
+        ctx: &PlotContext,
+        (t, radius_out, color): (f64, f64, RGBColor),
+    ) -> DrawResult<(), DB> {
+        if (self.symmetric && t < -1e-9) || self.labelled.iter().any(|&u| (u - t).abs() < 1e-6) {
+            return Ok(());
         }
-        for (t, _) in &self.sliding {
-            label(*t, k + gap, palette::SLIDING_LINE)?;
-        }
-        if let Some(note) = &self.note {
-            let f = ctx.font(14.0).pos(Pos::new(HPos::Center, VPos::Center));
-            let c = chart.backend_coord(&(0.0, 0.45));
-            root.draw(&Text::new(note.clone(), c, f))?;
-        }
+        self.labelled.push(t);
+        let font = &self.font;
+        let text = format!("{:.1}°", t);
+        let (tw, th) = style::text_block_size(font, std::slice::from_ref(&text), 1.0);
+        let p = chart.backend_coord(&at(radius_out, t));
+        let cands = [
+            (p.0 - tw / 2, p.1 - th / 2),
+            (p.0, p.1 - th),
+            (p.0 - tw, p.1 - th),
+            (p.0, p.1),
+            (p.0 - tw, p.1),
+            (p.0 + ctx.px(8.0), p.1 - th / 2),
+            (p.0 - tw - ctx.px(8.0), p.1 - th / 2),
+        ];
+        let pos = self.placer.place(tw, th, &cands);
+        root.draw(&Text::new(
+            text,
+            pos,
+            font.color(&color).pos(Pos::new(HPos::Left, VPos::Top)),
+        ))?;
         Ok(())
     }
 }

@@ -63,6 +63,7 @@ pub fn observed_order(points: &[(u32, f64)]) -> Option<ObservedOrder> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use approx::assert_abs_diff_eq;
 
     #[test]
     fn power_law_gives_its_exponent() {
@@ -71,7 +72,7 @@ mod tests {
             .map(|&n| (n, 3.0 * f64::from(n).powf(-2.0)))
             .collect();
         let o = observed_order(&pts).unwrap();
-        assert!((o.order - 2.0).abs() < 1e-12, "{o:?}");
+        assert_abs_diff_eq!(o.order, 2.0, epsilon = 1e-12);
         assert_eq!((o.n_from, o.n_to, o.points), (32, 128, 3));
         assert!(o.rises_at.is_empty());
     }

@@ -3,18 +3,22 @@
 //! stored files of the run directory ([`data::load`]); nothing is recomputed. Templates are
 //! embedded and rendered in strict mode; the view model holds formatted text only.
 
+pub mod charts;
 pub mod convergence;
 pub mod data;
-pub mod figures;
 pub mod format;
 pub mod paper;
+pub mod tables;
 pub mod view;
+
+/// The chart builders under their former name.
+pub use charts as figures;
 
 use crate::output::{RunLayout, write_atomic};
 use crate::plot::Format;
 use anyhow::{Context, Result};
+use charts::FigureSpec;
 use data::RunData;
-use figures::FigureSpec;
 use minijinja::value::Serde;
 use minijinja::{Environment, UndefinedBehavior};
 use rayon::prelude::*;
@@ -36,7 +40,7 @@ pub struct DrawnFigures {
 pub fn draw_figures(data: &RunData, layout: &RunLayout) -> Result<DrawnFigures> {
     let dir = layout.plots();
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    let specs = figures::build(data);
+    let specs = charts::build(data);
     // Figures are independent: render them (SVG and print PNG) on all cores, in order.
     let svgs = specs
         .par_iter()

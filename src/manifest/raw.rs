@@ -1,0 +1,162 @@
+//! The manifest as written: serde types that mirror the YAML (unknown keys rejected), with
+//! the location of every value kept for the messages of the validation.
+
+use serde::de::{self, Deserializer, Visitor};
+use serde::{Deserialize, Serialize};
+use serde_saphyr::Spanned;
+use std::fmt;
+
+/// A number that may be written `inf` (for μ).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Number(pub f64);
+
+impl<'de> Deserialize<'de> for Number {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl Visitor<'_> for V {
+            type Value = Number;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a number or `inf`")
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<Number, E> {
+                Ok(Number(v))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Number, E> {
+                Ok(Number(v as f64))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<Number, E> {
+                Ok(Number(v as f64))
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<Number, E> {
+                match v.trim() {
+                    // `continuum` is the voussoir count N → ∞.
+                    "inf" | "+inf" | ".inf" | "infinity" | "Inf" | "INF" | "continuum" => {
+                        Ok(Number(f64::INFINITY))
+                    }
+                    other => other.parse::<f64>().map(Number).map_err(|_| {
+                        E::invalid_value(de::Unexpected::Str(v), &"a number or `inf`")
+                    }),
+                }
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+/// Voussoirs as written: `continuum` or an integer.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RawVoussoirs {
+    /// `continuum`.
+    Continuum,
+    /// An integer (validated later).
+    Count(i64),
+}
+
+impl<'de> Deserialize<'de> for RawVoussoirs {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl Visitor<'_> for V {
+            type Value = RawVoussoirs;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("`continuum` or an integer ≥ 1")
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<RawVoussoirs, E> {
+                Ok(RawVoussoirs::Count(v))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<RawVoussoirs, E> {
+                Ok(RawVoussoirs::Count(i64::try_from(v).unwrap_or(i64::MAX)))
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<RawVoussoirs, E> {
+                if v.fract() == 0.0 && v.abs() < 1e15 {
+                    Ok(RawVoussoirs::Count(v as i64))
+                } else {
+                    Err(E::invalid_value(de::Unexpected::Float(v), &self))
+                }
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<RawVoussoirs, E> {
+                match v {
+                    "continuum" => Ok(RawVoussoirs::Continuum),
+                    _ => Err(E::invalid_value(de::Unexpected::Str(v), &self)),
+                }
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+/// The `arch:` block as written.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawArch {
+    pub(super) shape: Option<Spanned<String>>,
+    pub(super) eccentricity: Option<Spanned<f64>>,
+    pub(super) half_angle_deg: Option<Spanned<f64>>,
+    pub(super) joints: Option<Spanned<String>>,
+    pub(super) weight: Option<Spanned<String>>,
+    pub(super) voussoirs: Option<Spanned<RawVoussoirs>>,
+}
+
+/// One grid axis as written: `{from, to, steps}` or `{values: [...]}`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawAxis {
+    pub(super) from: Option<Spanned<Number>>,
+    pub(super) to: Option<Spanned<Number>>,
+    pub(super) steps: Option<Spanned<i64>>,
+    pub(super) values: Option<Vec<Spanned<Number>>>,
+}
+
+/// The `grid:` block as written.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawGrid {
+    pub(super) k: Option<Spanned<RawAxis>>,
+    pub(super) t_over_r: Option<Spanned<RawAxis>>,
+    pub(super) mu: Option<Spanned<RawAxis>>,
+    pub(super) half_angle_deg: Option<Spanned<RawAxis>>,
+    pub(super) voussoirs: Option<Spanned<RawAxis>>,
+    pub(super) at_deg: Option<Spanned<RawAxis>>,
+}
+
+/// One load case as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawLoadCase {
+    pub(super) name: Spanned<String>,
+    pub(super) kind: Spanned<String>,
+    pub(super) at_deg: Option<Spanned<f64>>,
+    pub(super) lambda: Option<Spanned<f64>>,
+    pub(super) find: Option<Spanned<String>>,
+}
+
+/// A scene listed for drawing.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawScene {
+    pub(super) k: Option<Spanned<f64>>,
+    pub(super) t_over_r: Option<Spanned<f64>>,
+    pub(super) mu: Spanned<Number>,
+}
+
+/// Boundary location settings as written.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawBoundaries {
+    pub(super) tolerance: Option<Spanned<f64>>,
+}
+
+/// The manifest as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawManifest {
+    pub(super) name: Spanned<String>,
+    pub(super) title: Option<String>,
+    pub(super) description: Option<String>,
+    #[serde(default)]
+    pub(super) arch: RawArch,
+    pub(super) grid: Option<RawGrid>,
+    pub(super) load_cases: Option<Vec<Spanned<RawLoadCase>>>,
+    pub(super) find: Option<Spanned<String>>,
+    pub(super) scenes: Option<Vec<Spanned<RawScene>>>,
+    pub(super) boundaries: Option<RawBoundaries>,
+}

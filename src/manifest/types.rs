@@ -1,0 +1,215 @@
+//! The validated manifest: the types the planner, the runner and the reports read.
+
+use crate::model::{
+    ArchForm, Discretisation, JointOrientation, Load, Shape, WeightModel, t_over_r_from_k,
+};
+use crate::scene::Find;
+use serde::Serialize;
+
+/// The kind of a load case.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LoadKind {
+    /// Self-weight only (symmetric).
+    SelfWeight,
+    /// Self-weight and a horizontal body force λ·(weight) toward +x.
+    Horizontal,
+    /// Self-weight and a vertical point load λ·W_total on the extrados at `at_deg`.
+    Point,
+}
+
+impl LoadKind {
+    /// The manifest name.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            LoadKind::SelfWeight => "self_weight",
+            LoadKind::Horizontal => "horizontal",
+            LoadKind::Point => "point",
+        }
+    }
+
+    /// True when the load case has a live part scaled by λ.
+    pub fn is_live(self) -> bool {
+        self != LoadKind::SelfWeight
+    }
+}
+
+/// A named load case.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LoadCase {
+    /// Unique name.
+    pub name: String,
+    /// Kind.
+    pub kind: LoadKind,
+    /// Position of a point load, degrees from the crown (`None` when the grid has an
+    /// `at_deg` axis, and for other kinds).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub at_deg: Option<f64>,
+    /// The given load factor λ of the live part (state, thickness and friction studies).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lambda: Option<f64>,
+    /// What the cases of this load case compute: the load case's own `find`, or the study's.
+    pub find: Find,
+}
+
+impl LoadCase {
+    /// The load of this case, with the position `at_deg` of a point load when the grid gives
+    /// it.
+    pub fn load(&self, axis_at_deg: Option<f64>) -> Load {
+        match self.kind {
+            LoadKind::SelfWeight => Load::SelfWeight,
+            LoadKind::Horizontal => Load::Horizontal,
+            LoadKind::Point => Load::Point {
+                at_deg: self.at_deg.or(axis_at_deg).unwrap_or(0.0),
+            },
+        }
+    }
+
+    /// True when the cases of this load case span the grid axis `axis`: every axis but the
+    /// ones its find finds itself (K for `thickness`, μ for `friction`, both for
+    /// `thresholds`).
+    pub fn spans(&self, axis: AxisName) -> bool {
+        match axis {
+            AxisName::K | AxisName::TOverR => self.find.needs_k(),
+            AxisName::Mu => self.find.needs_mu(),
+            AxisName::HalfAngleDeg | AxisName::Voussoirs | AxisName::AtDeg => true,
+        }
+    }
+}
+
+/// The arch options common to every case (each may be overridden by a grid axis).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ArchOptions {
+    /// `circular` or `pointed`.
+    pub shape: &'static str,
+    /// Eccentricity e of a pointed arch.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub eccentricity: Option<f64>,
+    /// Half-embrace angle α in degrees.
+    pub half_angle_deg: f64,
+    /// `radial` or `vertical`.
+    pub joints: &'static str,
+    /// Weight model.
+    pub weight: WeightModel,
+    /// Continuum or voussoirs.
+    #[serde(serialize_with = "ser_disc")]
+    pub voussoirs: Discretisation,
+}
+
+impl ArchOptions {
+    /// The outline and joint planes.
+    pub fn form(&self) -> ArchForm {
+        ArchForm {
+            shape: match self.eccentricity {
+                Some(eccentricity) if self.shape == "pointed" => Shape::Pointed { eccentricity },
+                _ => Shape::Circular,
+            },
+            joints: JointOrientation::parse(self.joints).unwrap_or_default(),
+        }
+    }
+}
+
+fn ser_disc<S: serde::Serializer>(d: &Discretisation, s: S) -> Result<S::Ok, S::Error> {
+    match d {
+        Discretisation::Continuum => s.serialize_str("continuum"),
+        Discretisation::Voussoirs(n) => s.serialize_u32(*n),
+    }
+}
+
+/// Which parameter a grid axis spans.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AxisName {
+    /// Thickness ratio K.
+    K,
+    /// t/R_c (converted to K).
+    TOverR,
+    /// Friction coefficient.
+    Mu,
+    /// Half-embrace angle in degrees.
+    HalfAngleDeg,
+    /// Voussoir count.
+    Voussoirs,
+    /// Position of a point load, degrees from the crown (an influence line).
+    AtDeg,
+}
+
+impl AxisName {
+    /// The manifest key.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            AxisName::K => "k",
+            AxisName::TOverR => "t_over_r",
+            AxisName::Mu => "mu",
+            AxisName::HalfAngleDeg => "half_angle_deg",
+            AxisName::Voussoirs => "voussoirs",
+            AxisName::AtDeg => "at_deg",
+        }
+    }
+}
+
+/// A validated grid axis: its values in the order they are run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GridAxis {
+    /// The parameter.
+    pub name: AxisName,
+    /// Values (μ may be infinite).
+    pub values: Vec<f64>,
+}
+
+/// A scene (K, μ) the report draws.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SceneSpec {
+    /// K = R/r.
+    pub k: f64,
+    /// μ (may be infinite).
+    pub mu: f64,
+}
+
+/// A validated study manifest.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Manifest {
+    /// Study name ([A-Za-z0-9_-]+), names the run directory.
+    pub name: String,
+    /// Title for reports.
+    pub title: Option<String>,
+    /// Description for reports.
+    pub description: Option<String>,
+    /// Arch options.
+    pub arch: ArchOptions,
+    /// Grid axes, in plan order (outermost first).
+    pub grid: Vec<GridAxis>,
+    /// Load cases.
+    pub load_cases: Vec<LoadCase>,
+    /// What each case computes, unless its load case names its own find
+    /// ([`LoadCase::find`]).
+    pub find: Find,
+    /// Scenes to draw.
+    pub scenes: Vec<SceneSpec>,
+    /// Tolerance for locating boundaries, in K and μ.
+    pub boundary_tolerance: f64,
+}
+
+/// Default tolerance for boundary location.
+pub const DEFAULT_BOUNDARY_TOLERANCE: f64 = 1e-9;
+
+impl Manifest {
+    /// The K values of the grid (converted from t/R_c when given so), if any.
+    pub fn k_values(&self) -> Option<Vec<f64>> {
+        self.grid.iter().find_map(|a| match a.name {
+            AxisName::K => Some(a.values.clone()),
+            AxisName::TOverR => Some(
+                a.values
+                    .iter()
+                    .map(|&x| crate::model::k_from_t_over_r(x))
+                    .collect(),
+            ),
+            _ => None,
+        })
+    }
+
+    /// t/R_c for a K value.
+    pub fn t_over_r(k: f64) -> f64 {
+        t_over_r_from_k(k)
+    }
+}

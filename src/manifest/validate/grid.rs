@@ -1,0 +1,336 @@
+//! The `grid:` block: which axes the load cases' finds allow and need, and the values of
+//! each axis (a list or a range), checked against the parameter they span.
+
+use super::{Ctx, fmt_num};
+use crate::manifest::error::ManifestError;
+use crate::manifest::raw::{Number, RawAxis, RawGrid};
+use crate::manifest::types::{AxisName, GridAxis, LoadCase};
+use crate::scene::Find;
+use serde_saphyr::{Location, Spanned};
+
+/// Largest number of steps of one axis.
+pub const MAX_AXIS_STEPS: i64 = 100_000;
+
+/// The grid axes in plan order, after checking them against the load cases' finds.
+pub(super) fn validate_grid(
+    g: Option<&RawGrid>,
+    lcs: &[LoadCase],
+    cx: &Ctx,
+) -> Result<Vec<GridAxis>, ManifestError> {
+    let empty = RawGrid::default();
+    let g = g.unwrap_or(&empty);
+    if let (Some(_), Some(t)) = (&g.k, &g.t_over_r) {
+        return Err(cx.err(
+            Some(t.referenced),
+            "grid.t_over_r",
+            "give either a k axis or a t_over_r axis, not both",
+        ));
+    }
+    let finds = distinct_finds(lcs);
+    if let [find] = finds[..] {
+        check_axes_the_find_finds(g, find, cx)?;
+    }
+    check_axes_are_spanned(g, lcs, &finds, cx)?;
+    let axes = grid_axes(g, cx)?;
+    check_needed_axes(&axes, lcs, &finds, cx)?;
+    Ok(axes)
+}
+
+/// The distinct finds of the load cases, in order of first appearance.
+fn distinct_finds(lcs: &[LoadCase]) -> Vec<Find> {
+    let mut finds: Vec<Find> = Vec::new();
+    for lc in lcs {
+        if !finds.contains(&lc.find) {
+            finds.push(lc.find);
+        }
+    }
+    finds
+}
+
+/// A study with one find has no axis for what that find finds itself.
+fn check_axes_the_find_finds(g: &RawGrid, find: Find, cx: &Ctx) -> Result<(), ManifestError> {
+    if find == Find::Thickness
+        && let Some(a) = g.k.as_ref().or(g.t_over_r.as_ref())
+    {
+        return Err(cx.err(
+            Some(a.referenced),
+            "grid.k",
+            "a `thickness` study finds K itself: remove the k / t_over_r axis",
+        ));
+    }
+    if find == Find::Thresholds
+        && let Some(a) = g.k.as_ref().or(g.t_over_r.as_ref()).or(g.mu.as_ref())
+    {
+        return Err(cx.err(
+            Some(a.referenced),
+            "grid",
+            "a `thresholds` study finds K and μ itself: remove the k, t_over_r and mu axes",
+        ));
+    }
+    if find == Find::Friction
+        && let Some(a) = &g.mu
+    {
+        return Err(cx.err(
+            Some(a.referenced),
+            "grid.mu",
+            "a `friction` study finds μ itself: remove the mu axis",
+        ));
+    }
+    Ok(())
+}
+
+/// Every K, t/R_c or μ axis is spanned by at least one load case.
+fn check_axes_are_spanned(
+    g: &RawGrid,
+    lcs: &[LoadCase],
+    finds: &[Find],
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    let spanned = |axis: AxisName| lcs.iter().any(|lc| lc.spans(axis));
+    for (name, ax) in [
+        (AxisName::K, &g.k),
+        (AxisName::TOverR, &g.t_over_r),
+        (AxisName::Mu, &g.mu),
+    ] {
+        if let Some(ax) = ax
+            && !spanned(name)
+        {
+            let finds: Vec<&str> = finds.iter().map(|f| f.as_str()).collect();
+            return Err(cx.err(
+                Some(ax.referenced),
+                &format!("grid.{}", name.as_str()),
+                format!(
+                    "no load case uses this axis: their finds ({}) find {} themselves; remove the axis",
+                    finds.join(", "),
+                    if name == AxisName::Mu { "μ" } else { "K" }
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The axes given, with their values, in plan order: outermost first (geometry, then K,
+/// then μ innermost).
+fn grid_axes(g: &RawGrid, cx: &Ctx) -> Result<Vec<GridAxis>, ManifestError> {
+    let mut axes = Vec::new();
+    for (name, ax) in [
+        (AxisName::HalfAngleDeg, &g.half_angle_deg),
+        (AxisName::Voussoirs, &g.voussoirs),
+        (AxisName::AtDeg, &g.at_deg),
+        (AxisName::K, &g.k),
+        (AxisName::TOverR, &g.t_over_r),
+        (AxisName::Mu, &g.mu),
+    ] {
+        if let Some(ax) = ax {
+            axes.push(GridAxis {
+                name,
+                values: axis_values(name, ax, cx)?,
+            });
+        }
+    }
+    Ok(axes)
+}
+
+/// Every load case has the K and μ axes its find needs.
+fn check_needed_axes(
+    axes: &[GridAxis],
+    lcs: &[LoadCase],
+    finds: &[Find],
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    let has_k = axes
+        .iter()
+        .any(|a| matches!(a.name, AxisName::K | AxisName::TOverR));
+    let has_mu = axes.iter().any(|a| a.name == AxisName::Mu);
+    // Which study needs the axis: the whole study when every load case has the same find.
+    let whose = |lc: &LoadCase| {
+        if finds.len() == 1 {
+            format!("a `{}` study", lc.find)
+        } else {
+            format!("load case {:?} (find {})", lc.name, lc.find)
+        }
+    };
+    for lc in lcs {
+        if lc.find.needs_k() && !has_k {
+            return Err(cx.err_unplaced(
+                "grid",
+                format!("{} needs a k (or t_over_r) axis", whose(lc)),
+            ));
+        }
+        if lc.find.needs_mu() && !has_mu && lc.find != Find::Thickness {
+            return Err(cx.err_unplaced(
+                "grid",
+                format!(
+                    "{} needs a mu axis (use values: [inf] for infinite friction)",
+                    whose(lc)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The values of one axis, in the order they are run.
+fn axis_values(name: AxisName, ax: &Spanned<RawAxis>, cx: &Ctx) -> Result<Vec<f64>, ManifestError> {
+    let key = format!("grid.{}", name.as_str());
+    let a = &ax.value;
+    match (&a.values, &a.from, &a.to, &a.steps) {
+        (Some(vals), None, None, None) => list_values(name, ax, vals, &key, cx),
+        (None, Some(from), Some(to), Some(steps)) => {
+            range_values(name, Range { from, to, steps }, &key, cx)
+        }
+        _ => Err(cx.err(
+            Some(ax.referenced),
+            &key,
+            "an axis is either {from, to, steps} (all three) or {values: [...]}",
+        )),
+    }
+}
+
+/// An axis given as `{values: [...]}`: at least one value, each valid and given once.
+fn list_values(
+    name: AxisName,
+    ax: &Spanned<RawAxis>,
+    vals: &[Spanned<Number>],
+    key: &str,
+    cx: &Ctx,
+) -> Result<Vec<f64>, ManifestError> {
+    if vals.is_empty() {
+        return Err(cx.err(
+            Some(ax.referenced),
+            key,
+            "the list `values` is empty: give at least one value",
+        ));
+    }
+    let mut out = Vec::with_capacity(vals.len());
+    for v in vals {
+        check_value(name, v.value.0, v.referenced, &format!("{key}.values"), cx)?;
+        if out.contains(&v.value.0) {
+            return Err(cx.err(
+                Some(v.referenced),
+                &format!("{key}.values"),
+                format!(
+                    "value {} is repeated: each value may appear once",
+                    fmt_num(v.value.0)
+                ),
+            ));
+        }
+        out.push(v.value.0);
+    }
+    Ok(out)
+}
+
+/// An axis given as `{from, to, steps}`, as written.
+struct Range<'a> {
+    from: &'a Spanned<Number>,
+    to: &'a Spanned<Number>,
+    steps: &'a Spanned<i64>,
+}
+
+/// An axis given as `{from, to, steps}`: `steps` evenly spaced values from `from` to `to`
+/// (both included), integers for a voussoir axis.
+fn range_values(
+    name: AxisName,
+    Range { from, to, steps }: Range,
+    key: &str,
+    cx: &Ctx,
+) -> Result<Vec<f64>, ManifestError> {
+    if steps.value < 1 || steps.value > MAX_AXIS_STEPS {
+        return Err(cx.err(
+            Some(steps.referenced),
+            &format!("{key}.steps"),
+            format!(
+                "value {} is not allowed: steps must be an integer in [1, {MAX_AXIS_STEPS}]",
+                steps.value
+            ),
+        ));
+    }
+    let (f, t) = (from.value.0, to.value.0);
+    check_value(name, f, from.referenced, &format!("{key}.from"), cx)?;
+    check_value(name, t, to.referenced, &format!("{key}.to"), cx)?;
+    if !f.is_finite() || !t.is_finite() {
+        return Err(cx.err(
+            Some(from.referenced),
+            key,
+            "a range needs finite `from` and `to`; list infinite values under `values`",
+        ));
+    }
+    if t < f {
+        return Err(cx.err(
+            Some(to.referenced),
+            &format!("{key}.to"),
+            format!("the range is reversed: from = {f} > to = {t}; give from ≤ to"),
+        ));
+    }
+    if steps.value > 1 && t == f {
+        return Err(cx.err(
+            Some(to.referenced),
+            &format!("{key}.to"),
+            format!(
+                "the range is empty: from = to = {f} with {} steps; widen it or use steps: 1",
+                steps.value
+            ),
+        ));
+    }
+    let n = steps.value as usize;
+    let vals: Vec<f64> = if n == 1 {
+        vec![f]
+    } else {
+        (0..n)
+            .map(|i| {
+                if i + 1 == n {
+                    t
+                } else {
+                    f + (t - f) * (i as f64) / ((n - 1) as f64)
+                }
+            })
+            .collect()
+    };
+    if name == AxisName::Voussoirs {
+        for &v in &vals {
+            if v.fract() != 0.0 {
+                return Err(cx.err(Some(steps.referenced), key, format!("the range gives a non-integer voussoir count {v}; choose from, to and steps so that every value is an integer, or use `values`")));
+            }
+        }
+    }
+    Ok(vals)
+}
+
+/// A value of an axis lies in the range of its parameter.
+fn check_value(
+    name: AxisName,
+    v: f64,
+    at: Location,
+    key: &str,
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    let ok = match name {
+        AxisName::K => v > 1.0 && v.is_finite(),
+        AxisName::TOverR => v > 0.0 && v < 2.0,
+        AxisName::Mu => v >= 0.0,
+        AxisName::HalfAngleDeg => v > 0.0 && v < 180.0,
+        AxisName::Voussoirs => {
+            v.is_infinite() && v > 0.0 || v.fract() == 0.0 && (1.0..=1e7).contains(&v)
+        }
+        AxisName::AtDeg => v.is_finite() && v.abs() < 180.0,
+    };
+    if ok {
+        return Ok(());
+    }
+    let allowed = match name {
+        AxisName::K => "K = R/r must be a finite number greater than 1",
+        AxisName::TOverR => "t/R_c must lie in (0, 2)",
+        AxisName::Mu => "μ must be a number ≥ 0 or inf (NaN and negative values are not allowed)",
+        AxisName::HalfAngleDeg => "the half-angle must lie in (0, 180) degrees",
+        AxisName::Voussoirs => {
+            "the voussoir count must be an integer in [1, 10000000], or `continuum`"
+        }
+        AxisName::AtDeg => "the position of a point load must lie in (−180, 180) degrees",
+    };
+    Err(cx.err(
+        Some(at),
+        key,
+        format!("value {} is not allowed: {allowed}", fmt_num(v)),
+    ))
+}

@@ -1,0 +1,350 @@
+//! Cross-checks of the load cases against the find, the grid and the form of the arch;
+//! every message names the key and the value at fault, where it was written.
+
+use super::{Ctx, fmt_num};
+use crate::manifest::error::ManifestError;
+use crate::manifest::raw::{RawAxis, RawLoadCase, RawManifest};
+use crate::manifest::types::{ArchOptions, AxisName, GridAxis, LoadCase, LoadKind};
+use crate::model::{ArchForm, JointOrientation, Shape};
+use crate::scene::Find;
+use serde_saphyr::{Location, Spanned};
+
+/// Where the keys of the i-th load case were written.
+struct Written<'a> {
+    lcs: &'a [Spanned<RawLoadCase>],
+}
+
+impl Written<'_> {
+    fn case(&self, i: usize) -> Option<Location> {
+        self.lcs.get(i).map(|l| l.referenced)
+    }
+
+    fn kind(&self, i: usize) -> Option<Location> {
+        self.lcs.get(i).map(|l| l.value.kind.referenced)
+    }
+
+    fn lambda(&self, i: usize) -> Option<Location> {
+        self.lcs
+            .get(i)
+            .and_then(|l| l.value.lambda.as_ref())
+            .map(|l| l.referenced)
+    }
+
+    fn at_deg(&self, i: usize) -> Option<Location> {
+        self.lcs
+            .get(i)
+            .and_then(|l| l.value.at_deg.as_ref())
+            .map(|a| a.referenced)
+    }
+}
+
+/// The position of a point load, with where it was written and its key.
+type Position = (f64, Option<Location>, &'static str);
+
+/// Runs every cross-check, in the order the errors are reported.
+pub(super) fn check_loads(
+    raw: &RawManifest,
+    arch: &ArchOptions,
+    grid: &[GridAxis],
+    lcs: &[LoadCase],
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    let written = Written {
+        lcs: raw.load_cases.as_deref().unwrap_or(&[]),
+    };
+    let at_axis = raw.grid.as_ref().and_then(|g| g.at_deg.as_ref());
+    for (i, lc) in lcs.iter().enumerate() {
+        check_find_fits_load(i, lc, &written, cx)?;
+        check_lambda_fits_find(i, lc, &written, cx)?;
+        check_position_source(i, lc, at_axis, &written, cx)?;
+    }
+    let form = arch.form();
+    check_form_fits_finds(raw, lcs, &form, cx)?;
+    let alphas =
+        axis_values(grid, AxisName::HalfAngleDeg).unwrap_or_else(|| vec![arch.half_angle_deg]);
+    let alpha_min = alphas.iter().copied().fold(f64::INFINITY, f64::min);
+    let alpha_max = alphas.iter().copied().fold(0.0, f64::max);
+    check_vertical_joints(raw, &form, alpha_max, cx)?;
+    let positions = point_positions(lcs, at_axis, grid, &written);
+    check_positions_on_arch(&positions, alpha_min, cx)?;
+    if let Shape::Pointed { eccentricity: e } = form.shape
+        && e > 0.0
+    {
+        let pointed = Pointed {
+            form: &form,
+            e,
+            alphas: &alphas,
+        };
+        check_pointed_arch(raw, grid, &pointed, &positions, cx)?;
+    }
+    Ok(())
+}
+
+fn axis_values(grid: &[GridAxis], n: AxisName) -> Option<Vec<f64>> {
+    grid.iter().find(|a| a.name == n).map(|a| a.values.clone())
+}
+
+/// A load-factor study needs a live load; thrust and thresholds studies are for
+/// self-weight only.
+fn check_find_fits_load(
+    i: usize,
+    lc: &LoadCase,
+    written: &Written,
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    let live = lc.kind.is_live();
+    let find = lc.find;
+    if find == Find::LoadFactor && !live {
+        return Err(cx.err(
+            written.kind(i),
+            "load_cases.kind",
+            format!(
+                "load case {:?} is self_weight: a load_factor study needs a live load (horizontal or point)",
+                lc.name
+            ),
+        ));
+    }
+    if matches!(find, Find::Thrust | Find::Thresholds) && live {
+        return Err(cx.err(
+            written.kind(i),
+            "load_cases.kind",
+            format!(
+                "load case {:?} is {}: a {find} study is defined for self_weight only",
+                lc.name,
+                lc.kind.as_str()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// A live load has its load factor given, except in a load-factor study, which finds it.
+fn check_lambda_fits_find(
+    i: usize,
+    lc: &LoadCase,
+    written: &Written,
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    match (lc.kind.is_live(), lc.find, lc.lambda) {
+        (true, Find::LoadFactor, Some(l)) => Err(cx.err(
+            written.lambda(i),
+            "load_cases.lambda",
+            format!(
+                "value {} is not allowed: a load_factor study finds λ itself; remove `lambda` from load case {:?}",
+                fmt_num(l),
+                lc.name
+            ),
+        )),
+        (true, f, None) if f != Find::LoadFactor => Err(cx.err(
+            written.case(i),
+            "load_cases.lambda",
+            format!(
+                "load case {:?} ({}) needs its load factor in a `{f}` study: add `lambda: L` (L ≥ 0), or use `find: load_factor`",
+                lc.name,
+                lc.kind.as_str()
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// A point load is positioned by its `at_deg` or by the grid's at_deg axis (exactly one of
+/// them); an at_deg axis is for point loads only.
+fn check_position_source(
+    i: usize,
+    lc: &LoadCase,
+    at_axis: Option<&Spanned<RawAxis>>,
+    written: &Written,
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    match (lc.kind, at_axis, lc.at_deg) {
+        (LoadKind::Point, Some(_), Some(a)) => Err(cx.err(
+            written.at_deg(i),
+            "load_cases.at_deg",
+            format!(
+                "value {} is not allowed: the grid's at_deg axis gives the position of load case {:?}; remove one of them",
+                fmt_num(a),
+                lc.name
+            ),
+        )),
+        (LoadKind::Point, None, None) => Err(cx.err(
+            written.case(i),
+            "load_cases.at_deg",
+            format!(
+                "point load case {:?} needs its position: add `at_deg: DEG` (degrees from the crown, in [−α, α]) or a grid axis `at_deg`",
+                lc.name
+            ),
+        )),
+        (kind, Some(ax), _) if kind != LoadKind::Point => Err(cx.err(
+            Some(ax.referenced),
+            "grid.at_deg",
+            format!(
+                "an at_deg axis positions point loads, but load case {:?} is {}: give it a study of its own",
+                lc.name,
+                kind.as_str()
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// Thrust and thresholds studies are defined for the circular arch with radial joints.
+fn check_form_fits_finds(
+    raw: &RawManifest,
+    lcs: &[LoadCase],
+    form: &ArchForm,
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    if let Some(find) = lcs
+        .iter()
+        .map(|lc| lc.find)
+        .find(|f| matches!(f, Find::Thrust | Find::Thresholds))
+        && !form.is_circular_radial()
+    {
+        return Err(cx.err(
+            raw.arch
+                .shape
+                .as_ref()
+                .or(raw.arch.joints.as_ref())
+                .map(|s| s.referenced),
+            "find",
+            format!("a {find} study is defined for the circular arch with radial joints only"),
+        ));
+    }
+    Ok(())
+}
+
+/// Vertical joints need α ≤ 90°.
+fn check_vertical_joints(
+    raw: &RawManifest,
+    form: &ArchForm,
+    alpha_max: f64,
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    if form.joints == JointOrientation::Vertical && alpha_max > 90.0 {
+        return Err(cx.err(
+            raw.arch.joints.as_ref().map(|j| j.referenced),
+            "arch.joints",
+            format!(
+                "value \"vertical\" is not allowed with a half-angle of {}°: vertical joints need α ≤ 90° (beyond, a vertical plane through the intrados crosses the opening)",
+                fmt_num(alpha_max)
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Positions of point loads with where they were written: the load cases' own, then the
+/// grid's at_deg axis.
+fn point_positions(
+    lcs: &[LoadCase],
+    at_axis: Option<&Spanned<RawAxis>>,
+    grid: &[GridAxis],
+    written: &Written,
+) -> Vec<Position> {
+    let mut positions: Vec<Position> = Vec::new();
+    for (i, lc) in lcs.iter().enumerate() {
+        if let Some(a) = lc.at_deg {
+            positions.push((a, written.at_deg(i), "load_cases.at_deg"));
+        }
+    }
+    if let (Some(ax), Some(vals)) = (at_axis, axis_values(grid, AxisName::AtDeg)) {
+        for v in vals {
+            positions.push((v, Some(ax.referenced), "grid.at_deg"));
+        }
+    }
+    positions
+}
+
+/// A point load lies on the arch: within ± the smallest half-angle.
+fn check_positions_on_arch(
+    positions: &[Position],
+    alpha_min: f64,
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    for &(a, at, key) in positions {
+        if a.abs() > alpha_min {
+            return Err(cx.err(
+                at,
+                key,
+                format!(
+                    "value {} is not allowed: a point load must lie on the arch, in [−{alpha_min}, {alpha_min}] degrees (the half-angle)",
+                    fmt_num(a)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A pointed arch of eccentricity `e` > 0 and its half-angles.
+struct Pointed<'a> {
+    form: &'a ArchForm,
+    e: f64,
+    alphas: &'a [f64],
+}
+
+/// A pointed arch exists only below a largest K, and has no joint between its crown and
+/// the keystone's edge, where no point load can sit.
+fn check_pointed_arch(
+    raw: &RawManifest,
+    grid: &[GridAxis],
+    p: &Pointed,
+    positions: &[Position],
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    let Pointed { form, e, alphas } = *p;
+    let k_axis = raw
+        .grid
+        .as_ref()
+        .and_then(|g| g.k.as_ref().or(g.t_over_r.as_ref()));
+    let Some(ks) = k_values(grid) else {
+        return Ok(());
+    };
+    let k_top = ks.iter().copied().fold(1.0, f64::max);
+    for &alpha in alphas {
+        let k_lim = form.max_k(alpha.to_radians());
+        if k_top >= k_lim {
+            return Err(cx.err(
+                k_axis.map(|a| a.referenced),
+                "grid.k",
+                format!(
+                    "value K = {k_top} is not allowed: a pointed arch with eccentricity {e} and half-angle {alpha}° exists only for K < {k_lim} (its intrados arcs must meet above the springings)"
+                ),
+            ));
+        }
+    }
+    // ψ₁ = asin(e(1 + K)/2) grows with K: the thickest arch has the largest keystone.
+    let psi_1 = (e * 0.5 * (1.0 + k_top)).min(1.0).asin().to_degrees();
+    for &(a, at, key) in positions {
+        if a != 0.0 && a.abs() < psi_1 {
+            return Err(cx.err(
+                at,
+                key,
+                format!(
+                    "value {} is not allowed: a point load must sit at a joint, and this pointed arch has none between its crown (0°) and ±{psi_1:.6}° at K = {k_top}",
+                    fmt_num(a)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The K values of the grid's K or t/R_c axis, as K.
+fn k_values(grid: &[GridAxis]) -> Option<Vec<f64>> {
+    grid.iter()
+        .find(|a| matches!(a.name, AxisName::K | AxisName::TOverR))
+        .map(|a| {
+            a.values
+                .iter()
+                .map(|&v| {
+                    if a.name == AxisName::TOverR {
+                        crate::model::k_from_t_over_r(v)
+                    } else {
+                        v
+                    }
+                })
+                .collect::<Vec<_>>()
+        })
+}

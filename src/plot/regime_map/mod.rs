@@ -1,0 +1,321 @@
+//! Figure 1: the regime map over (μ, K) with a t/R_c axis beside K: coloured regions, the
+//! collapse curve from the located boundary points with each segment named by its
+//! mechanism, other regime boundaries, and the bifurcation points with their values.
+
+use super::style::{self, LegendItem, Mark, clip_polyline, decimals_for, palette};
+use super::{Figure, PlotContext, Window, XyChart as Chart};
+use crate::model::{k_from_t_over_r, t_over_r_from_k};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use std::collections::BTreeMap;
+
+/// A run of the collapse curve with one mechanism.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CollapseSegment {
+    /// `rotational`, `mixed` or `sliding`.
+    pub mechanism: String,
+    /// Points (μ, K) in order along the curve.
+    pub points: Vec<(f64, f64)>,
+}
+
+/// A bifurcation point with the lines of its annotation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BifurcationMark {
+    /// μ.
+    pub mu: f64,
+    /// K.
+    pub k: f64,
+    /// Annotation, one string per line (already formatted).
+    pub lines: Vec<String>,
+}
+
+/// A located regime change on a grid line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Crossing {
+    /// The grid value of the other parameter (K for a change along μ).
+    pub fixed: f64,
+    /// Where the change is.
+    pub at: f64,
+    /// Regime on the smaller side.
+    pub low: String,
+    /// Regime on the larger side.
+    pub high: String,
+}
+
+/// What the regime map shows.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RegimeMap {
+    /// Title.
+    pub title: String,
+    /// Grid μ values, increasing, finite.
+    pub mu: Vec<f64>,
+    /// Grid K values, increasing.
+    pub k: Vec<f64>,
+    /// Regime names per grid point, K-major: `regimes[ik * mu.len() + imu]` (None: no
+    /// value).
+    pub regimes: Vec<Option<std::sync::Arc<str>>>,
+    /// Located regime changes along μ at a grid K (every boundary point, so that the
+    /// coloured regions meet where the boundaries were located, not half-way between grid
+    /// points).
+    pub crossings_along_mu: Vec<Crossing>,
+    /// Located regime changes along K at a grid μ.
+    pub crossings_along_k: Vec<Crossing>,
+    /// The collapse curve, by mechanism.
+    pub collapse: Vec<CollapseSegment>,
+    /// Other regime boundaries (not on the collapse curve), as polylines (μ, K).
+    pub other_boundaries: Vec<Vec<(f64, f64)>>,
+    /// Bifurcation points.
+    pub bifurcations: Vec<BifurcationMark>,
+}
+
+mod labels;
+mod raster;
+
+impl Figure for RegimeMap {
+    fn size(&self) -> (u32, u32) {
+        (820, 640)
+    }
+
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        ctx: &PlotContext,
+    ) -> DrawResult<(), DB> {
+        let legend = self.legend();
+        let upper = style::above_legend(root, ctx, &legend)?;
+        if self.mu.len() < 2 || self.k.len() < 2 {
+            upper.draw(&Text::new(
+                "The regime map needs at least two values of μ and of K.".to_string(),
+                (ctx.px(20.0), ctx.px(60.0)),
+                ctx.font(15.0),
+            ))?;
+            return Ok(());
+        }
+        let window = (
+            (self.mu[0], self.mu[self.mu.len() - 1]),
+            (self.k[0], self.k[self.k.len() - 1]),
+        );
+        let ((mu0, mu1), (k0, k1)) = window;
+        let mut chart = ChartBuilder::on(&upper)
+            .caption(&self.title, ctx.font(17.0))
+            .margin(ctx.px(10.0))
+            .margin_right(ctx.px(86.0))
+            .x_label_area_size(ctx.px(50.0))
+            .y_label_area_size(ctx.px(72.0))
+            .build_cartesian_2d(mu0..mu1, k0..k1)?;
+        self.draw_regions(&mut chart, ctx, window)?;
+        draw_mesh(&mut chart, ctx, window)?;
+        draw_t_axis(root, &chart, ctx, window)?;
+        self.draw_curves(&mut chart, ctx, window)?;
+        let mut labels = labels::Labels::new(self, &chart, ctx, window);
+        labels.draw_bifurcations(root)?;
+        labels.draw_segments(root)?;
+        labels.draw_regions(root)?;
+        Ok(())
+    }
+}
+
+impl RegimeMap {
+    /// The regions, on a raster of about 2 design pixels, as runs of equal regime along each
+    /// row merged with identical runs of the rows above into one rectangle (few elements, no
+    /// seams between rows).
+    fn draw_regions<DB: DrawingBackend>(
+        &self,
+        chart: &mut Chart<DB>,
+        ctx: &PlotContext,
+        ((mu0, mu1), (k0, k1)): Window,
+    ) -> DrawResult<(), DB> {
+        let (xr, yr) = chart.plotting_area().get_pixel_range();
+        let nxr = ((f64::from(xr.end - xr.start) / ctx.scale / 2.0).ceil() as usize).max(2);
+        let nyr = ((f64::from(yr.end - yr.start) / ctx.scale / 2.0).ceil() as usize).max(2);
+        let raster = self.raster(nxr, nyr);
+        let me: Vec<f64> = (0..=nxr)
+            .map(|i| mu0 + (mu1 - mu0) * i as f64 / nxr as f64)
+            .collect();
+        let ke: Vec<f64> = (0..=nyr)
+            .map(|j| k0 + (k1 - k0) * j as f64 / nyr as f64)
+            .collect();
+        let px_mu = (mu1 - mu0) / f64::from((xr.end - xr.start).max(1));
+        let px_k = (k1 - k0) / f64::from((yr.end - yr.start).max(1));
+        let nx = nxr;
+        let mut open: BTreeMap<(usize, usize, &str), usize> = BTreeMap::new();
+        let mut rects = Vec::new();
+        let mut close = |(i0, i1, name): (usize, usize, &str), j0: usize, j1: usize| {
+            let x1 = (me[i1] + px_mu).min(mu1);
+            let y1 = (ke[j1] + px_k).min(k1);
+            rects.push(Rectangle::new(
+                [(me[i0], ke[j0]), (x1, y1)],
+                palette::regime(name).filled(),
+            ));
+        };
+        for j in 0..=nyr {
+            let mut runs = Vec::new();
+            let mut i = 0;
+            while j < nyr && i < nx {
+                let r = raster[j * nx + i];
+                let start = i;
+                while i < nx && raster[j * nx + i] == r {
+                    i += 1;
+                }
+                if let Some(name) = r {
+                    runs.push((start, i, name));
+                }
+            }
+            let ended: Vec<_> = open.keys().filter(|k| !runs.contains(k)).cloned().collect();
+            for key in ended {
+                if let Some(j0) = open.remove(&key) {
+                    close(key, j0, j);
+                }
+            }
+            for run in runs {
+                open.entry(run).or_insert(j);
+            }
+        }
+        chart.draw_series(rects)?;
+        Ok(())
+    }
+
+    /// The other regime boundaries (thin dashed lines), then the collapse curve.
+    fn draw_curves<DB: DrawingBackend>(
+        &self,
+        chart: &mut Chart<DB>,
+        ctx: &PlotContext,
+        window: Window,
+    ) -> DrawResult<(), DB> {
+        for line in &self.other_boundaries {
+            for piece in clip_polyline(line, window.0, window.1) {
+                chart.draw_series(DashedLineSeries::new(
+                    piece,
+                    ctx.upx(6.0),
+                    ctx.upx(4.0),
+                    palette::INK.mix(0.75).stroke_width(ctx.upx(1.2).max(1)),
+                ))?;
+            }
+        }
+        for seg in &self.collapse {
+            let color = palette::mechanism(&seg.mechanism);
+            for piece in clip_polyline(&seg.points, window.0, window.1) {
+                chart.draw_series(LineSeries::new(piece, color.stroke_width(ctx.upx(3.2))))?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The axes and the grid lines of μ and K.
+fn draw_mesh<DB: DrawingBackend>(
+    chart: &mut Chart<DB>,
+    ctx: &PlotContext,
+    ((mu0, mu1), (k0, k1)): Window,
+) -> DrawResult<(), DB> {
+    let fmt_mu = |v: &f64| format!("{:.*}", decimals_for(mu1 - mu0), v);
+    let fmt_k = |v: &f64| format!("{:.*}", decimals_for(k1 - k0), v);
+    chart
+        .configure_mesh()
+        .x_desc("friction coefficient μ")
+        .y_desc("thickness ratio K = R/r")
+        .x_label_formatter(&fmt_mu)
+        .y_label_formatter(&fmt_k)
+        .label_style(ctx.font(13.0))
+        .axis_desc_style(ctx.font(14.0))
+        .set_all_tick_mark_size(ctx.px(5.0))
+        .light_line_style(TRANSPARENT)
+        .bold_line_style(BLACK.mix(0.10).stroke_width(1))
+        .axis_style(BLACK.stroke_width(ctx.upx(1.0).max(1)))
+        .draw()
+}
+
+/// The t/R_c axis at the right edge, ticks at round values of t/R_c.
+fn draw_t_axis<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    chart: &Chart<DB>,
+    ctx: &PlotContext,
+    ((_, mu1), (k0, k1)): Window,
+) -> DrawResult<(), DB> {
+    let (xr, yr) = chart.plotting_area().get_pixel_range();
+    let (t0, t1) = (t_over_r_from_k(k0), t_over_r_from_k(k1));
+    let (ticks, dec) = t_ticks(t0, t1);
+    let x_axis = xr.end;
+    let tick_font = ctx.font(13.0).pos(Pos::new(HPos::Left, VPos::Center));
+    root.draw(&PathElement::new(
+        vec![(x_axis, yr.start), (x_axis, yr.end)],
+        BLACK.stroke_width(ctx.upx(1.0).max(1)),
+    ))?;
+    for t in &ticks {
+        let (_, py) = chart.backend_coord(&(mu1, k_from_t_over_r(*t)));
+        root.draw(&PathElement::new(
+            vec![(x_axis, py), (x_axis + ctx.px(5.0), py)],
+            BLACK.stroke_width(ctx.upx(1.0).max(1)),
+        ))?;
+        root.draw(&Text::new(
+            format!("{t:.dec$}"),
+            (x_axis + ctx.px(8.0), py),
+            tick_font.clone(),
+        ))?;
+    }
+    let desc = ctx
+        .font(14.0)
+        .transform(FontTransform::Rotate90)
+        .pos(Pos::new(HPos::Center, VPos::Bottom));
+    root.draw(&Text::new(
+        "thickness t/R_c".to_string(),
+        (x_axis + ctx.px(72.0), (yr.start + yr.end) / 2),
+        desc,
+    ))
+}
+
+const REGIME_ORDER: [&str; 5] = ["stable", "rotational", "mixed", "sliding", "none"];
+
+/// Ticks of t/R_c inside [t0, t1] at a nice step.
+fn t_ticks(t0: f64, t1: f64) -> (Vec<f64>, usize) {
+    let step = style::nice_step(t1 - t0, 6);
+    let mut v = Vec::new();
+    let mut t = (t0 / step).ceil() * step;
+    while t <= t1 + 1e-12 {
+        v.push(t);
+        t += step;
+    }
+    (v, decimals_for(t1 - t0))
+}
+
+impl RegimeMap {
+    fn legend(&self) -> Vec<LegendItem> {
+        let mut items = Vec::new();
+        for name in REGIME_ORDER {
+            if self.regimes.iter().any(|r| r.as_deref() == Some(name)) {
+                let label = match name {
+                    "none" => "none (no equilibrium)",
+                    other => other,
+                };
+                items.push(LegendItem::new(label, Mark::Swatch(palette::regime(name))));
+            }
+        }
+        for m in ["rotational", "mixed", "sliding"] {
+            if self.collapse.iter().any(|s| s.mechanism == m) {
+                items.push(LegendItem::new(
+                    format!("{m} collapse"),
+                    Mark::Line {
+                        color: palette::mechanism(m),
+                        width: 3.2,
+                        dashed: false,
+                    },
+                ));
+            }
+        }
+        if !self.other_boundaries.is_empty() {
+            items.push(LegendItem::new(
+                "other regime boundary",
+                Mark::Line {
+                    color: palette::INK,
+                    width: 1.2,
+                    dashed: true,
+                },
+            ));
+        }
+        if !self.bifurcations.is_empty() {
+            items.push(LegendItem::new("bifurcation", Mark::Dot(palette::INK)));
+        }
+        items
+    }
+}

@@ -1,0 +1,170 @@
+//! Figure 4: the critical curves K_c(μ) and μ_c(K) with the bifurcations and, for the
+//! paper's case, the paper's printed values.
+
+use super::{Chart, FigureSpec, LoadCaseFigure, single_model};
+use crate::figdata;
+use crate::plot::critical::{CriticalChart, CriticalPanel, PointMark};
+use crate::report::data::RunData;
+use crate::report::paper;
+
+const CRITICAL_CAPTION: &str = "The collapse thickness K_c(μ) (the smallest K at which the arch stands at friction μ) and the critical friction μ_c(K) (the smallest μ at which an arch of thickness K stands). Dots: bifurcations located in this run; open diamonds: the values printed in the paper, when the study is the paper's case.";
+
+/// The critical-curves figure of a load case, when it has a critical curve.
+pub fn figure(data: &RunData, lc: &LoadCaseFigure) -> Option<FigureSpec> {
+    let on = &lc.title_suffix;
+    let c = critical(data, lc.name, on)?;
+    Some(FigureSpec {
+        stem: format!("critical-curves{}", lc.stem_suffix),
+        title: format!("Critical curves{on}"),
+        caption: CRITICAL_CAPTION.into(),
+        chart: Chart::Critical(c),
+    })
+}
+
+fn critical(data: &RunData, lc: &str, on: &str) -> Option<CriticalChart> {
+    let marks = Marks {
+        bifurcations: data
+            .bifurcations_of(lc)
+            .iter()
+            .map(|b| (b.mu, b.k))
+            .collect(),
+        paper: data.manifest.is_paper_case(),
+    };
+    let (a, b) = curves(data, lc);
+    let mut panels = Vec::new();
+    if let Some(a) = a {
+        panels.push(marks.panel(Axes::COLLAPSE_THICKNESS, a));
+    }
+    if let Some(b) = b {
+        panels.push(marks.panel(Axes::CRITICAL_FRICTION, b));
+    }
+    if panels.is_empty() {
+        return None;
+    }
+    Some(CriticalChart {
+        title: format!("Critical curves{on}"),
+        panels,
+    })
+}
+
+/// A curve (x, y); NaN breaks it.
+type Curve = Vec<(f64, f64)>;
+
+/// The curves K_c(μ) and μ_c(K) of a load case, when its find gives them: a state study's
+/// stored critical curves, or the critical values of a thickness or friction study over one
+/// model (at least two points).
+fn curves(data: &RunData, lc: &str) -> (Option<Curve>, Option<Curve>) {
+    match data.manifest.find_of(lc) {
+        "state" => {
+            let fig = figdata::critical_figure(lc);
+            let a = data.curve(&fig, figdata::K_CRIT_OF_MU);
+            let b = data.curve(&fig, figdata::MU_CRIT_OF_K);
+            ((!a.is_empty()).then_some(a), (!b.is_empty()).then_some(b))
+        }
+        "thickness" if single_model(data) => {
+            let mut pts: Vec<(f64, f64)> = data
+                .results
+                .iter()
+                .filter(|r| &*r.load_case == lc)
+                .filter_map(|r| {
+                    Some((
+                        r.mu.filter(|m| m.is_finite())?,
+                        r.k_crit.unwrap_or(f64::NAN),
+                    ))
+                })
+                .collect();
+            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+            ((pts.len() >= 2).then_some(pts), None)
+        }
+        "friction" if single_model(data) => {
+            let mut pts: Vec<(f64, f64)> = data
+                .results
+                .iter()
+                .filter(|r| &*r.load_case == lc)
+                .filter_map(|r| Some((r.k?, r.mu_crit.unwrap_or(f64::NAN))))
+                .collect();
+            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+            (None, (pts.len() >= 2).then_some(pts))
+        }
+        _ => (None, None),
+    }
+}
+
+/// The words and axes of one panel.
+struct Axes {
+    title: &'static str,
+    x_desc: &'static str,
+    y_desc: &'static str,
+    /// K on the x axis (panel b), μ on it otherwise.
+    k_on_x: bool,
+}
+
+impl Axes {
+    /// Panel (a): K_c against μ.
+    const COLLAPSE_THICKNESS: Axes = Axes {
+        title: "(a) collapse thickness K_c(μ)",
+        x_desc: "friction coefficient μ",
+        y_desc: "collapse thickness ratio K_c = R/r",
+        k_on_x: false,
+    };
+    /// Panel (b): μ_c against K.
+    const CRITICAL_FRICTION: Axes = Axes {
+        title: "(b) critical friction μ_c(K)",
+        x_desc: "thickness ratio K = R/r",
+        y_desc: "critical friction coefficient μ_c",
+        k_on_x: true,
+    };
+}
+
+/// The points both panels mark, with μ and K on swapped axes.
+struct Marks {
+    /// Bifurcations of this run, (μ, K).
+    bifurcations: Vec<(f64, f64)>,
+    /// Whether the paper's printed values are marked too.
+    paper: bool,
+}
+
+impl Marks {
+    fn panel(&self, axes: Axes, curve: Curve) -> CriticalPanel {
+        let k_on_x = axes.k_on_x;
+        let xy = |mu: f64, k: f64| if k_on_x { (k, mu) } else { (mu, k) };
+        let paper_pts = [
+            (paper::MU_ROTATIONAL_MIXED, paper::K_C),
+            (paper::MU_MIN, paper::K_MIXED_SLIDING),
+        ];
+        CriticalPanel {
+            title: axes.title.into(),
+            x_desc: axes.x_desc.into(),
+            y_desc: axes.y_desc.into(),
+            curve,
+            bifurcations: self
+                .bifurcations
+                .iter()
+                .map(|&(mu, k)| {
+                    let (x, y) = xy(mu, k);
+                    PointMark {
+                        x,
+                        y,
+                        label: String::new(),
+                    }
+                })
+                .collect(),
+            paper: if self.paper {
+                paper_pts
+                    .iter()
+                    .map(|(m, k)| {
+                        let (x, y) = xy(m.value, k.value);
+                        let label = if k_on_x {
+                            format!("paper: K = {}, μ = {}", k.text, m.text)
+                        } else {
+                            format!("paper: μ = {}, K = {}", m.text, k.text)
+                        };
+                        PointMark { x, y, label }
+                    })
+                    .collect()
+            } else {
+                Vec::new()
+            },
+        }
+    }
+}

@@ -1,0 +1,142 @@
+//! The figures of a report: what each chart shows, built from the stored data of a run (no
+//! analysis), with a filename stem, a title and a caption. One builder per chart, in the
+//! module of the same name as the chart's file in `crate::plot`.
+
+pub mod accuracy;
+pub mod critical;
+pub mod domains;
+pub mod mechanisms;
+pub mod regime_map;
+pub mod state;
+
+pub use accuracy::{AccuracyRow, accuracy_rows, orders, quantity_label, quantity_rank};
+pub use mechanisms::{flow_rule_text, mechanisms_stem};
+
+use super::data::RunData;
+use super::format::given;
+use crate::plot::accuracy::AccuracyChart;
+use crate::plot::critical::CriticalChart;
+use crate::plot::domains::DomainsChart;
+use crate::plot::mechanisms::MechanismPanels;
+use crate::plot::regime_map::RegimeMap;
+use crate::plot::state::StateDrawing;
+use crate::plot::{self, Format};
+
+/// A chart with its data.
+#[derive(Debug, Clone)]
+pub enum Chart {
+    /// Figure 1.
+    RegimeMap(RegimeMap),
+    /// Figure 2.
+    Domains(DomainsChart),
+    /// Figure 3.
+    State(StateDrawing),
+    /// Figure 4.
+    Critical(CriticalChart),
+    /// Figure 5.
+    Accuracy(AccuracyChart),
+    /// Mechanisms at a bifurcation, side by side.
+    Mechanisms(MechanismPanels),
+}
+
+/// A figure of the report.
+#[derive(Debug, Clone)]
+pub struct FigureSpec {
+    /// File stem in plots/ (filename-safe, unique).
+    pub stem: String,
+    /// Heading.
+    pub title: String,
+    /// Caption: what is shown and how to read it.
+    pub caption: String,
+    /// The chart.
+    pub chart: Chart,
+}
+
+impl FigureSpec {
+    /// The file bytes in a format.
+    pub fn render(&self, format: Format) -> Result<Vec<u8>, plot::PlotError> {
+        match &self.chart {
+            Chart::RegimeMap(c) => plot::render(c, format),
+            Chart::Domains(c) => plot::render(c, format),
+            Chart::State(c) => plot::render(c, format),
+            Chart::Critical(c) => plot::render(c, format),
+            Chart::Accuracy(c) => plot::render(c, format),
+            Chart::Mechanisms(c) => plot::render(c, format),
+        }
+    }
+}
+
+/// A filename-safe form of a name.
+pub fn safe(s: &str) -> String {
+    s.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+pub(super) fn mu_text(mu: f64) -> String {
+    if mu.is_infinite() {
+        "∞".into()
+    } else {
+        given(mu)
+    }
+}
+
+/// The load case a figure is drawn for: the suffix of its file stem and of its title (both
+/// empty when the study has one load case).
+#[derive(Debug, Clone)]
+pub struct LoadCaseFigure<'a> {
+    /// The load case's name.
+    pub name: &'a str,
+    /// Suffix of the file stem: `-NAME`, or empty.
+    pub stem_suffix: String,
+    /// Suffix of the title: ` (load case NAME)`, or empty.
+    pub title_suffix: String,
+}
+
+/// All figures of a run, in report order.
+pub fn build(data: &RunData) -> Vec<FigureSpec> {
+    let mut out = Vec::new();
+    let multi = data.manifest.load_cases.len() > 1;
+    for lc in &data.manifest.load_cases {
+        let lc = LoadCaseFigure {
+            name: &lc.name,
+            stem_suffix: if multi {
+                format!("-{}", safe(&lc.name))
+            } else {
+                String::new()
+            },
+            title_suffix: if multi {
+                format!(" (load case {})", lc.name)
+            } else {
+                String::new()
+            },
+        };
+        out.extend(regime_map::figure(data, &lc));
+        out.extend(critical::figure(data, &lc));
+    }
+    for s in &data.states {
+        if s.source == "scene" {
+            out.push(domains::figure(data, s));
+        }
+    }
+    for s in &data.states {
+        out.push(state::figure(data, s));
+        out.extend(mechanisms::figure(data, s));
+    }
+    out.extend(accuracy::figure(data));
+    out
+}
+
+pub(super) fn single_model(data: &RunData) -> bool {
+    !data
+        .manifest
+        .grid
+        .iter()
+        .any(|a| a.name == "voussoirs" || a.name == "half_angle_deg")
+}

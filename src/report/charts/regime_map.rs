@@ -1,0 +1,200 @@
+//! Figure 1: the regime map over (μ, K), its collapse curve by mechanism, the other regime
+//! boundaries and the bifurcations.
+
+use super::{Chart, FigureSpec, LoadCaseFigure, single_model};
+use crate::plot::regime_map::{BifurcationMark, CollapseSegment, Crossing, RegimeMap};
+use crate::report::data::RunData;
+use crate::report::format::short;
+use crate::store::BoundaryRow;
+use std::collections::{BTreeMap, HashMap};
+
+const REGIME_CAPTION: &str = "Regimes over the friction coefficient μ (horizontal) and the thickness ratio K = R/r (left axis; t/R_c on the right axis). Stable: an admissible state exists (Hʳ ∩ Hˢ ≠ ∅). Rotational: no line of thrust fits in the arch whatever the friction (Hʳ = ∅). Sliding: no thrust satisfies Coulomb's law at every joint whatever the thickness (Hˢ = ∅). Mixed: both domains exist but are disjoint. The thick line is the collapse curve through the located boundary points, coloured and labelled by the collapse mechanism (hinges only, hinges and sliding joints, sliding joints only); dots mark the bifurcations where two mechanisms coexist, with their values. Dashed lines are the other regime boundaries.";
+
+fn sorted_distinct(v: impl Iterator<Item = f64>) -> Vec<f64> {
+    let mut v: Vec<f64> = v.filter(|x| x.is_finite()).collect();
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    v
+}
+
+/// The regime-map figure of a load case, when it is a state study over one model with at
+/// least two values of μ and of K.
+pub fn figure(data: &RunData, lc: &LoadCaseFigure) -> Option<FigureSpec> {
+    let on = &lc.title_suffix;
+    let map = regime_map(data, lc.name, on)?;
+    Some(FigureSpec {
+        stem: format!("regime-map{}", lc.stem_suffix),
+        title: format!("Regime map{on}"),
+        caption: REGIME_CAPTION.into(),
+        chart: Chart::RegimeMap(map),
+    })
+}
+
+fn regime_map(data: &RunData, lc: &str, on: &str) -> Option<RegimeMap> {
+    if data.manifest.find_of(lc) != "state" || !single_model(data) {
+        return None;
+    }
+    let rows: Vec<_> = data
+        .results
+        .iter()
+        .filter(|r| &*r.load_case == lc && &*r.find == "state")
+        .collect();
+    let mu = sorted_distinct(rows.iter().filter_map(|r| r.mu));
+    let k = sorted_distinct(rows.iter().filter_map(|r| r.k));
+    if mu.len() < 2 || k.len() < 2 {
+        return None;
+    }
+    let mi: HashMap<u64, usize> = mu
+        .iter()
+        .enumerate()
+        .map(|(i, v)| (v.to_bits(), i))
+        .collect();
+    let ki: HashMap<u64, usize> = k
+        .iter()
+        .enumerate()
+        .map(|(i, v)| (v.to_bits(), i))
+        .collect();
+    let mut regimes = vec![None; mu.len() * k.len()];
+    for r in &rows {
+        if let (Some(m), Some(kk)) = (r.mu, r.k)
+            && let (Some(&i), Some(&j)) = (mi.get(&m.to_bits()), ki.get(&kk.to_bits()))
+        {
+            regimes[j * mu.len() + i] = r.regime.clone();
+        }
+    }
+    let bounds = data.boundaries_of(lc);
+    let bifs = data.bifurcations_of(lc);
+    let span = ((mu[0], mu[mu.len() - 1]), (k[0], k[k.len() - 1]));
+    let collapse = collapse_segments(
+        &bounds,
+        &bifs.iter().map(|b| (b.mu, b.k)).collect::<Vec<_>>(),
+        span,
+    );
+    let other = other_boundaries(&bounds);
+    let crossing = |b: &&BoundaryRow, fixed: f64, at: f64| Crossing {
+        fixed,
+        at,
+        low: b.regime_low.clone(),
+        high: b.regime_high.clone(),
+    };
+    let crossings_along_mu = bounds
+        .iter()
+        .filter(|b| b.axis == "mu")
+        .map(|b| crossing(b, b.k, b.mu))
+        .collect();
+    let crossings_along_k = bounds
+        .iter()
+        .filter(|b| b.axis == "k")
+        .map(|b| crossing(b, b.mu, b.k))
+        .collect();
+    let bifurcations = bifs
+        .iter()
+        .map(|b| BifurcationMark {
+            mu: b.mu,
+            k: b.k,
+            lines: vec![
+                format!("{} / {}", b.mechanism_a, b.mechanism_b),
+                format!("μ = {}", short(b.mu)),
+                format!("K = {}  (t/R_c = {})", short(b.k), short(b.t_over_r)),
+            ],
+        })
+        .collect();
+    let title = match &data.manifest.title {
+        Some(t) => format!("{t}{on}"),
+        None => format!("Regimes over μ and K{on}"),
+    };
+    Some(RegimeMap {
+        title,
+        mu,
+        k,
+        regimes,
+        crossings_along_mu,
+        crossings_along_k,
+        collapse,
+        other_boundaries: other,
+        bifurcations,
+    })
+}
+
+/// The collapse curve in order along it, split by mechanism. Points are ordered by
+/// K/ΔK − μ/Δμ, which increases along a curve on which K grows as μ falls (the collapse
+/// curve of a symmetric arch); bifurcations end one segment and start the next.
+fn collapse_segments(
+    bounds: &[&BoundaryRow],
+    bifs: &[(f64, f64)],
+    span: ((f64, f64), (f64, f64)),
+) -> Vec<CollapseSegment> {
+    let dm = (span.0.1 - span.0.0).max(1e-12);
+    let dk = (span.1.1 - span.1.0).max(1e-12);
+    let key = |mu: f64, k: f64| k / dk - mu / dm;
+    let mut pts: Vec<(f64, f64, Option<String>)> = bounds
+        .iter()
+        .filter(|b| b.on_collapse_curve)
+        .map(|b| (b.mu, b.k, Some(b.mechanism.clone().unwrap_or_default())))
+        .collect();
+    if pts.is_empty() {
+        return Vec::new();
+    }
+    pts.extend(bifs.iter().map(|&(m, k)| (m, k, None)));
+    pts.sort_by(|a, b| key(a.0, a.1).total_cmp(&key(b.0, b.1)));
+    let mut segs: Vec<CollapseSegment> = Vec::new();
+    let mut cur: Option<CollapseSegment> = None;
+    let mut pending_bif: Option<(f64, f64)> = None;
+    for (m, k, mech) in pts {
+        match mech {
+            None => {
+                if let Some(mut c) = cur.take() {
+                    c.points.push((m, k));
+                    segs.push(c);
+                }
+                pending_bif = Some((m, k));
+            }
+            Some(name) => match cur.as_mut() {
+                Some(c) if c.mechanism == name => c.points.push((m, k)),
+                _ => {
+                    let mut start = Vec::new();
+                    if let Some(c) = cur.take() {
+                        start.push(*c.points.last().unwrap_or(&(m, k)));
+                        segs.push(c);
+                    } else if let Some(b) = pending_bif {
+                        start.push(b);
+                    }
+                    start.push((m, k));
+                    pending_bif = None;
+                    cur = Some(CollapseSegment {
+                        mechanism: name,
+                        points: start,
+                    });
+                }
+            },
+        }
+    }
+    if let Some(c) = cur {
+        segs.push(c);
+    }
+    segs.retain(|s| s.points.len() >= 2);
+    segs
+}
+
+/// The boundaries off the collapse curve, one polyline per (low, high, axis) group.
+fn other_boundaries(bounds: &[&BoundaryRow]) -> Vec<Vec<(f64, f64)>> {
+    let mut groups: BTreeMap<(String, String, String), Vec<(f64, f64)>> = BTreeMap::new();
+    for b in bounds.iter().filter(|b| !b.on_collapse_curve) {
+        groups
+            .entry((b.regime_low.clone(), b.regime_high.clone(), b.axis.clone()))
+            .or_default()
+            .push((b.mu, b.k));
+    }
+    groups
+        .into_iter()
+        .map(|((_, _, axis), mut pts)| {
+            if axis == "k" {
+                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+            } else {
+                pts.sort_by(|a, b| a.1.total_cmp(&b.1));
+            }
+            pts
+        })
+        .filter(|p| p.len() >= 2)
+        .collect()
+}

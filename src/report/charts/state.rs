@@ -1,0 +1,206 @@
+//! Figure 3: a state of the arch drawn to scale with its line of thrust, hinges and sliding
+//! joints.
+
+use super::{Chart, FigureSpec, mu_text, safe};
+use crate::figdata;
+use crate::plot::state::StateDrawing;
+use crate::report::data::RunData;
+use crate::report::format::{given, short};
+use crate::store::StateRow;
+
+/// The drawing of a state, to scale.
+pub fn figure(data: &RunData, s: &StateRow) -> FigureSpec {
+    let line = data.curve(
+        &figdata::line_of_thrust_figure(&s.state_id),
+        figdata::LINE_OF_THRUST,
+    );
+    let joints = voussoir_joints(s);
+    let joints_note = if joints.is_empty() {
+        ""
+    } else {
+        " Open circles: the line's points on the joints, the only sections where it must stay within the arch."
+    };
+    let hinges = s
+        .joints
+        .hinge_angles_deg
+        .iter()
+        .copied()
+        .zip(s.joints.hinge_faces.iter().cloned())
+        .collect();
+    let sliding = s
+        .joints
+        .sliding_angles_deg
+        .iter()
+        .copied()
+        .zip(s.joints.sliding_senses.iter().cloned())
+        .collect();
+    let texts = StateTexts::of(s);
+    let note = texts.note.or_else(|| {
+        line.is_empty()
+            .then(|| "line of thrust not unique: not drawn".to_string())
+    });
+    let caption = format!("{}{joints_note}", texts.caption);
+    FigureSpec {
+        stem: format!("state-{}", safe(&s.state_id)),
+        title: texts.heading,
+        caption,
+        chart: Chart::State(StateDrawing {
+            title: texts.title,
+            subtitle: texts.subtitle,
+            k: s.k,
+            alpha_deg: s.half_angle_deg,
+            voussoir_joints_deg: joints,
+            line_of_thrust: line,
+            hinges,
+            sliding,
+            note,
+        }),
+    }
+}
+
+/// The joints between the voussoirs of a discrete arch, degrees from the crown (none for
+/// the continuum or a single voussoir).
+fn voussoir_joints(s: &StateRow) -> Vec<f64> {
+    match s.voussoirs {
+        Some(n) if n > 1 => (1..n)
+            .map(|j| -s.half_angle_deg + 2.0 * s.half_angle_deg * f64::from(j) / f64::from(n))
+            .collect(),
+        _ => Vec::new(),
+    }
+}
+
+/// The words of a state figure, which depend on the kind of state drawn.
+struct StateTexts {
+    /// Title inside the figure.
+    title: String,
+    /// Heading of the figure in the report.
+    heading: String,
+    /// Lines under the title.
+    subtitle: Vec<String>,
+    /// A note drawn in the middle, if any.
+    note: Option<String>,
+    /// Caption, before the note on the joints.
+    caption: String,
+}
+
+impl StateTexts {
+    fn of(s: &StateRow) -> Self {
+        let mech = s.mechanism.clone().unwrap_or_else(|| "none".into());
+        let values = format!(
+            "K = {} (t/R_c = {}), μ = {}, H/W_half = {}",
+            short(s.k),
+            short(s.t_over_r),
+            if s.mu.is_infinite() {
+                "∞".into()
+            } else {
+                short(s.mu)
+            },
+            s.thrust_over_half_weight.map_or("—".into(), short)
+        );
+        match s.state.as_str() {
+            "bifurcation" => Self::bifurcation(&mech, values),
+            "minimum_thrust" => Self::minimum_thrust(s, &mech, values),
+            "collapse" => Self::collapse(s, &mech, values),
+            _ => Self::no_equilibrium(s),
+        }
+    }
+
+    /// The limit state at a bifurcation.
+    fn bifurcation(mech: &str, values: String) -> Self {
+        StateTexts {
+            title: format!("Collapse at the {} bifurcation", mech.replace('/', " / ")),
+            heading: format!(
+                "Collapse state at the {} bifurcation",
+                mech.replace('/', " / ")
+            ),
+            subtitle: vec![values.clone()],
+            note: None,
+            caption: format!(
+                "The limit state at the bifurcation where the {} mechanisms coexist ({values}), as in the paper's Figs. 6 and 7: the arch to scale, its line of thrust, hinges on the intrados or extrados and sliding joints with the sense in which the part nearer the crown moves.",
+                mech.replace('/', " and ")
+            ),
+        }
+    }
+
+    /// The admissible state of least thrust of a scene that stands.
+    fn minimum_thrust(s: &StateRow, mech: &str, values: String) -> Self {
+        StateTexts {
+            title: format!(
+                "Minimum-thrust state, K = {}, μ = {}",
+                given(s.scene_k),
+                mu_text(s.scene_mu)
+            ),
+            heading: format!(
+                "Minimum-thrust state of scene K = {}, μ = {}",
+                given(s.scene_k),
+                mu_text(s.scene_mu)
+            ),
+            subtitle: vec![
+                values.clone(),
+                format!(
+                    "regime {}; limit conditions: {}",
+                    s.regime.clone().unwrap_or_default(),
+                    mech
+                ),
+            ],
+            note: None,
+            caption: format!(
+                "The admissible state of least crown thrust of the scene ({values}): the arch to scale with its line of thrust, the joints where it touches a face (hinges) and the joints at the limit of friction (sliding, with the sense of the crown-side part)."
+            ),
+        }
+    }
+
+    /// The collapse state at K_c(μ) of a scene that cannot stand.
+    fn collapse(s: &StateRow, mech: &str, values: String) -> Self {
+        StateTexts {
+            title: format!(
+                "Scene K = {}, μ = {}: collapse at K_c(μ)",
+                given(s.scene_k),
+                mu_text(s.scene_mu)
+            ),
+            heading: format!(
+                "Collapse state for scene K = {}, μ = {}",
+                given(s.scene_k),
+                mu_text(s.scene_mu)
+            ),
+            subtitle: vec![
+                values.clone(),
+                format!(
+                    "the scene itself ({}) cannot stand; {} mechanism",
+                    s.regime.clone().unwrap_or_default(),
+                    mech
+                ),
+            ],
+            note: None,
+            caption: format!(
+                "The scene K = {}, μ = {} cannot stand (regime {}); drawn is the collapse state at the same friction and the collapse thickness K_c(μ) ({values}).",
+                given(s.scene_k),
+                mu_text(s.scene_mu),
+                s.regime.clone().unwrap_or_default()
+            ),
+        }
+    }
+
+    /// A scene with no admissible state at its friction for any thickness.
+    fn no_equilibrium(s: &StateRow) -> Self {
+        StateTexts {
+            title: format!(
+                "Scene K = {}, μ = {}: no equilibrium",
+                given(s.scene_k),
+                mu_text(s.scene_mu)
+            ),
+            heading: format!(
+                "Scene K = {}, μ = {}",
+                given(s.scene_k),
+                mu_text(s.scene_mu)
+            ),
+            subtitle: vec![format!("regime {}", s.regime.clone().unwrap_or_default())],
+            note: Some("no admissible state at this friction for any thickness".to_string()),
+            caption: format!(
+                "The scene K = {}, μ = {} has no admissible state, and none exists at this friction for any thickness.",
+                given(s.scene_k),
+                mu_text(s.scene_mu)
+            ),
+        }
+    }
+}

@@ -1,0 +1,338 @@
+//! The key results: thresholds from the collapse curve and the bifurcations, or the
+//! critical values of a critical find, each beside the paper's printed value when the study
+//! is the paper's case. Every value is one stored cell, named in its source.
+
+use crate::report::data::RunData;
+use crate::report::format::{self, diff, given, value};
+use crate::report::paper::{self, Printed};
+use crate::store::{BoundaryRow, ResultRow};
+use serde::Serialize;
+
+/// A row of the key-results table.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct KeyResult {
+    /// What the value is.
+    pub quantity: String,
+    /// The value as stored, formatted.
+    pub value: String,
+    /// The paper's printed value, or `—`.
+    pub paper: String,
+    /// value − paper, or `—`.
+    pub difference: String,
+    /// Where the value is stored: file, row and column.
+    pub source: String,
+}
+
+fn compare(v: f64, p: Option<Printed>) -> (String, String) {
+    match p {
+        Some(p) => (p.text.to_string(), diff(v - p.value)),
+        None => ("—".into(), "—".into()),
+    }
+}
+
+/// The key-results rows: thresholds from the collapse curve and the bifurcations, or the
+/// critical values of a critical find. Every value is one stored cell, named in `source`.
+/// The second value says why the table is empty, when it is.
+pub fn key_results(data: &RunData) -> (Vec<KeyResult>, String) {
+    let multi = data.manifest.load_cases.len() > 1;
+    let mut rows = Rows {
+        out: Vec::new(),
+        paper: data.manifest.is_paper_case(),
+    };
+    for lc in &data.manifest.load_cases {
+        let on = if multi {
+            format!(" ({})", lc.name)
+        } else {
+            String::new()
+        };
+        let curve: Vec<(usize, &BoundaryRow)> = data
+            .boundaries
+            .iter()
+            .flatten()
+            .enumerate()
+            .filter(|(_, b)| b.load_case == lc.name && b.on_collapse_curve)
+            .collect();
+        rows.rotational_collapse(&curve, &on);
+        rows.sliding_collapse(&curve, &on);
+        rows.bifurcations(data, &lc.name, &on);
+    }
+    rows.critical_values(data);
+    rows.continuum_values(data, multi);
+    let out = rows.out;
+    let note = if out.is_empty() {
+        if data.boundaries.is_none() {
+            "No boundaries were located in this run (boundaries.parquet is absent), so there are no thresholds to report.".into()
+        } else {
+            "The run located no collapse curve or bifurcation within the grid.".into()
+        }
+    } else {
+        String::new()
+    };
+    (out, note)
+}
+
+/// The rows so far, and whether the study is the paper's case (whose printed values stand
+/// beside the computed ones).
+struct Rows {
+    out: Vec<KeyResult>,
+    paper: bool,
+}
+
+impl Rows {
+    /// A computed value, beside the paper's printed one for the paper's case.
+    fn push(&mut self, q: String, v: f64, p: Option<Printed>, src: String) {
+        let (paper_text, d) = compare(v, if self.paper { p } else { None });
+        self.out.push(KeyResult {
+            quantity: q,
+            value: value(v),
+            paper: paper_text,
+            difference: d,
+            source: src,
+        });
+    }
+
+    /// Rotational collapse at the largest μ: K_c for friction large enough.
+    fn rotational_collapse(&mut self, curve: &[(usize, &BoundaryRow)], on: &str) {
+        let Some((i, b)) = curve
+            .iter()
+            .filter(|(_, b)| b.mechanism.as_deref() == Some("rotational"))
+            .max_by(|a, b| a.1.mu.total_cmp(&b.1.mu))
+        else {
+            return;
+        };
+        let src = |c: &str| format!("boundaries.parquet row {i} {c}");
+        self.push(
+            format!("K_c, rotational collapse (μ = {}){on}", given(b.mu)),
+            b.k,
+            Some(paper::K_C),
+            src("k"),
+        );
+        self.push(
+            format!("t/R_c at K_c{on}"),
+            b.t_over_r,
+            None,
+            src("t_over_r"),
+        );
+        if let Some(h) = b.thrust_over_half_weight {
+            self.push(
+                format!("H/W_half at K_c{on}"),
+                h,
+                None,
+                src("thrust_over_half_weight"),
+            );
+        }
+    }
+
+    /// Sliding collapse at the largest K: μ_min.
+    fn sliding_collapse(&mut self, curve: &[(usize, &BoundaryRow)], on: &str) {
+        if let Some((i, b)) = curve
+            .iter()
+            .filter(|(_, b)| b.mechanism.as_deref() == Some("sliding"))
+            .max_by(|a, b| a.1.k.total_cmp(&b.1.k))
+        {
+            let src = format!("boundaries.parquet row {i} mu");
+            self.push(
+                format!("μ_min, sliding collapse (K = {}){on}", given(b.k)),
+                b.mu,
+                Some(paper::MU_MIN),
+                src,
+            );
+        }
+    }
+
+    /// Each bifurcation of a load case: μ, K, t/R_c, thrust, sliding joints and hinges.
+    fn bifurcations(&mut self, data: &RunData, lc: &str, on: &str) {
+        for (i, b) in data
+            .bifurcations
+            .iter()
+            .flatten()
+            .enumerate()
+            .filter(|(_, b)| b.load_case == lc)
+        {
+            let name = format!("{}/{}", b.mechanism_a, b.mechanism_b);
+            let printed = paper::bifurcation(&b.mechanism_a, &b.mechanism_b);
+            let src = |c: &str| format!("bifurcations.parquet row {i} {c}");
+            self.push(
+                format!("μ at the {name} bifurcation{on}"),
+                b.mu,
+                printed.map(|p| p.0),
+                src("mu"),
+            );
+            self.push(
+                format!("K at the {name} bifurcation{on}"),
+                b.k,
+                printed.map(|p| p.1),
+                src("k"),
+            );
+            self.push(
+                format!("t/R_c at the {name} bifurcation{on}"),
+                b.t_over_r,
+                None,
+                src("t_over_r"),
+            );
+            if let Some(h) = b.thrust_over_half_weight {
+                self.push(
+                    format!("H/W_half at the {name} bifurcation{on}"),
+                    h,
+                    None,
+                    src("thrust_over_half_weight"),
+                );
+            }
+            let sliding = &b.joints.sliding_angles_deg;
+            if !sliding.is_empty() {
+                let text = format::joints(sliding, &b.joints.sliding_senses);
+                let is_min = printed.is_some_and(|p| p.0.text == paper::MU_MIN.text);
+                self.out.push(KeyResult {
+                    quantity: format!("sliding joints at the {name} bifurcation{on}"),
+                    value: text,
+                    paper: if self.paper && is_min {
+                        paper::SLIDING_JOINTS_DEG.into()
+                    } else {
+                        "—".into()
+                    },
+                    difference: "—".into(),
+                    source: src("sliding_angles_deg"),
+                });
+            }
+            if !b.joints.hinge_angles_deg.is_empty() {
+                self.out.push(KeyResult {
+                    quantity: format!("hinges at the {name} bifurcation{on}"),
+                    value: format::joints(&b.joints.hinge_angles_deg, &b.joints.hinge_faces),
+                    paper: "—".into(),
+                    difference: "—".into(),
+                    source: src("hinge_angles_deg"),
+                });
+            }
+        }
+    }
+
+    /// Critical finds: the critical value of each case (about two dozen listed at most).
+    fn critical_values(&mut self, data: &RunData) {
+        let col_of = |r: &ResultRow| match &*r.find {
+            "thickness" => Some("k_crit"),
+            "friction" => Some("mu_crit"),
+            _ => None,
+        };
+        let found: Vec<(usize, &ResultRow, &str)> = data
+            .results
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| r.outcome.as_deref() == Some("found"))
+            .filter_map(|(i, r)| Some((i, r, col_of(r)?)))
+            .collect();
+        let step = if found.len() <= 30 {
+            1
+        } else {
+            found.len().div_ceil(24)
+        };
+        for &(i, r, col) in found.iter().step_by(step) {
+            let (v, label) = if col == "k_crit" {
+                (
+                    r.k_crit,
+                    format!("K_c at μ = {}", r.mu.map_or("—".into(), given)),
+                )
+            } else {
+                (
+                    r.mu_crit,
+                    format!("μ_c at K = {}", r.k.map_or("—".into(), given)),
+                )
+            };
+            let Some(v) = v else { continue };
+            let model = r.voussoirs.map_or(String::new(), |n| format!(", N = {n}"));
+            let printed = match (col, self.paper, r.mu) {
+                ("k_crit", true, Some(mu)) if mu.is_infinite() => Some(paper::K_C),
+                _ => None,
+            };
+            self.push(
+                format!("{label}{model}"),
+                v,
+                printed,
+                format!("results.parquet row {i} {col}"),
+            );
+        }
+    }
+
+    /// The continuum's critical values of a thresholds or load-factor find (a study over the
+    /// voussoir count measures its models against these); the paper's printed values beside
+    /// the thresholds of its geometry.
+    fn continuum_values(&mut self, data: &RunData, multi: bool) {
+        let paper_geometry = data.manifest.is_paper_geometry();
+        for (i, r) in data.results.iter().enumerate().filter(|(_, r)| {
+            r.voussoirs.is_none()
+                && &*r.status == "ok"
+                && matches!(&*r.find, "thresholds" | "load_factor")
+        }) {
+            let on = if multi {
+                format!(" ({})", r.load_case)
+            } else {
+                String::new()
+            };
+            for (q, v, p, col) in continuum_cells(r) {
+                let Some(v) = v else { continue };
+                let (paper_text, d) = compare(v, p.filter(|_| paper_geometry));
+                self.out.push(KeyResult {
+                    quantity: format!("{q}, continuum{on}"),
+                    value: value(v),
+                    paper: paper_text,
+                    difference: d,
+                    source: format!("results.parquet row {i} {col}"),
+                });
+            }
+            if self.out.len() > 40 {
+                break;
+            }
+        }
+    }
+}
+
+/// A quantity of a continuum case: label, stored value, the paper's printed value and the
+/// column it comes from.
+type Cell = (String, Option<f64>, Option<Printed>, &'static str);
+
+/// The quantities of a continuum thresholds or load-factor case.
+fn continuum_cells(r: &ResultRow) -> Vec<Cell> {
+    if &*r.find == "thresholds" {
+        vec![
+            (
+                "K_c at μ = ∞".into(),
+                r.k_c_rotational,
+                Some(paper::K_C),
+                "k_c_rotational",
+            ),
+            (
+                "μ of the rotational/mixed bifurcation".into(),
+                r.mu_rotational_mixed,
+                Some(paper::MU_ROTATIONAL_MIXED),
+                "mu_rotational_mixed",
+            ),
+            (
+                "μ_min, sliding threshold".into(),
+                r.mu_min,
+                Some(paper::MU_MIN),
+                "mu_min",
+            ),
+            (
+                "K of the mixed/sliding bifurcation".into(),
+                r.k_mixed_sliding,
+                Some(paper::K_MIXED_SLIDING),
+                "k_mixed_sliding",
+            ),
+        ]
+    } else {
+        let at = match (r.k, r.t_over_r, r.mu) {
+            (Some(k), Some(t), Some(mu)) => format!(
+                " at K = {} (t/R_c = {}), μ = {}",
+                format::short(k),
+                format::short(t),
+                given(mu)
+            ),
+            _ => String::new(),
+        };
+        vec![(
+            format!("load factor λ{at}"),
+            r.load_factor,
+            None,
+            "load_factor",
+        )]
+    }
+}
