@@ -7,110 +7,231 @@ use polars::prelude::{ArrowField, ArrowSchema, CompatLevel, DataFrame, PlSmallSt
 use polars_parquet::write::{KeyValue, schema_to_metadata_key};
 use std::collections::BTreeMap;
 
-/// Unit and meaning of a stored column, by name; the same name means the same thing in every
-/// table of a run.
+/// Unit (empty for none) and meaning of every documented column, by name; the same name
+/// means the same thing in every table of a run.
+const COLUMN_DOCS: &[(&str, &str, &str)] = &[
+    ("case_id", "", "position of the case in the plan"),
+    ("load_case", "", "load case name"),
+    (
+        "load_kind",
+        "",
+        "load case kind: self_weight, horizontal or point",
+    ),
+    (
+        "load",
+        "",
+        "load case kind: self_weight, horizontal or point",
+    ),
+    (
+        "find",
+        "",
+        "what the case computes: state, thickness, friction, thrust, thresholds or load_factor",
+    ),
+    (
+        "k",
+        "R/r",
+        "thickness ratio K = R/r (extrados over intrados radius)",
+    ),
+    (
+        "t_over_r",
+        "t/R_c",
+        "thickness over centreline radius, 2(K - 1)/(K + 1)",
+    ),
+    ("mu", "", "friction coefficient μ = tan φ (inf: no sliding)"),
+    (
+        "half_angle_deg",
+        "deg",
+        "half-embrace angle α (90: semicircular)",
+    ),
+    (
+        "weight",
+        "",
+        "weight model: annular (true sector weights) or centreline",
+    ),
+    ("voussoirs", "", "voussoir count; null for the continuum"),
+    ("shape", "", "outline: circular or pointed"),
+    (
+        "eccentricity",
+        "ρ_c",
+        "eccentricity e of a pointed arch's centres, over the centreline radius",
+    ),
+    ("joints", "", "joint planes: radial or vertical"),
+    (
+        "at_deg",
+        "deg",
+        "position of the point load, from the crown, positive to the right",
+    ),
+    ("lambda", "W_total", "given load factor λ of the live load"),
+    (
+        "outcome",
+        "",
+        "found, never_stands, always_stands, unbounded, not_converged, failed, invalid or unsupported",
+    ),
+    ("regime", "", "stable, rotational, mixed, sliding or none"),
+    (
+        "regime_low",
+        "",
+        "regime on the lower-value side of the crossing",
+    ),
+    (
+        "regime_high",
+        "",
+        "regime on the higher-value side of the crossing",
+    ),
+    (
+        "thrust_r_min",
+        "W_half",
+        "end of the rotational thrust domain H^r",
+    ),
+    (
+        "thrust_r_max",
+        "W_half",
+        "end of the rotational thrust domain H^r",
+    ),
+    (
+        "thrust_s_min",
+        "W_half",
+        "end of the sliding thrust domain H^s",
+    ),
+    (
+        "thrust_s_max",
+        "W_half",
+        "end of the sliding thrust domain H^s",
+    ),
+    ("k_crit", "R/r", "collapse thickness K_c"),
+    ("t_over_r_crit", "t/R_c", "t/R_c at the collapse thickness"),
+    ("mu_crit", "", "critical friction coefficient μ_c"),
+    (
+        "mechanism",
+        "",
+        "collapse mechanism: rotational, mixed or sliding",
+    ),
+    (
+        "mechanism_a",
+        "",
+        "mechanism on the lower-μ (or lower-value) side of the bifurcation",
+    ),
+    (
+        "mechanism_b",
+        "",
+        "mechanism on the higher-μ (or higher-value) side of the bifurcation",
+    ),
+    (
+        "thrust_over_half_weight",
+        "W_half",
+        "horizontal crown thrust H of the limit state",
+    ),
+    (
+        "crown_moment",
+        "W_half·r",
+        "crown moment m of the limit state",
+    ),
+    (
+        "crown_shear",
+        "W_half",
+        "vertical force at the crown of the limit state",
+    ),
+    (
+        "load_factor",
+        "W_total",
+        "largest load factor λ of the live load",
+    ),
+    (
+        "load_factor_unbounded",
+        "",
+        "true when every λ ≥ 0 lets the arch stand",
+    ),
+    (
+        "hinge_angles_deg",
+        "deg",
+        "hinge joints, from the crown, increasing",
+    ),
+    (
+        "hinges_min_angles_deg",
+        "deg",
+        "hinge joints, from the crown, increasing",
+    ),
+    (
+        "hinges_max_angles_deg",
+        "deg",
+        "hinge joints, from the crown, increasing",
+    ),
+    (
+        "hinge_faces",
+        "",
+        "face of each hinge: intrados or extrados",
+    ),
+    (
+        "hinges_min_faces",
+        "",
+        "face of each hinge: intrados or extrados",
+    ),
+    (
+        "hinges_max_faces",
+        "",
+        "face of each hinge: intrados or extrados",
+    ),
+    (
+        "sliding_angles_deg",
+        "deg",
+        "sliding joints, from the crown",
+    ),
+    (
+        "sliding_senses",
+        "",
+        "sense of each sliding joint: outward or inward (crown-side part)",
+    ),
+    (
+        "work_loads",
+        "W_half·r",
+        "work of the loads on the collapse mechanism (eq. 11), largest corner speed 1",
+    ),
+    (
+        "work_friction",
+        "W_half·r",
+        "friction dissipation -μ Σ R^n |dr^t| of the mechanism (eq. 11)",
+    ),
+    (
+        "work_residual",
+        "",
+        "|work of loads + friction| over the scale of the block works",
+    ),
+    (
+        "mechanism_dof",
+        "",
+        "degrees of freedom of the blocks between the active joints",
+    ),
+    ("k_c_rotational", "R/r", "collapse thickness at μ = ∞"),
+    (
+        "mu_rotational_mixed",
+        "",
+        "μ of the rotational/mixed bifurcation",
+    ),
+    ("mu_min", "", "μ_min: below it no thickness stands"),
+    (
+        "k_mixed_sliding",
+        "R/r",
+        "K of the mixed/sliding bifurcation",
+    ),
+    ("thrust_min", "W_half", "minimum admissible crown thrust"),
+    ("thrust_max", "W_half", "maximum admissible crown thrust"),
+    ("status", "", "ok, or error when the analysis failed"),
+    ("message", "", "why the analysis failed"),
+    ("solve_time_us", "µs", "the case's own analysis time"),
+    ("axis", "", "grid axis of the crossed edge: k or mu"),
+    (
+        "on_collapse_curve",
+        "",
+        "true when one side of the crossing is stable",
+    ),
+];
+
+/// Unit and meaning of a stored column, by name.
 pub fn column_doc(name: &str) -> Option<(&'static str, &'static str)> {
-    let doc = match name {
-        "case_id" => ("", "position of the case in the plan"),
-        "load_case" => ("", "load case name"),
-        "load_kind" | "load" => ("", "load case kind: self_weight, horizontal or point"),
-        "find" => (
-            "",
-            "what the case computes: state, thickness, friction, thrust, thresholds or load_factor",
-        ),
-        "k" => (
-            "R/r",
-            "thickness ratio K = R/r (extrados over intrados radius)",
-        ),
-        "t_over_r" => (
-            "t/R_c",
-            "thickness over centreline radius, 2(K - 1)/(K + 1)",
-        ),
-        "mu" => ("", "friction coefficient μ = tan φ (inf: no sliding)"),
-        "half_angle_deg" => ("deg", "half-embrace angle α (90: semicircular)"),
-        "weight" => (
-            "",
-            "weight model: annular (true sector weights) or centreline",
-        ),
-        "voussoirs" => ("", "voussoir count; null for the continuum"),
-        "shape" => ("", "outline: circular or pointed"),
-        "eccentricity" => (
-            "ρ_c",
-            "eccentricity e of a pointed arch's centres, over the centreline radius",
-        ),
-        "joints" => ("", "joint planes: radial or vertical"),
-        "at_deg" => (
-            "deg",
-            "position of the point load, from the crown, positive to the right",
-        ),
-        "lambda" => ("W_total", "given load factor λ of the live load"),
-        "outcome" => (
-            "",
-            "found, never_stands, always_stands, unbounded, not_converged, failed, invalid or unsupported",
-        ),
-        "regime" => ("", "stable, rotational, mixed, sliding or none"),
-        "regime_low" => ("", "regime on the lower-value side of the crossing"),
-        "regime_high" => ("", "regime on the higher-value side of the crossing"),
-        "thrust_r_min" | "thrust_r_max" => ("W_half", "end of the rotational thrust domain H^r"),
-        "thrust_s_min" | "thrust_s_max" => ("W_half", "end of the sliding thrust domain H^s"),
-        "k_crit" => ("R/r", "collapse thickness K_c"),
-        "t_over_r_crit" => ("t/R_c", "t/R_c at the collapse thickness"),
-        "mu_crit" => ("", "critical friction coefficient μ_c"),
-        "mechanism" => ("", "collapse mechanism: rotational, mixed or sliding"),
-        "mechanism_a" => (
-            "",
-            "mechanism on the lower-μ (or lower-value) side of the bifurcation",
-        ),
-        "mechanism_b" => (
-            "",
-            "mechanism on the higher-μ (or higher-value) side of the bifurcation",
-        ),
-        "thrust_over_half_weight" => ("W_half", "horizontal crown thrust H of the limit state"),
-        "crown_moment" => ("W_half·r", "crown moment m of the limit state"),
-        "crown_shear" => ("W_half", "vertical force at the crown of the limit state"),
-        "load_factor" => ("W_total", "largest load factor λ of the live load"),
-        "load_factor_unbounded" => ("", "true when every λ ≥ 0 lets the arch stand"),
-        "hinge_angles_deg" | "hinges_min_angles_deg" | "hinges_max_angles_deg" => {
-            ("deg", "hinge joints, from the crown, increasing")
-        }
-        "hinge_faces" | "hinges_min_faces" | "hinges_max_faces" => {
-            ("", "face of each hinge: intrados or extrados")
-        }
-        "sliding_angles_deg" => ("deg", "sliding joints, from the crown"),
-        "sliding_senses" => (
-            "",
-            "sense of each sliding joint: outward or inward (crown-side part)",
-        ),
-        "work_loads" => (
-            "W_half·r",
-            "work of the loads on the collapse mechanism (eq. 11), largest corner speed 1",
-        ),
-        "work_friction" => (
-            "W_half·r",
-            "friction dissipation -μ Σ R^n |dr^t| of the mechanism (eq. 11)",
-        ),
-        "work_residual" => (
-            "",
-            "|work of loads + friction| over the scale of the block works",
-        ),
-        "mechanism_dof" => (
-            "",
-            "degrees of freedom of the blocks between the active joints",
-        ),
-        "k_c_rotational" => ("R/r", "collapse thickness at μ = ∞"),
-        "mu_rotational_mixed" => ("", "μ of the rotational/mixed bifurcation"),
-        "mu_min" => ("", "μ_min: below it no thickness stands"),
-        "k_mixed_sliding" => ("R/r", "K of the mixed/sliding bifurcation"),
-        "thrust_min" => ("W_half", "minimum admissible crown thrust"),
-        "thrust_max" => ("W_half", "maximum admissible crown thrust"),
-        "status" => ("", "ok, or error when the analysis failed"),
-        "message" => ("", "why the analysis failed"),
-        "solve_time_us" => ("µs", "the case's own analysis time"),
-        "axis" => ("", "grid axis of the crossed edge: k or mu"),
-        "on_collapse_curve" => ("", "true when one side of the crossing is stable"),
-        _ => return None,
-    };
-    Some(doc)
+    COLUMN_DOCS
+        .iter()
+        .find(|(n, _, _)| *n == name)
+        .map(|&(_, unit, meaning)| (unit, meaning))
 }
 
 /// The `ARROW:schema` key of a table: the key of [`stored_arrow_schema`].
