@@ -273,20 +273,7 @@ fn range_values(
             ),
         ));
     }
-    let n = steps.value as usize;
-    let vals: Vec<f64> = if n == 1 {
-        vec![f]
-    } else {
-        (0..n)
-            .map(|i| {
-                if i + 1 == n {
-                    t
-                } else {
-                    f + (t - f) * (i as f64) / ((n - 1) as f64)
-                }
-            })
-            .collect()
-    };
+    let vals = decimal_range(f, t, steps.value as usize);
     if name == AxisName::Voussoirs {
         for &v in &vals {
             if v.fract() != 0.0 {
@@ -333,4 +320,81 @@ fn check_value(
         key,
         format!("value {} is not allowed: {allowed}", fmt_num(v)),
     ))
+}
+
+/// Most decimal places of a range's ends and step for its values to be taken as decimals.
+const MAX_RANGE_DECIMALS: i32 = 12;
+
+/// The decimal places of `x` (0 to [`MAX_RANGE_DECIMALS`]), when `x` is a decimal of that
+/// many places up to rounding.
+fn decimal_places(x: f64) -> Option<i32> {
+    (0..=MAX_RANGE_DECIMALS).find(|&d| {
+        let scaled = x * 10f64.powi(d);
+        scaled.abs() < 2f64.powi(52)
+            && (scaled - scaled.round()).abs() <= 1e-9 * scaled.abs().max(1.0)
+    })
+}
+
+/// The `n` values of a range from `f` to `t`, both included. When the ends and the step are
+/// decimals (0.2 to 0.8 in 601 steps: step 0.001), each value is the double nearest its
+/// decimal (0.31, not 0.31000000000000005), so that equality filters on the stored values
+/// work; otherwise `f + (t − f)·i/(n − 1)`.
+pub(crate) fn decimal_range(f: f64, t: f64, n: usize) -> Vec<f64> {
+    if n <= 1 {
+        return vec![f];
+    }
+    let gaps = (n - 1) as f64;
+    let decimals = [f, t, (t - f) / gaps]
+        .into_iter()
+        .map(decimal_places)
+        .try_fold(0, |d, x| x.map(|x| d.max(x)));
+    if let Some(d) = decimals {
+        let scale = 10f64.powi(d);
+        let (lo, hi) = ((f * scale).round() as i64, (t * scale).round() as i64);
+        let gaps = (n - 1) as i64;
+        if (hi - lo) % gaps == 0 {
+            let step = (hi - lo) / gaps;
+            // An integer below 2^53 over an exact power of ten: one correctly rounded
+            // division gives the double nearest the decimal.
+            return (0..gaps + 1)
+                .map(|i| (lo + i * step) as f64 / scale)
+                .collect();
+        }
+    }
+    (0..n)
+        .map(|i| {
+            if i + 1 == n {
+                t
+            } else {
+                f + (t - f) * (i as f64) / gaps
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod range_tests {
+    use super::decimal_range;
+
+    #[test]
+    fn decimal_ranges_hold_the_decimals_the_manifest_implies() {
+        let mu = decimal_range(0.2, 0.8, 601);
+        assert_eq!(mu.len(), 601);
+        assert_eq!(mu[100], 0.3);
+        assert_eq!(mu[110], 0.31);
+        assert_eq!(mu[600], 0.8);
+        assert_eq!(mu.iter().filter(|&&m| m == 0.35).count(), 1);
+        let k = decimal_range(1.05, 1.5, 181);
+        assert_eq!((k[0], k[2], k[180]), (1.05, 1.055, 1.5));
+        assert_eq!(decimal_range(1.0, 64.0, 64)[9], 10.0);
+    }
+
+    #[test]
+    fn other_ranges_keep_evenly_spaced_values_and_their_ends() {
+        let v = decimal_range(0.0, 1.0, 4);
+        assert_eq!(v[0], 0.0);
+        assert_eq!(v[3], 1.0);
+        assert!((v[1] - 1.0 / 3.0).abs() < 1e-15);
+        assert_eq!(decimal_range(0.5, 0.5, 1), vec![0.5]);
+    }
 }
