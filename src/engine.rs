@@ -3,7 +3,7 @@
 //! message; it never aborts the study.
 //!
 //! A symmetric self-weight `state` grid uses the separable structure of the problem
-//! (DESIGN.md §2): H^r depends on K only and H^s/W_half on μ only, so the grid costs one
+//! (docs/mechanics.md §2): H^r depends on K only and H^s/W_half on μ only, so the grid costs one
 //! rotational domain per distinct K and one sliding domain per distinct μ, plus a comparison
 //! per point. The solve time of such a case is its share of both domain solves plus its
 //! comparison.

@@ -327,7 +327,7 @@ impl ArchForm {
     }
 }
 
-/// The live part of a load case, scaled by the load factor λ (DESIGN.md §1: load factors are
+/// The live part of a load case, scaled by the load factor λ (docs/mechanics.md §1: load factors are
 /// multiples of the total weight). Self-weight is always present.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Load {

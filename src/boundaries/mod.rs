@@ -4,7 +4,7 @@
 //! crossings. For a `state` study every grid edge (along K at fixed μ, along μ at fixed K,
 //! per load case and per value of the other axes) across which the regime differs is
 //! refined by bracketing root-finding (Brent) on the continuous quantity that changes sign
-//! there (DESIGN.md §1):
+//! there (docs/mechanics.md §1):
 //! - H^r emptiness, the peak margin max_h Φ(h) of the rotational domain: depends on K only,
 //!   so it is crossed by K-edges only and located once per K-edge;
 //! - H^s emptiness, the width of the sliding domain: depends on μ only, crossed by μ-edges

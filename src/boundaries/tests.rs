@@ -1,5 +1,5 @@
 //! Boundary location on whole grids: manifest → plan → engine → locate, checked against the
-//! reference values of DESIGN.md and against the critical-value analyses.
+//! reference values of docs/mechanics.md §3 and against the critical-value analyses.
 
 use super::*;
 use crate::analysis::symmetric;

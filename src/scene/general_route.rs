@@ -1,6 +1,6 @@
 //! Scenes answered by the general three-unknown formulation ([`crate::analysis::general`]):
 //! every load case with a live part, every form other than the circular arch with radial
-//! joints, and every `load_factor` question (DESIGN.md §1).
+//! joints, and every `load_factor` question (docs/mechanics.md §1).
 
 use super::{Find, Outcome as Answered, Scene, Solution, finite};
 use crate::analysis::Mechanism;
