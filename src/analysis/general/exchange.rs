@@ -1,0 +1,245 @@
+//! The exchange (cutting-plane) method for a continuum: solve at a few joints, find the
+//! most violated joint of each condition by sampling and a 1-D maximisation, add it, repeat.
+
+use super::problem::{Problem, Solved};
+use super::rows::{JointRow, LinearRows, violation};
+use super::{ActiveRow, Outcome, Settings};
+use crate::analysis::lp;
+use crate::analysis::roots::maximise_1d;
+use crate::analysis::statics::{ArchGeometry, Condition, Row, joint_rows};
+
+/// A joint where a row is (nearly) most violated.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Candidate {
+    theta: f64,
+    condition: Condition,
+    violation: f64,
+}
+
+impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
+    /// The refined local maxima of the violation of each condition at z over every family
+    /// of joints ([`ArchGeometry::families`]), and the violations at the isolated joints.
+    pub(super) fn scan(
+        &self,
+        z: &[f64; 4],
+        homogeneous: bool,
+        settings: &Settings,
+    ) -> Vec<Candidate> {
+        let families = self.geom.families();
+        let total: f64 = families.iter().map(|f| (f[1] - f[0]).max(0.0)).sum();
+        let samples = settings.exchange_samples.max(2);
+        let mut out = Vec::new();
+        let mut points = self.geom.isolated_joints();
+        for &[lo, hi] in &families {
+            if hi > lo && total > 0.0 {
+                let n = ((samples as f64 * (hi - lo) / total).ceil() as usize).max(2);
+                self.scan_family(lo, hi, n, z, homogeneous, settings, &mut out);
+            } else {
+                points.push(lo);
+            }
+        }
+        for t in points {
+            let rows = joint_rows(self.geom, t, self.phi);
+            for (ci, condition) in Condition::ALL.into_iter().enumerate() {
+                if self.set.includes(condition) {
+                    out.push(Candidate {
+                        theta: t,
+                        condition,
+                        violation: violation(&rows[ci], self.objective, z, homogeneous),
+                    });
+                }
+            }
+        }
+        out
+    }
+
+    /// The refined local maxima over [lo, hi] (n sampling intervals) of the violation of each
+    /// condition at z.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn scan_family(
+        &self,
+        lo: f64,
+        hi: f64,
+        n: usize,
+        z: &[f64; 4],
+        homogeneous: bool,
+        settings: &Settings,
+        out: &mut Vec<Candidate>,
+    ) {
+        let alpha = self.geom.half_angle();
+        let step = (hi - lo) / n as f64;
+        let thetas: Vec<f64> = (0..=n)
+            .map(|i| if i == n { hi } else { lo + step * i as f64 })
+            .collect();
+        let samples: Vec<[Row; 4]> = thetas
+            .iter()
+            .map(|&t| joint_rows(self.geom, t, self.phi))
+            .collect();
+        for condition in self.conditions() {
+            let ci = Condition::ALL
+                .iter()
+                .position(|c| *c == condition)
+                .unwrap_or(0);
+            let v: Vec<f64> = samples
+                .iter()
+                .map(|r| violation(&r[ci], self.objective, z, homogeneous))
+                .collect();
+            let mut maxima: Vec<usize> = (0..=n)
+                .filter(|&i| (i == 0 || v[i] >= v[i - 1]) && (i == n || v[i] > v[i + 1]))
+                .collect();
+            maxima.sort_by(|&i, &j| v[j].total_cmp(&v[i]));
+            maxima.truncate(settings.exchange_maxima.max(1));
+            for i in maxima {
+                let a = thetas[i.saturating_sub(1)];
+                let b = thetas[(i + 1).min(n)];
+                let f = |t: f64| violation(&self.row(t, condition), self.objective, z, homogeneous);
+                let (mut t, mut fv) = maximise_1d(f, a, b, 1e-10 * alpha.max(1e-3));
+                // Brent never evaluates the ends of its bracket: the sample may be better.
+                if v[i] >= fv {
+                    (t, fv) = (thetas[i], v[i]);
+                }
+                out.push(Candidate {
+                    theta: t,
+                    condition,
+                    violation: fv,
+                });
+            }
+        }
+    }
+
+    pub(super) fn solve_continuum(&self, settings: &Settings) -> Solved {
+        let n0 = settings.exchange_initial_joints.max(2);
+        let mut rows = LinearRows::new(self.objective);
+        let families = self.geom.families();
+        let total: f64 = families.iter().map(|f| (f[1] - f[0]).max(0.0)).sum();
+        for &[lo, hi] in &families {
+            if hi > lo && total > 0.0 {
+                let n = ((n0 as f64 * (hi - lo) / total).ceil() as usize).max(2);
+                for i in 0..n {
+                    let t = if i + 1 == n {
+                        hi
+                    } else {
+                        lo + (hi - lo) * i as f64 / (n - 1) as f64
+                    };
+                    rows.push_joint(self.geom, t, self.phi, self.set, self.objective);
+                }
+            } else {
+                rows.push_joint(self.geom, lo, self.phi, self.set, self.objective);
+            }
+        }
+        for t in self.geom.isolated_joints() {
+            rows.push_joint(self.geom, t, self.phi, self.set, self.objective);
+        }
+        let mut iterations = 0;
+        loop {
+            iterations += 1;
+            let sol = self.lp(&rows, settings);
+            let (z, homogeneous) = match sol.status {
+                lp::Status::Optimal => (sol.x, false),
+                lp::Status::Unbounded => (sol.ray, true),
+                lp::Status::Infeasible => {
+                    return Solved {
+                        outcome: Outcome::Infeasible,
+                        z: sol.x,
+                        rows,
+                        max_violation: f64::INFINITY,
+                        active: Vec::new(),
+                        active_joints: Vec::new(),
+                        iterations,
+                    };
+                }
+                s => {
+                    return Solved {
+                        outcome: Outcome::Failed(s),
+                        z: sol.x,
+                        rows,
+                        max_violation: f64::INFINITY,
+                        active: Vec::new(),
+                        active_joints: Vec::new(),
+                        iterations,
+                    };
+                }
+            };
+            let candidates = self.scan(&z, homogeneous, settings);
+            let vmax = candidates
+                .iter()
+                .fold(f64::NEG_INFINITY, |m, c| m.max(c.violation));
+            let tol = settings.exchange_tol * Self::scale(&z);
+            let done = |outcome: Outcome, rows: LinearRows| {
+                let atol = self.active_tol(&z, settings);
+                let mut pairs: Vec<(ActiveRow, JointRow)> = if outcome == Outcome::Solved {
+                    candidates
+                        .iter()
+                        .filter(|c| c.violation >= vmax.max(0.0) - atol)
+                        .map(|c| {
+                            (
+                                ActiveRow {
+                                    angle_deg: self.geom.angle_deg(c.theta),
+                                    condition: c.condition,
+                                    slack: (vmax.max(0.0) - c.violation).max(0.0),
+                                },
+                                JointRow {
+                                    theta: c.theta,
+                                    condition: c.condition,
+                                },
+                            )
+                        })
+                        .collect()
+                } else {
+                    Vec::new()
+                };
+                pairs.sort_by(|a, b| a.0.angle_deg.total_cmp(&b.0.angle_deg));
+                let (active, active_joints): (Vec<ActiveRow>, Vec<JointRow>) =
+                    pairs.into_iter().unzip();
+                Solved {
+                    outcome,
+                    z,
+                    rows,
+                    max_violation: vmax,
+                    active,
+                    active_joints,
+                    iterations,
+                }
+            };
+            if vmax <= tol {
+                let outcome = if homogeneous {
+                    Outcome::Unbounded
+                } else {
+                    Outcome::Solved
+                };
+                return done(outcome, rows);
+            }
+            if iterations >= settings.exchange_max_iter {
+                return done(Outcome::NotConverged, rows);
+            }
+            let mut added = 0;
+            for c in candidates.iter().filter(|c| c.violation > tol) {
+                let known = rows
+                    .joints
+                    .iter()
+                    .any(|j| j.condition == c.condition && j.theta == c.theta);
+                if !known {
+                    rows.push_row(&self.row(c.theta, c.condition), self.objective);
+                    added += 1;
+                }
+            }
+            if added == 0 {
+                // Every violated joint is already a row: the residual is what the programme
+                // solver accepted (its tolerance also scales with t), not a missing joint.
+                let lp_tol = 10.0
+                    * settings.lp.tol_feas
+                    * (1.0 + z.iter().fold(0.0, |m: f64, v| m.max(v.abs())));
+                let outcome = if vmax <= lp_tol {
+                    if homogeneous {
+                        Outcome::Unbounded
+                    } else {
+                        Outcome::Solved
+                    }
+                } else {
+                    Outcome::NotConverged
+                };
+                return done(outcome, rows);
+            }
+        }
+    }
+}
