@@ -107,7 +107,9 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
         }
     }
 
-    pub(super) fn solve_continuum(&self, settings: &Settings) -> Solved {
+    /// The rows of the first exchange step: `exchange_initial_joints` joints spread over the
+    /// families in proportion to their length (ends included), and the isolated joints.
+    fn initial_rows(&self, settings: &Settings) -> LinearRows {
         let n0 = settings.exchange_initial_joints.max(2);
         let mut rows = LinearRows::new(self.objective);
         let families = self.geom.families();
@@ -130,6 +132,12 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
         for t in self.geom.isolated_joints() {
             rows.push_joint(self.geom, t, self.phi, self.set, self.objective);
         }
+        rows
+    }
+
+    /// The exchange method for a continuum: solve, scan for violated joints, add them, repeat.
+    pub(super) fn solve_continuum(&self, settings: &Settings) -> Solved {
+        let mut rows = self.initial_rows(settings);
         let mut iterations = 0;
         loop {
             iterations += 1;
@@ -138,108 +146,128 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
                 lp::Status::Optimal => (sol.x, false),
                 lp::Status::Unbounded => (sol.ray, true),
                 lp::Status::Infeasible => {
-                    return Solved {
-                        outcome: Outcome::Infeasible,
-                        z: sol.x,
-                        rows,
-                        max_violation: f64::INFINITY,
-                        active: Vec::new(),
-                        active_joints: Vec::new(),
-                        iterations,
-                    };
+                    return Solved::without_state(Outcome::Infeasible, sol.x, rows, iterations);
                 }
-                s => {
-                    return Solved {
-                        outcome: Outcome::Failed(s),
-                        z: sol.x,
-                        rows,
-                        max_violation: f64::INFINITY,
-                        active: Vec::new(),
-                        active_joints: Vec::new(),
-                        iterations,
-                    };
-                }
+                s => return Solved::without_state(Outcome::Failed(s), sol.x, rows, iterations),
             };
             let candidates = self.scan(&z, homogeneous, settings);
-            let vmax = candidates
-                .iter()
-                .fold(f64::NEG_INFINITY, |m, c| m.max(c.violation));
-            let tol = settings.exchange_tol * Self::scale(&z);
-            let done = |outcome: Outcome, rows: LinearRows| {
-                let atol = self.active_tol(&z, settings);
-                let mut pairs: Vec<(ActiveRow, JointRow)> = if outcome == Outcome::Solved {
-                    candidates
-                        .iter()
-                        .filter(|c| c.violation >= vmax.max(0.0) - atol)
-                        .map(|c| {
-                            (
-                                ActiveRow {
-                                    angle_deg: self.geom.angle_deg(c.theta),
-                                    condition: c.condition,
-                                    slack: (vmax.max(0.0) - c.violation).max(0.0),
-                                },
-                                JointRow {
-                                    theta: c.theta,
-                                    condition: c.condition,
-                                },
-                            )
-                        })
-                        .collect()
-                } else {
-                    Vec::new()
-                };
-                pairs.sort_by(|a, b| a.0.angle_deg.total_cmp(&b.0.angle_deg));
-                let (active, active_joints): (Vec<ActiveRow>, Vec<JointRow>) =
-                    pairs.into_iter().unzip();
-                Solved {
-                    outcome,
-                    z,
-                    rows,
-                    max_violation: vmax,
-                    active,
-                    active_joints,
-                    iterations,
-                }
+            let step = Step {
+                z,
+                homogeneous,
+                max_violation: candidates
+                    .iter()
+                    .fold(f64::NEG_INFINITY, |m, c| m.max(c.violation)),
+                candidates,
+                iterations,
             };
-            if vmax <= tol {
-                let outcome = if homogeneous {
-                    Outcome::Unbounded
-                } else {
-                    Outcome::Solved
-                };
-                return done(outcome, rows);
+            let tol = settings.exchange_tol * Self::scale(&z);
+            if step.max_violation <= tol {
+                return self.finish(step, step_outcome(homogeneous), rows, settings);
             }
             if iterations >= settings.exchange_max_iter {
-                return done(Outcome::NotConverged, rows);
+                return self.finish(step, Outcome::NotConverged, rows, settings);
             }
-            let mut added = 0;
-            for c in candidates.iter().filter(|c| c.violation > tol) {
-                let known = rows
-                    .joints
-                    .iter()
-                    .any(|j| j.condition == c.condition && j.theta == c.theta);
-                if !known {
-                    rows.push_row(&self.row(c.theta, c.condition), self.objective);
-                    added += 1;
-                }
-            }
-            if added == 0 {
-                // Every violated joint is already a row: the residual is what the programme
-                // solver accepted (its tolerance also scales with t), not a missing joint.
-                let lp_tol = 10.0
-                    * settings.lp.tol_feas
-                    * (1.0 + z.iter().fold(0.0, |m: f64, v| m.max(v.abs())));
-                let outcome = if vmax <= lp_tol {
-                    if homogeneous {
-                        Outcome::Unbounded
-                    } else {
-                        Outcome::Solved
-                    }
-                } else {
-                    Outcome::NotConverged
-                };
-                return done(outcome, rows);
+            if self.add_violated(&mut rows, &step.candidates, tol) == 0 {
+                let outcome = stalled_outcome(&step, settings);
+                return self.finish(step, outcome, rows, settings);
             }
         }
+    }
+
+    /// Adds a row for every candidate violated by more than `tol` that is not a row yet;
+    /// returns how many were added.
+    fn add_violated(&self, rows: &mut LinearRows, candidates: &[Candidate], tol: f64) -> usize {
+        let mut added = 0;
+        for c in candidates.iter().filter(|c| c.violation > tol) {
+            let known = rows
+                .joints
+                .iter()
+                .any(|j| j.condition == c.condition && j.theta == c.theta);
+            if !known {
+                rows.push_row(&self.row(c.theta, c.condition), self.objective);
+                added += 1;
+            }
+        }
+        added
+    }
+
+    /// The answer of the last exchange step: the candidates within the active tolerance of
+    /// the largest violation are the active rows (none unless solved).
+    fn finish(
+        &self,
+        step: Step,
+        outcome: Outcome,
+        rows: LinearRows,
+        settings: &Settings,
+    ) -> Solved {
+        let vmax = step.max_violation;
+        let atol = self.active_tol(&step.z, settings);
+        let mut pairs: Vec<(ActiveRow, JointRow)> = if outcome == Outcome::Solved {
+            step.candidates
+                .iter()
+                .filter(|c| c.violation >= vmax.max(0.0) - atol)
+                .map(|c| {
+                    (
+                        ActiveRow {
+                            angle_deg: self.geom.angle_deg(c.theta),
+                            condition: c.condition,
+                            slack: (vmax.max(0.0) - c.violation).max(0.0),
+                        },
+                        JointRow {
+                            theta: c.theta,
+                            condition: c.condition,
+                        },
+                    )
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+        pairs.sort_by(|a, b| a.0.angle_deg.total_cmp(&b.0.angle_deg));
+        let (active, active_joints): (Vec<ActiveRow>, Vec<JointRow>) = pairs.into_iter().unzip();
+        Solved {
+            outcome,
+            z: step.z,
+            rows,
+            max_violation: vmax,
+            active,
+            active_joints,
+            iterations: step.iterations,
+        }
+    }
+}
+
+/// One exchange step: the programme's solution and the most violated joints there.
+struct Step {
+    /// z = (x, t), or the ray when the programme is unbounded.
+    z: [f64; 4],
+    /// True when `z` is a ray.
+    homogeneous: bool,
+    /// The refined most violated joints.
+    candidates: Vec<Candidate>,
+    /// The largest of their violations.
+    max_violation: f64,
+    /// Exchange steps so far.
+    iterations: usize,
+}
+
+/// Solved, or unbounded when the step's point is a ray.
+fn step_outcome(homogeneous: bool) -> Outcome {
+    if homogeneous {
+        Outcome::Unbounded
+    } else {
+        Outcome::Solved
+    }
+}
+
+/// The outcome when every violated joint is already a row: the residual is what the
+/// programme solver accepted (its tolerance also scales with t), not a missing joint.
+fn stalled_outcome(step: &Step, settings: &Settings) -> Outcome {
+    let lp_tol =
+        10.0 * settings.lp.tol_feas * (1.0 + step.z.iter().fold(0.0, |m: f64, v| m.max(v.abs())));
+    if step.max_violation <= lp_tol {
+        step_outcome(step.homogeneous)
+    } else {
+        Outcome::NotConverged
     }
 }

@@ -28,6 +28,27 @@ pub(super) struct Solved {
     pub(super) iterations: usize,
 }
 
+impl Solved {
+    /// The answer when the programme has no solution (infeasible or failed): no state, no
+    /// active rows.
+    pub(super) fn without_state(
+        outcome: Outcome,
+        z: [f64; 4],
+        rows: LinearRows,
+        iterations: usize,
+    ) -> Self {
+        Solved {
+            outcome,
+            z,
+            rows,
+            max_violation: f64::INFINITY,
+            active: Vec::new(),
+            active_joints: Vec::new(),
+            iterations,
+        }
+    }
+}
+
 impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
     pub(super) fn conditions(&self) -> impl Iterator<Item = Condition> + '_ {
         Condition::ALL.into_iter().filter(|c| self.set.includes(*c))
