@@ -16,7 +16,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
     /// moment M₀ is free within a range): the vertex returned touches rows that other
     /// optimal states leave slack. With the fourth unknown fixed at its optimum, a row is
     /// kept iff the largest distance x can take from its plane over the optimal face is
-    /// within `active_tol` (one small programme per active row, over the programme's rows
+    /// within `tol_active` (one small programme per active row, over the programme's rows
     /// and the active ones). A joint without normal force (a support that lifts off) holds
     /// its rows with 0 = 0 but neither hinges nor slides: it is open, and left out.
     pub(super) fn keep_necessary(&self, s: &mut Solved, settings: &Settings) {
@@ -24,7 +24,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
         let scale = Self::scale(&s.z);
         let tol = self.active_tol(&s.z, settings);
         // x = z[..3] violates no row by more than the residual: relax every row by it.
-        let relax = s.max_violation.max(0.0) + 1e-14 * scale;
+        let relax = s.max_violation.max(0.0) + settings.tol_necessary_relax * scale;
         let mut a3: Vec<[f64; 3]> = Vec::with_capacity(s.rows.a.len() + s.active.len());
         let mut b3: Vec<f64> = Vec::with_capacity(a3.capacity());
         let mut push = |a: [f64; 4], b: f64| {
@@ -45,10 +45,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
         for (a, b) in &active {
             push(*a, *b);
         }
-        let lp_settings = lp::Settings {
-            max_iter: settings.lp.max_iter.max(10_000 + 4 * a3.len()),
-            ..settings.lp
-        };
+        let lp_settings = settings.lp.scaled_to(a3.len());
         let lambda = match self.objective {
             Objective::Margin { lambda, .. } => lambda,
             Objective::LoadFactor => t,
@@ -81,8 +78,9 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
     }
 }
 
-/// The mechanism named by a set of active rows.
-pub fn mechanism_of(active: &[ActiveRow]) -> Option<Mechanism> {
+/// The mechanism named by a set of active rows; joints within `settings.tol_same_joint` are
+/// one joint.
+pub fn mechanism_of(active: &[ActiveRow], settings: &Settings) -> Option<Mechanism> {
     let mut hinges = Vec::new();
     let mut sliding = Vec::new();
     for r in active {
@@ -112,7 +110,7 @@ pub fn mechanism_of(active: &[ActiveRow]) -> Option<Mechanism> {
         }
     }
     // Both sides of a point load are joints at (nearly) the same angle: one joint each.
-    let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * (1.0 + a.abs());
+    let same = |a: f64, b: f64| (a - b).abs() <= settings.tol_same_joint * (1.0 + a.abs());
     hinges.sort_by(|a, b| a.angle_deg.total_cmp(&b.angle_deg));
     hinges.dedup_by(|a, b| a.face == b.face && same(a.angle_deg, b.angle_deg));
     sliding.sort_by(|a, b| a.angle_deg.total_cmp(&b.angle_deg));

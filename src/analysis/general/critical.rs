@@ -11,9 +11,6 @@ use crate::model::{Arch, Friction};
 use std::cell::Cell;
 use std::f64::consts::FRAC_PI_2;
 
-/// Largest K − 1 explored when bracketing a critical thickness.
-const FAR: f64 = 1e9;
-
 /// A limit state found by a critical-value search.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LimitState {
@@ -77,7 +74,7 @@ fn shifted_margin(
     failed: &Cell<Option<Outcome>>,
 ) -> f64 {
     if m.outcome == Outcome::Solved {
-        m.margin - reference + settings.margin_tol
+        m.margin - reference + settings.tol_margin
     } else {
         failed.set(Some(m.outcome));
         f64::NAN
@@ -114,29 +111,38 @@ fn reference(m: &MarginSolution, settings: &Settings) -> Result<f64, Stop> {
     Ok(m.margin.min(0.0))
 }
 
+/// The bracket and tolerance of a [`search`].
+#[derive(Debug, Clone, Copy)]
+struct Bracket {
+    /// The lower end, where the arch is expected not to stand.
+    lo: f64,
+    /// The first upper end.
+    hi: f64,
+    /// `hi` never goes beyond this.
+    cap: f64,
+    /// Absolute tolerance of the root.
+    tol: f64,
+    /// Whether `hi` doubles away from `lo` while psi(hi) < 0.
+    grow_hi: bool,
+    /// Largest hi − lo explored.
+    max_span: f64,
+}
+
 /// The smallest p in [lo, hi] with psi(p) ≥ 0, for psi whose sign is non-decreasing; `hi`
 /// doubles away from `lo` (up to `cap`) while psi(hi) < 0 when `grow_hi`.
 fn search(
     psi: impl Fn(f64) -> f64,
-    lo: f64,
-    hi: f64,
-    tol: f64,
-    grow_hi: bool,
+    bracket: &Bracket,
     failed: &Cell<Option<Outcome>>,
 ) -> Result<f64, Stop> {
-    search_capped(psi, lo, hi, f64::INFINITY, tol, grow_hi, failed)
-}
-
-/// [`search`] with `hi` never beyond `cap`.
-fn search_capped(
-    psi: impl Fn(f64) -> f64,
-    lo: f64,
-    hi: f64,
-    cap: f64,
-    tol: f64,
-    grow_hi: bool,
-    failed: &Cell<Option<Outcome>>,
-) -> Result<f64, Stop> {
+    let Bracket {
+        lo,
+        hi,
+        cap,
+        tol,
+        grow_hi,
+        max_span,
+    } = *bracket;
     let check = |f: f64| match failed.get() {
         Some(o) => Err(Stop::Failed(o)),
         None => Ok(f),
@@ -150,7 +156,7 @@ fn search_capped(
             return Err(Stop::Never);
         }
         hi = (lo + 2.0 * (hi - lo)).min(cap);
-        if hi - lo > FAR {
+        if hi - lo > max_span {
             return Err(Stop::Never);
         }
     }
@@ -168,7 +174,7 @@ fn search_capped(
 /// The root is taken of τ_all(K) − τ_ref + tol with τ_ref = min(τ_sliding, 0): thickness
 /// cannot make the sliding rows more feasible, so when μ sits at μ_min (τ_sliding ≈ 0⁻) the
 /// search measures the thickness against what sliding allows instead of against noise.
-/// Invariant: τ_all ≥ τ_ref − `margin_tol` ≥ −2 `margin_tol` at the returned K.
+/// Invariant: τ_all ≥ τ_ref − `tol_margin` ≥ −2 `tol_margin` at the returned K.
 pub fn thickness(arch: &Arch, friction: Friction, settings: &Settings) -> Critical {
     thickness_with(
         |k| Some(CircularArch::new(arch.with_k(k))),
@@ -216,11 +222,19 @@ pub fn thickness_with<G: ArchGeometry, F: Fn(f64) -> Option<G>>(
     };
     // Stay clear of the end of the family, where it degenerates.
     let cap = if k_max.is_finite() {
-        1.0 + (k_max - 1.0) * (1.0 - 1e-9)
+        1.0 + (k_max - 1.0) * (1.0 - settings.family_end_clearance)
     } else {
         f64::INFINITY
     };
-    let k = match search_capped(psi, 1.0 + 1e-12, 1.5, cap, 1e-15, true, &failed) {
+    let bracket = Bracket {
+        lo: 1.0 + settings.k_search_offset,
+        hi: settings.k_search_start,
+        cap,
+        tol: settings.tol_thickness,
+        grow_hi: true,
+        max_span: settings.max_bracket,
+    };
+    let k = match search(psi, &bracket, &failed) {
         Ok(k) => k,
         Err(c) => return c.into(),
     };
@@ -231,7 +245,7 @@ pub fn thickness_with<G: ArchGeometry, F: Fn(f64) -> Option<G>>(
     Critical::Found(LimitState {
         k: Some(k),
         mu: friction.mu(),
-        mechanism: state.mechanism(),
+        mechanism: state.mechanism_with(settings),
         state,
     })
 }
@@ -253,7 +267,15 @@ fn friction_search<G: ArchGeometry + ?Sized>(
             &failed,
         )
     };
-    let phi = match search(psi, 0.0, FRAC_PI_2, 1e-16, false, &failed) {
+    let bracket = Bracket {
+        lo: 0.0,
+        hi: FRAC_PI_2,
+        cap: f64::INFINITY,
+        tol: settings.tol_friction_angle,
+        grow_hi: false,
+        max_span: settings.max_bracket,
+    };
+    let phi = match search(psi, &bracket, &failed) {
         Ok(p) => p,
         Err(c) => return c.into(),
     };
@@ -261,7 +283,7 @@ fn friction_search<G: ArchGeometry + ?Sized>(
     Critical::Found(LimitState {
         k: None,
         mu: phi.tan(),
-        mechanism: state.mechanism(),
+        mechanism: state.mechanism_with(settings),
         state,
     })
 }
@@ -271,7 +293,7 @@ fn friction_search<G: ArchGeometry + ?Sized>(
 ///
 /// As in [`thickness`], the root is taken of τ_all(φ) − τ_ref + tol with
 /// τ_ref = min(τ_rotational, 0), so that at K = K_c (τ_rotational ≈ 0⁻) the result is the
-/// bifurcation friction rather than noise. Invariant: τ_all ≥ −2 `margin_tol` at the result.
+/// bifurcation friction rather than noise. Invariant: τ_all ≥ −2 `tol_margin` at the result.
 pub fn friction<G: ArchGeometry + ?Sized>(geom: &G, settings: &Settings) -> Critical {
     let rotational = margin(geom, FRAC_PI_2, RowSet::Rotational, settings);
     match reference(&rotational, settings) {

@@ -33,7 +33,8 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
         for &[lo, hi] in &families {
             if hi > lo && total > 0.0 {
                 let n = ((samples as f64 * (hi - lo) / total).ceil() as usize).max(2);
-                self.scan_family(lo, hi, n, z, homogeneous, settings, &mut out);
+                let family = Sampling { lo, hi, n };
+                self.scan_family(family, z, homogeneous, settings, &mut out);
             } else {
                 points.push(lo);
             }
@@ -55,17 +56,15 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
 
     /// The refined local maxima over [lo, hi] (n sampling intervals) of the violation of each
     /// condition at z.
-    #[allow(clippy::too_many_arguments)]
     pub(super) fn scan_family(
         &self,
-        lo: f64,
-        hi: f64,
-        n: usize,
+        family: Sampling,
         z: &[f64; 4],
         homogeneous: bool,
         settings: &Settings,
         out: &mut Vec<Candidate>,
     ) {
+        let Sampling { lo, hi, n } = family;
         let alpha = self.geom.half_angle();
         let step = (hi - lo) / n as f64;
         let thetas: Vec<f64> = (0..=n)
@@ -93,7 +92,12 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
                 let a = thetas[i.saturating_sub(1)];
                 let b = thetas[(i + 1).min(n)];
                 let f = |t: f64| violation(&self.row(t, condition), self.objective, z, homogeneous);
-                let (mut t, mut fv) = maximise_1d(f, a, b, 1e-10 * alpha.max(1e-3));
+                let (mut t, mut fv) = maximise_1d(
+                    f,
+                    a,
+                    b,
+                    settings.tol_joint_search * alpha.max(settings.joint_search_min_span),
+                );
                 // Brent never evaluates the ends of its bracket: the sample may be better.
                 if v[i] >= fv {
                     (t, fv) = (thetas[i], v[i]);
@@ -160,11 +164,11 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
                 candidates,
                 iterations,
             };
-            let tol = settings.exchange_tol * Self::scale(&z);
+            let tol = settings.tol_exchange * Self::scale(&z);
             if step.max_violation <= tol {
                 return self.finish(step, step_outcome(homogeneous), rows, settings);
             }
-            if iterations >= settings.exchange_max_iter {
+            if iterations >= settings.max_exchange_iterations {
                 return self.finish(step, Outcome::NotConverged, rows, settings);
             }
             if self.add_violated(&mut rows, &step.candidates, tol) == 0 {
@@ -237,6 +241,17 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
     }
 }
 
+/// A family of joints [lo, hi] sampled at n intervals.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Sampling {
+    /// First joint, radians.
+    lo: f64,
+    /// Last joint, radians.
+    hi: f64,
+    /// Sampling intervals.
+    n: usize,
+}
+
 /// One exchange step: the programme's solution and the most violated joints there.
 struct Step {
     /// z = (x, t), or the ray when the programme is unbounded.
@@ -263,8 +278,9 @@ fn step_outcome(homogeneous: bool) -> Outcome {
 /// The outcome when every violated joint is already a row: the residual is what the
 /// programme solver accepted (its tolerance also scales with t), not a missing joint.
 fn stalled_outcome(step: &Step, settings: &Settings) -> Outcome {
-    let lp_tol =
-        10.0 * settings.lp.tol_feas * (1.0 + step.z.iter().fold(0.0, |m: f64, v| m.max(v.abs())));
+    let lp_tol = settings.lp_residual_factor
+        * settings.lp.tol_feasibility
+        * (1.0 + step.z.iter().fold(0.0, |m: f64, v| m.max(v.abs())));
     if step.max_violation <= lp_tol {
         step_outcome(step.homogeneous)
     } else {

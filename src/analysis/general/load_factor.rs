@@ -50,7 +50,7 @@ pub fn load_factor<G: ArchGeometry + ?Sized>(
         outcome: s.outcome,
         lambda,
         crown: CrownState::from_x(&s.z),
-        mechanism: mechanism_of(&s.active),
+        mechanism: mechanism_of(&s.active, settings),
         active: s.active,
         max_violation: s.max_violation,
         iterations: s.iterations,

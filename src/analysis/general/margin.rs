@@ -19,7 +19,7 @@ pub struct MarginSolution {
     pub crown: CrownState,
     /// Largest distance by which a joint violates a row at (x, τ): ≤ 0 up to tolerance.
     pub max_violation: f64,
-    /// Rows whose distance to x equals τ within `active_tol`.
+    /// Rows whose distance to x equals τ within `tol_active`.
     pub active: Vec<ActiveRow>,
     /// Rows in the final programme.
     pub rows: usize,
@@ -28,21 +28,26 @@ pub struct MarginSolution {
 }
 
 impl MarginSolution {
-    /// True when the margin says the rows have a common solution (τ ≥ −`margin_tol`).
+    /// True when the margin says the rows have a common solution (τ ≥ −`tol_margin`).
     pub fn feasible(&self, settings: &Settings) -> bool {
-        self.outcome == Outcome::Solved && self.margin >= -settings.margin_tol
+        self.outcome == Outcome::Solved && self.margin >= -settings.tol_margin
+    }
+
+    /// The mechanism named by the active rows, if any, with the default settings.
+    pub fn mechanism(&self) -> Option<Mechanism> {
+        self.mechanism_with(&Settings::DEFAULT)
     }
 
     /// The mechanism named by the active rows, if any.
-    pub fn mechanism(&self) -> Option<Mechanism> {
-        mechanism_of(&self.active)
+    pub fn mechanism_with(&self, settings: &Settings) -> Option<Mechanism> {
+        mechanism_of(&self.active, settings)
     }
 }
 
 /// The margin of a geometry at friction angle φ (radians) over a set of rows, with λ fixed
 /// at `settings.lambda`.
 ///
-/// Invariant: `margin ≥ −margin_tol` iff the rows of `set` admit a common solution (up to the
+/// Invariant: `margin ≥ −tol_margin` iff the rows of `set` admit a common solution (up to the
 /// exchange tolerance for a continuum).
 pub fn margin<G: ArchGeometry + ?Sized>(
     geom: &G,

@@ -60,51 +60,7 @@ impl RowSet {
     }
 }
 
-/// Settings of the general route; tolerances are relative to 1 + |x|∞ unless stated.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Settings {
-    /// Settings of the linear programme solver.
-    pub lp: lp::Settings,
-    /// Largest number of exchange steps for a continuum (default 200).
-    pub exchange_max_iter: usize,
-    /// The exchange stops when no joint violates a row by more than this distance
-    /// (default 1e-13).
-    pub exchange_tol: f64,
-    /// Joints of the first exchange step, equally spaced over [−α, α], ends included
-    /// (default 17).
-    pub exchange_initial_joints: usize,
-    /// Sampling intervals over [−α, α] in the search for the most violated joint
-    /// (default 64).
-    pub exchange_samples: usize,
-    /// Local maxima of each condition refined per search (default 4).
-    pub exchange_maxima: usize,
-    /// Upper bound τ_cap of the margin, in units of x (default 1).
-    pub margin_cap: f64,
-    /// A margin ≥ −`margin_tol` counts as feasible: limit states are admissible
-    /// (default 1e-12, absolute; keep it above `exchange_tol`).
-    pub margin_tol: f64,
-    /// A row is active when its distance to x is within this of the margin (default 1e-9).
-    pub active_tol: f64,
-    /// Load factor λ held fixed in margins, regimes and critical values (default 0).
-    pub lambda: f64,
-}
-
-impl Default for Settings {
-    fn default() -> Self {
-        Settings {
-            lp: lp::Settings::default(),
-            exchange_max_iter: 200,
-            exchange_tol: 1e-13,
-            exchange_initial_joints: 17,
-            exchange_samples: 64,
-            exchange_maxima: 4,
-            margin_cap: 1.0,
-            margin_tol: 1e-12,
-            active_tol: 1e-9,
-            lambda: 0.0,
-        }
-    }
-}
+pub use crate::analysis::settings::GeneralSettings as Settings;
 
 /// How a general solve ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -122,14 +78,14 @@ pub enum Outcome {
     Failed(lp::Status),
 }
 
-/// A row that holds with equality at a solution (within `active_tol`).
+/// A row that holds with equality at a solution (within `tol_active`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ActiveRow {
     /// Joint angle from the crown, degrees, positive to the right.
     pub angle_deg: f64,
     /// The condition at the limit there.
     pub condition: Condition,
-    /// Distance of x to the row plane minus the margin (≥ 0, ≤ `active_tol`·scale).
+    /// Distance of x to the row plane minus the margin (≥ 0, ≤ `tol_active`·scale).
     pub slack: f64,
 }
 

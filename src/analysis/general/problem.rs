@@ -65,10 +65,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
     }
 
     pub(super) fn lp(&self, rows: &LinearRows, settings: &Settings) -> lp::Solution<4> {
-        let s = lp::Settings {
-            max_iter: settings.lp.max_iter.max(10_000 + 4 * rows.a.len()),
-            ..settings.lp
-        };
+        let s = settings.lp.scaled_to(rows.a.len());
         match lp::maximise(&OBJECTIVE, &rows.a, &rows.b, &s) {
             Ok(sol) => sol,
             Err(_) => lp::Solution {
@@ -89,7 +86,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
     }
 
     pub(super) fn active_tol(&self, z: &[f64; 4], settings: &Settings) -> f64 {
-        settings.active_tol * Self::scale(z)
+        settings.tol_active * Self::scale(z)
     }
 
     pub(super) fn solve(&self, settings: &Settings) -> Solved {
@@ -99,7 +96,9 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
         };
         // Only a limit state names a mechanism: τ ≈ 0 for a margin, any λ_max.
         let limit = match self.objective {
-            Objective::Margin { .. } => s.z[3].abs() <= 1e-6 * Self::scale(&s.z),
+            Objective::Margin { .. } => {
+                s.z[3].abs() <= settings.tol_limit_state * Self::scale(&s.z)
+            }
             Objective::LoadFactor => true,
         };
         if s.outcome == Outcome::Solved && limit && !s.active.is_empty() {

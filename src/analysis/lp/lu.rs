@@ -9,8 +9,9 @@ pub(super) struct Lu<const D: usize> {
 // Index loops read like the textbook triangular solves they implement.
 #[allow(clippy::needless_range_loop)]
 impl<const D: usize> Lu<D> {
-    /// Factorises `m`; `None` when a pivot is negligible (singular to working precision).
-    pub(super) fn factor(mut m: [[f64; D]; D]) -> Option<Self> {
+    /// Factorises `m`; `None` when a pivot is at most `tol_singular` times the largest entry
+    /// (singular to working precision).
+    pub(super) fn factor(mut m: [[f64; D]; D], tol_singular: f64) -> Option<Self> {
         let mut perm = [0; D];
         for (i, p) in perm.iter_mut().enumerate() {
             *p = i;
@@ -29,7 +30,7 @@ impl<const D: usize> Lu<D> {
                     p = i;
                 }
             }
-            if m[p][k].is_nan() || m[p][k].abs() <= 1e-14 * scale {
+            if m[p][k].is_nan() || m[p][k].abs() <= tol_singular * scale {
                 return None;
             }
             m.swap(k, p);

@@ -28,43 +28,10 @@ mod tests;
 use simplex::simplex;
 use tableau::Tableau;
 
-/// Settings of the solver; all tolerances are relative.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Settings {
-    /// Largest number of simplex steps (default 10 000 + 4·rows, set by [`Settings::for_rows`]).
-    pub max_iter: usize,
-    /// A row is violated when its distance a·x − b over |a| exceeds
-    /// `tol_feas`·(1 + |x|∞) (default 1e-13).
-    pub tol_feas: f64,
-    /// Smallest normalised pivot |a_B| u_k / |a_r| accepted in the ratio test (default 1e-10).
-    pub tol_pivot: f64,
-    /// Tolerance on the multipliers y, relative to max |c| (default 1e-12).
-    pub tol_dual: f64,
-    /// Consecutive degenerate steps before switching to Bland's rule (default 12).
-    pub degenerate_steps_before_bland: usize,
-}
+pub use crate::analysis::settings::LpSettings as Settings;
 
-impl Default for Settings {
-    fn default() -> Self {
-        Settings {
-            max_iter: 10_000,
-            tol_feas: 1e-13,
-            tol_pivot: 1e-10,
-            tol_dual: 1e-12,
-            degenerate_steps_before_bland: 12,
-        }
-    }
-}
-
-impl Settings {
-    /// The defaults with an iteration limit scaled to `rows`.
-    pub fn for_rows(rows: usize) -> Self {
-        Settings {
-            max_iter: 10_000 + 4 * rows,
-            ..Settings::default()
-        }
-    }
-}
+/// Floor of the multiplier scale max |c|, so that a zero objective divides by no zero.
+const MIN_MULTIPLIER_SCALE: f64 = 1e-300;
 
 /// How a solve ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -75,7 +42,7 @@ pub enum Status {
     Infeasible,
     /// The objective is unbounded above along [`Solution::ray`].
     Unbounded,
-    /// `max_iter` steps were taken without reaching an answer.
+    /// `max_iterations` steps were taken without reaching an answer.
     IterationLimit,
     /// A basis turned out singular in floating point (not expected; reported, not hidden).
     NumericalFailure,

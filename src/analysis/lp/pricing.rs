@@ -61,8 +61,8 @@ pub(super) fn price<const D: usize>(
     bland: bool,
 ) -> Pricing {
     let phase1 = v.x1.iter().any(|&z| z != 0.0);
-    let tol0 = settings.tol_feas * (1.0 + inf_norm(&v.x0));
-    let tol1 = settings.tol_feas * (1.0 + inf_norm(&v.x1));
+    let tol0 = settings.tol_feasibility * (1.0 + inf_norm(&v.x0));
+    let tol1 = settings.tol_feasibility * (1.0 + inf_norm(&v.x1));
     // Best (score, index) in the M-part and in the finite part.
     let mut best1: Option<(f64, usize)> = None;
     let mut best0: Option<(f64, usize)> = None;

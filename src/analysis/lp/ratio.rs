@@ -1,19 +1,19 @@
 //! The ratio test: the basic row that leaves when a row enters (Harris two-pass, or Bland).
 
-use super::Settings;
+use super::simplex::Context;
 use super::tableau::{Tableau, Vertex};
 
 /// The basic slot that leaves when row `r` enters (Harris two-pass, or Bland's rule).
 /// `None`: no positive pivot, the programme is infeasible. Also returns the step length.
 pub(super) fn ratio_test<const D: usize>(
+    ctx: &Context<'_, D>,
     t: &Tableau<'_, D>,
     v: &Vertex<D>,
     basis: &[usize; D],
     r: usize,
-    settings: &Settings,
-    ymax: f64,
     bland: bool,
 ) -> Option<(usize, f64)> {
+    let (settings, ymax) = (ctx.settings, ctx.ymax);
     let ar = t.row(r);
     let u = v.lu.solve_t(&ar);
     let nr = t.row_norm(r);

@@ -3,8 +3,21 @@
 use super::pricing::price;
 use super::ratio::ratio_test;
 use super::tableau::{Tableau, Vertex, vertex};
-use super::{Settings, Solution, Status, dot, inf_norm};
+use super::{MIN_MULTIPLIER_SCALE, Settings, Solution, Status, dot, inf_norm};
 
+/// What every step of one solve shares: the objective, the settings and the scale of the
+/// multipliers (max |c|).
+pub(super) struct Context<'a, const D: usize> {
+    /// The objective c.
+    pub(super) c: &'a [f64; D],
+    /// The solver settings.
+    pub(super) settings: &'a Settings,
+    /// max |c|, floored at [`MIN_MULTIPLIER_SCALE`].
+    pub(super) ymax: f64,
+}
+
+/// The simplex method on the dual from the artificial basis, to an optimal, infeasible or
+/// unbounded answer or the iteration limit.
 pub(super) fn simplex<const D: usize>(
     c: &[f64; D],
     t: &mut Tableau<'_, D>,
@@ -19,7 +32,11 @@ pub(super) fn simplex<const D: usize>(
     for &k in &basis {
         in_basis[k] = true;
     }
-    let ymax = c.iter().fold(0.0_f64, |s, v| s.max(v.abs())).max(1e-300);
+    let ymax = c
+        .iter()
+        .fold(0.0_f64, |s, v| s.max(v.abs()))
+        .max(MIN_MULTIPLIER_SCALE);
+    let ctx = Context { c, settings, ymax };
     let mut degenerate_run = 0;
     let mut last: Option<Vertex<D>> = None;
     let finish = |status: Status,
@@ -47,16 +64,16 @@ pub(super) fn simplex<const D: usize>(
         }
         s
     };
-    for iter in 0..settings.max_iter {
-        let Some(v) = vertex(c, t, &basis) else {
+    for iter in 0..settings.max_iterations {
+        let Some(v) = vertex(&ctx, t, &basis) else {
             return finish(Status::NumericalFailure, &basis, last.as_ref(), iter, 0.0);
         };
         let bland = degenerate_run >= settings.degenerate_steps_before_bland;
         let p = price(t, &v, &in_basis, settings, bland);
         let Some(r) = p.entering else {
-            return optimal(c, t, &basis, &v, iter, p.max_violation, settings, ymax);
+            return optimal(&ctx, t, &basis, &v, iter, p.max_violation);
         };
-        let Some((slot, step)) = ratio_test(t, &v, &basis, r, settings, ymax, bland) else {
+        let Some((slot, step)) = ratio_test(&ctx, t, &v, &basis, r, bland) else {
             return finish(Status::Infeasible, &basis, Some(&v), iter, p.max_violation);
         };
         if step * ymax.recip() <= settings.tol_dual {
@@ -75,24 +92,22 @@ pub(super) fn simplex<const D: usize>(
         Status::IterationLimit,
         &basis,
         last.as_ref(),
-        settings.max_iter,
+        settings.max_iterations,
         0.0,
     )
 }
 
 /// The answer at a basis that no row violates: optimal, or unbounded when an artificial
 /// row carries a positive multiplier.
-#[allow(clippy::too_many_arguments)]
 pub(super) fn optimal<const D: usize>(
-    c: &[f64; D],
+    ctx: &Context<'_, D>,
     t: &Tableau<'_, D>,
     basis: &[usize; D],
     v: &Vertex<D>,
     iterations: usize,
     max_violation: f64,
-    settings: &Settings,
-    ymax: f64,
 ) -> Solution<D> {
+    let Context { c, settings, ymax } = *ctx;
     let m = t.m;
     let mut s = Solution {
         status: Status::Optimal,
@@ -120,7 +135,7 @@ pub(super) fn optimal<const D: usize>(
     if v.x1.iter().any(|&z| z != 0.0) {
         // A free direction remains: move along it just far enough to satisfy the rows that
         // are satisfied only for large M (their M-part is negative).
-        let tol1 = settings.tol_feas * (1.0 + inf_norm(&v.x1));
+        let tol1 = settings.tol_feasibility * (1.0 + inf_norm(&v.x1));
         let mut big_m: f64 = 0.0;
         for k in 0..m {
             let inv = t.inv_norm[k];

@@ -3,6 +3,7 @@
 
 use super::dot;
 use super::lu::Lu;
+use super::simplex::Context;
 
 /// The problem as the solver sees it: real rows 0..m, then the D artificial rows.
 pub(super) struct Tableau<'a, const D: usize> {
@@ -83,8 +84,9 @@ pub(super) struct Vertex<const D: usize> {
     pub(super) lu: Lu<D>,
 }
 
+/// The vertex and multipliers of a basis; `None` when the basis is singular.
 pub(super) fn vertex<const D: usize>(
-    c: &[f64; D],
+    ctx: &Context<'_, D>,
     t: &Tableau<'_, D>,
     basis: &[usize; D],
 ) -> Option<Vertex<D>> {
@@ -95,7 +97,7 @@ pub(super) fn vertex<const D: usize>(
         mat[i] = t.row(k);
         (r0[i], r1[i]) = t.rhs(k);
     }
-    let lu = Lu::factor(mat)?;
+    let lu = Lu::factor(mat, ctx.settings.tol_singular)?;
     let mut x0 = lu.solve(&r0);
     // One step of iterative refinement on the finite part.
     let mut res = [0.0; D];
@@ -111,7 +113,7 @@ pub(super) fn vertex<const D: usize>(
     } else {
         [0.0; D]
     };
-    let y = lu.solve_t(c);
+    let y = lu.solve_t(ctx.c);
     if x0.iter().chain(&x1).chain(&y).any(|v| !v.is_finite()) {
         return None;
     }
