@@ -2,6 +2,7 @@
 //! equation (eqs. 9, 11); the ten families of Figs. 3–5; the associative comparison.
 
 use super::*;
+use crate::analysis::MechanismKind;
 use crate::analysis::circular::CircularArch;
 use crate::analysis::symmetric::{CriticalState, friction, sliding_threshold, thickness};
 use crate::model::{Arch, Discretisation, Friction, WeightModel};
