@@ -19,8 +19,10 @@
 //! equality); a sliding joint has δα = 0 and v_rel·ν = 0 (pure sliding, no dilatancy) or,
 //! under the associative rule, v_rel·ν = tan φ |v_rel·τ|; a La Hire joint (hinge and sliding)
 //! keeps only the normal row at its hinge point. The mechanism degrees of freedom are the
-//! dimension of the null space, computed by SVD with the rank tolerance [`RANK_TOL`].
+//! dimension of the null space, computed by SVD with the rank tolerance
+//! [`KinematicsSettings::tol_rank`].
 
+pub use super::settings::KinematicsSettings;
 use super::statics::{ArchGeometry, Point};
 use super::types::{Face, Mechanism, Sense};
 
@@ -36,25 +38,27 @@ pub mod work;
 mod tests;
 
 pub use collapse::{
-    CollapseMechanism, DilatancyRow, FlowRuleComparison, collapse_mechanism, compare_flow_rules,
+    CollapseMechanism, DilatancyRow, FlowRuleComparison, collapse_mechanism,
+    collapse_mechanism_with, compare_flow_rules, compare_flow_rules_with, mechanism_at,
 };
 pub use compatibility::Compatibility;
-pub use families::{Family, FamilyTemplate, REPRESENTATIVE, families, family};
+pub use families::{
+    Family, FamilyTemplate, REPRESENTATIVE, families, families_with, family, family_with,
+};
 pub use field::{JointMotion, Part, RigidVelocity, VelocityField, Violation};
-pub use modes::{ModeStatus, Modes, mechanism_modes, null_space};
-pub use outline::{MechanismDrawing, drawing};
+pub use modes::{ModeStatus, Modes, mechanism_modes, mechanism_modes_with, null_space};
+pub use outline::{MechanismDrawing, drawing, drawing_with};
 pub use work::{JointForce, LimitState, WorkEquation, joint_force, work_equation};
 
-/// Relative rank tolerance of the compatibility system: a singular value below `RANK_TOL`
-/// times the largest one (or 1, whichever is larger) counts as zero. The entries are unit
-/// vector components and lengths over r, so this is far above rounding (1e-15) and far below
-/// any genuine stiffness of a pattern of joints a fraction of a degree apart.
-pub const RANK_TOL: f64 = 1e-9;
-/// A relative rotation or slip below this, on a field normalised to a largest block-corner
-/// speed of 1, counts as zero: the joint does not move in that mode.
-pub const ACTIVE_TOL: f64 = 1e-9;
-/// Two joints closer than this (radians, about 1e-9°) are the same joint.
-const SAME_JOINT: f64 = 1e-11;
+/// The default relative rank tolerance of the compatibility system
+/// ([`KinematicsSettings::tol_rank`]).
+pub const RANK_TOL: f64 = KinematicsSettings::DEFAULT.tol_rank;
+/// The default threshold below which a relative rotation or slip counts as zero
+/// ([`KinematicsSettings::tol_motion`]).
+pub const MOTION_TOL: f64 = KinematicsSettings::DEFAULT.tol_motion;
+/// Former name of [`MOTION_TOL`], kept for the mechanism figures (it is not the symmetric
+/// route's hinge tolerance, `SymmetricSettings::tol_hinge`).
+pub const ACTIVE_TOL: f64 = MOTION_TOL;
 
 /// Why a pattern of joints cannot be analysed (bad input, not an outcome).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -150,12 +154,13 @@ pub fn pattern_of(m: &Mechanism) -> Vec<ActiveJoint> {
     joints
 }
 
-/// Checks a pattern against the arch: finite, inside [−α, α] (joints within 1e-9° of a
-/// springing are put on it), sorted, coincident joints merged (a hinge and a slide become La
-/// Hire).
+/// Checks a pattern against the arch: finite, inside [−α, α] (joints within
+/// `tol_springing_deg` of a springing are put on it), sorted, coincident joints (within
+/// `tol_same_joint`) merged (a hinge and a slide become La Hire).
 pub fn normalise_pattern<G: ArchGeometry + ?Sized>(
     geom: &G,
     joints: &[ActiveJoint],
+    settings: &KinematicsSettings,
 ) -> Result<Vec<ActiveJoint>, KinematicsError> {
     let alpha = geom.half_angle();
     let mut out: Vec<ActiveJoint> = Vec::with_capacity(joints.len());
@@ -163,7 +168,7 @@ pub fn normalise_pattern<G: ArchGeometry + ?Sized>(
         if !j.theta.is_finite() {
             return Err(KinematicsError::NotFinite(j.theta.to_degrees()));
         }
-        if j.theta.abs() > alpha + 1e-9_f64.to_radians() {
+        if j.theta.abs() > alpha + settings.tol_springing_deg.to_radians() {
             return Err(KinematicsError::Outside {
                 angle_deg: j.angle_deg(),
                 alpha_deg: alpha.to_degrees(),
@@ -177,7 +182,7 @@ pub fn normalise_pattern<G: ArchGeometry + ?Sized>(
     let mut merged: Vec<ActiveJoint> = Vec::with_capacity(out.len());
     for j in out {
         match merged.last_mut() {
-            Some(last) if (last.theta - j.theta).abs() <= SAME_JOINT => {
+            Some(last) if (last.theta - j.theta).abs() <= settings.tol_same_joint => {
                 match (last.hinge, j.hinge) {
                     (Some(a), Some(b)) if a != b => {
                         return Err(KinematicsError::BothFaces(j.angle_deg()));

@@ -238,6 +238,8 @@ pub struct KinematicsSettings {
     /// Below this rotation amplitude, radians, a displaced point uses the small-angle series
     /// (default 1e-8).
     pub small_rotation: f64,
+    /// Largest number of SVD iterations of a null-space computation (default 500).
+    pub max_svd_iterations: usize,
 }
 
 impl KinematicsSettings {
@@ -251,6 +253,7 @@ impl KinematicsSettings {
         tol_cone: 1e-9,
         tol_same_ray: 1e-6,
         small_rotation: 1e-8,
+        max_svd_iterations: 500,
     };
 }
 

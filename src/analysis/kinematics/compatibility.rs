@@ -2,7 +2,7 @@
 //! columns (u_x, u_y, ω) per free block.
 
 use super::{
-    ActiveJoint, FlowRule, JointMotion, KinematicsError, Part, RigidVelocity, SAME_JOINT,
+    ActiveJoint, FlowRule, JointMotion, KinematicsError, KinematicsSettings, Part, RigidVelocity,
     VelocityField, cross, dot, face_sign, normalise_pattern, sense_sign, sub,
 };
 use crate::analysis::statics::{ArchGeometry, Point};
@@ -49,6 +49,8 @@ pub struct Compatibility {
     pub joints: Vec<ActiveJoint>,
     /// The flow rule at sliding joints.
     pub rule: FlowRule,
+    /// The tolerances the system and its fields use.
+    pub settings: KinematicsSettings,
     /// The n + 1 parts with zero velocity (references set).
     pub parts: Vec<Part>,
     /// The matrix A: A x = 0 for x = (u_x, u_y, ω) of each block in turn.
@@ -95,8 +97,9 @@ impl Compatibility {
         geom: &G,
         joints: &[ActiveJoint],
         rule: FlowRule,
+        settings: &KinematicsSettings,
     ) -> Result<Self, KinematicsError> {
-        let joints = normalise_pattern(geom, joints)?;
+        let joints = normalise_pattern(geom, joints, settings)?;
         let alpha = geom.half_angle();
         let n = joints.len();
         let mut parts = Vec::with_capacity(n + 1);
@@ -122,6 +125,7 @@ impl Compatibility {
         let mut sys = Compatibility {
             joints,
             rule,
+            settings: *settings,
             parts,
             matrix: DMatrix::zeros(0, 0),
             row_joint: Vec::new(),
@@ -201,7 +205,7 @@ impl Compatibility {
         let n = self.joints.len();
         (0..n).all(|i| {
             let (a, b) = (self.joints[i], self.joints[n - 1 - i]);
-            (a.theta + b.theta).abs() <= SAME_JOINT
+            (a.theta + b.theta).abs() <= self.settings.tol_same_joint
                 && a.hinge == b.hinge
                 && a.slides == b.slides
                 && a.sense == b.sense
@@ -266,6 +270,7 @@ impl Compatibility {
                     slip: -joint.crown_side() * dot(rel(slide_point), f.along),
                     dilatancy: dot(rel(slide_point), f.normal),
                     constraint_residual,
+                    tol_motion: self.settings.tol_motion,
                 }
             })
             .collect();

@@ -1,7 +1,7 @@
 //! Velocity fields of a mechanism: rigid velocities of the parts, the relative motion at
 //! each active joint and the breaches of the flow rules.
 
-use super::{ACTIVE_TOL, ActiveJoint, FlowRule, face_sign, sense_sign, sub};
+use super::{ActiveJoint, FlowRule, face_sign, sense_sign, sub};
 use crate::analysis::statics::Point;
 use crate::analysis::types::{Face, MechanismKind, Sense};
 
@@ -68,6 +68,11 @@ pub struct JointMotion {
     pub dilatancy: f64,
     /// Largest |row value| of this joint's compatibility equations (zero up to rounding).
     pub constraint_residual: f64,
+    /// A rotation or slip below this counts as zero ([`KinematicsSettings::tol_motion`] of
+    /// the settings the field was computed with).
+    ///
+    /// [`KinematicsSettings::tol_motion`]: super::KinematicsSettings::tol_motion
+    pub tol_motion: f64,
 }
 
 impl JointMotion {
@@ -76,25 +81,25 @@ impl JointMotion {
         self.joint.angle_deg()
     }
 
-    /// The sense of the slip, `None` below [`ACTIVE_TOL`].
+    /// The sense of the slip, `None` below `tol_motion`.
     pub fn slip_sense(&self) -> Option<Sense> {
-        if self.slip > ACTIVE_TOL {
+        if self.slip > self.tol_motion {
             Some(Sense::Outward)
-        } else if self.slip < -ACTIVE_TOL {
+        } else if self.slip < -self.tol_motion {
             Some(Sense::Inward)
         } else {
             None
         }
     }
 
-    /// True when the joint rotates (|δα| above [`ACTIVE_TOL`]).
+    /// True when the joint rotates (|δα| above `tol_motion`).
     pub fn rotates(&self) -> bool {
-        self.relative_rotation.abs() > ACTIVE_TOL
+        self.relative_rotation.abs() > self.tol_motion
     }
 
-    /// True when the joint slides (|δr^t| above [`ACTIVE_TOL`]).
+    /// True when the joint slides (|δr^t| above `tol_motion`).
     pub fn slips(&self) -> bool {
-        self.slip.abs() > ACTIVE_TOL
+        self.slip.abs() > self.tol_motion
     }
 }
 
@@ -151,13 +156,13 @@ impl VelocityField {
     }
 
     /// Breaches of normality at the hinges and of dissipation at sliding joints with a
-    /// required sense (tolerance [`ACTIVE_TOL`]).
+    /// required sense (tolerance `tol_motion` of each joint).
     pub fn violations(&self) -> Vec<Violation> {
         let mut out = Vec::new();
         for m in &self.joints {
             if let Some(face) = m.joint.hinge {
                 let s = face_sign(face);
-                if s * m.relative_rotation < -ACTIVE_TOL {
+                if s * m.relative_rotation < -m.tol_motion {
                     out.push(Violation::Normality {
                         angle_deg: m.angle_deg(),
                         face,
@@ -166,7 +171,7 @@ impl VelocityField {
                 }
             }
             if let (true, Some(sense)) = (m.joint.slides, m.joint.sense)
-                && sense_sign(sense) * m.slip < -ACTIVE_TOL
+                && sense_sign(sense) * m.slip < -m.tol_motion
             {
                 out.push(Violation::Dissipation {
                     angle_deg: m.angle_deg(),

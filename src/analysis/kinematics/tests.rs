@@ -397,8 +397,18 @@ fn displaced_blocks_keep_their_shape_and_meet_at_hinges() {
                 } else {
                     j.extrados
                 };
-                let a = outline::displace(&field.parts[k].velocity, p, eps);
-                let b = outline::displace(&field.parts[k + 1].velocity, p, eps);
+                let a = outline::displace(
+                    &field.parts[k].velocity,
+                    p,
+                    eps,
+                    &KinematicsSettings::DEFAULT,
+                );
+                let b = outline::displace(
+                    &field.parts[k + 1].velocity,
+                    p,
+                    eps,
+                    &KinematicsSettings::DEFAULT,
+                );
                 assert!(
                     (a[0] - b[0]).hypot(a[1] - b[1]) < 10.0 * eps * eps,
                     "{}",
@@ -445,7 +455,7 @@ fn la_hire_joint_is_merged_from_a_state_pattern() {
     let s = found(friction(&semi(K_C)));
     let joints = pattern_of(&s.mechanism);
     let geom = CircularArch::new(semi(K_C));
-    let merged = normalise_pattern(&geom, &joints).unwrap();
+    let merged = normalise_pattern(&geom, &joints, &KinematicsSettings::DEFAULT).unwrap();
     assert_eq!(merged.len(), 5);
     let spr = merged.last().unwrap();
     assert_eq!(
