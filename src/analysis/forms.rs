@@ -40,9 +40,13 @@
 //!   The continuum has both sides of the load as joints: the joint at a (load on the crown
 //!   side) and the joint at the adjacent float on the far side.
 
+use super::settings::GeometrySettings;
 use super::statics::{ArchGeometry, Joint, Point, Resultant};
 use crate::model::{Arch, ArchForm, Discretisation, JointOrientation, Load, WeightModel};
 use std::f64::consts::FRAC_PI_2;
+
+/// The numerical thresholds of the forms (see [`GeometrySettings`]).
+const GEOMETRY: GeometrySettings = GeometrySettings::DEFAULT;
 
 /// Why a form, an arch and a load do not make a valid scene.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -183,7 +187,9 @@ impl ArchModel {
                 max_k,
             });
         }
-        if form.joints == JointOrientation::Vertical && alpha > FRAC_PI_2 + 1e-12 {
+        if form.joints == JointOrientation::Vertical
+            && alpha > FRAC_PI_2 + GEOMETRY.tol_vertical_alpha
+        {
             return Err(FormError::VerticalBeyondQuadrant(arch.half_angle_deg()));
         }
         let d = form.centre_offset(k);
@@ -214,7 +220,7 @@ impl ArchModel {
         };
         if let Load::Point { at_deg } = load {
             let a = at_deg.to_radians();
-            if !(a.abs() <= alpha * (1.0 + 1e-15)) {
+            if !(a.abs() <= alpha * (1.0 + GEOMETRY.tol_joint_range)) {
                 return Err(FormError::LoadOutside {
                     at_deg,
                     half_angle_deg: arch.half_angle_deg(),

@@ -4,6 +4,15 @@
 //! values of archstudy are roots of continuous, monotone margin functions, found by Brent's
 //! method, never by fixed-step scans.
 
+/// Largest number of steps of [`brent`]; it converges in far fewer, this only bounds a
+/// pathological function.
+const MAX_ROOT_STEPS: usize = 400;
+/// Largest number of steps of [`maximise_1d`].
+const MAX_MAXIMISE_STEPS: usize = 200;
+/// Relative tolerance on the argument added to the absolute one in [`maximise_1d`]: about
+/// the spacing of doubles near x.
+const REL_ARG_TOL: f64 = 1e-15;
+
 /// Brent's method for a root of `f` in `[a, b]`, where `f(a)` and `f(b)` differ in sign (or one
 /// is zero). Stops when the bracket is shorter than `tol` (absolute) plus four ulps.
 ///
@@ -42,7 +51,7 @@ pub fn brent_with_values<F: FnMut(f64) -> f64>(
     let mut fc = fa;
     let mut d = b - a;
     let mut e = d;
-    for _ in 0..400 {
+    for _ in 0..MAX_ROOT_STEPS {
         if fb.signum() == fc.signum() {
             c = a;
             fc = fa;
@@ -133,9 +142,9 @@ pub fn maximise_1d<F: FnMut(f64) -> f64>(mut f: F, a: f64, b: f64, tol: f64) -> 
     let mut fx = -f(x);
     let (mut fw, mut fv) = (fx, fx);
     let (mut d, mut e): (f64, f64) = (0.0, 0.0);
-    for _ in 0..200 {
+    for _ in 0..MAX_MAXIMISE_STEPS {
         let xm = 0.5 * (a + b);
-        let tol1 = tol + 1e-15 * x.abs();
+        let tol1 = tol + REL_ARG_TOL * x.abs();
         let tol2 = 2.0 * tol1;
         if (x - xm).abs() <= tol2 - 0.5 * (b - a) {
             break;

@@ -283,7 +283,7 @@ pub struct GeometrySettings {
     /// A vertical-joint arch may reach this far, radians, past a half-angle of 90°
     /// (default 1e-12).
     pub tol_vertical_alpha: f64,
-    /// Relative slack on |θ| ≤ α when checking joints of a form (default 1e-15).
+    /// Relative slack on |θ| ≤ α when checking the position of a point load (default 1e-15).
     pub tol_joint_range: f64,
 }
 
