@@ -387,12 +387,16 @@ impl SymmetricCircular {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use approx::{abs_diff_eq, assert_abs_diff_eq};
 
     #[test]
     fn theta_cot_root_is_inverse() {
         for c in [0.99, 0.5, 0.0, -1.0, -10.0, 0.999999999] {
             let t = solve_theta_cot(c);
-            assert!((theta_cot_theta(t) - c).abs() < 1e-12, "c = {c}, t = {t}");
+            assert!(
+                abs_diff_eq!(theta_cot_theta(t), c, epsilon = 1e-12),
+                "c = {c}, t = {t}"
+            );
         }
         assert_eq!(solve_theta_cot(1.0), 0.0);
     }
@@ -414,8 +418,8 @@ mod tests {
                 let v_e = rows[1].violation(&x, 0.0);
                 assert_eq!(rows[0].condition, Condition::Intrados);
                 // Intrados violated iff m < L; extrados violated iff m > U.
-                assert!((v_i - (sym.intrados(theta, h) - m)).abs() < 1e-14);
-                assert!((v_e - (m - sym.extrados(theta, h))).abs() < 1e-14);
+                assert_abs_diff_eq!(v_i, (sym.intrados(theta, h) - m), epsilon = 1e-14);
+                assert_abs_diff_eq!(v_e, (m - sym.extrados(theta, h)), epsilon = 1e-14);
             }
         }
     }

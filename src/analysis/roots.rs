@@ -212,11 +212,12 @@ pub fn maximise_1d<F: FnMut(f64) -> f64>(mut f: F, a: f64, b: f64, tol: f64) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use approx::assert_abs_diff_eq;
 
     #[test]
     fn brent_finds_cube_root_of_two() {
         let x = brent(|x| x * x * x - 2.0, 0.0, 2.0, 1e-15).unwrap();
-        assert!((x - 2f64.cbrt()).abs() < 1e-14);
+        assert_abs_diff_eq!(x, 2f64.cbrt(), epsilon = 1e-14);
     }
 
     #[test]
@@ -240,13 +241,14 @@ mod tests {
             5.0,
             1e-14,
         );
-        assert!((x - 1.0).abs() < 1e-13);
+        assert_abs_diff_eq!(x, 1.0, epsilon = 1e-13);
     }
 
     #[test]
     fn maximise_1d_finds_interior_and_end_maxima() {
         let (x, f) = maximise_1d(|t| -(t - 0.3) * (t - 0.3), 0.0, 1.0, 1e-12);
-        assert!((x - 0.3).abs() < 1e-8 && f.abs() < 1e-16);
+        assert_abs_diff_eq!(x, 0.3, epsilon = 1e-8);
+        assert_abs_diff_eq!(f, 0.0, epsilon = 1e-16);
         let (x, _) = maximise_1d(|t| t, 0.0, 1.0, 1e-12);
         assert!(x > 1.0 - 1e-9);
     }

@@ -9,6 +9,7 @@ use crate::analysis::symmetric;
 use crate::analysis::types::{Face, Sense};
 use crate::model::{Arch, Friction};
 use crate::model::{Discretisation, WeightModel};
+use approx::{abs_diff_eq, assert_abs_diff_eq};
 use std::f64::consts::FRAC_PI_2;
 
 const K_C: f64 = 1.113581813339;
@@ -74,7 +75,7 @@ fn assert_close(what: &str, got: [f64; 5], want: [f64; 5], tol: f64) {
     let names = ["K_c", "mu_rot", "mu_min", "K_bif", "K(0.35)"];
     for i in 0..5 {
         assert!(
-            (got[i] - want[i]).abs() < tol,
+            abs_diff_eq!(got[i], want[i], epsilon = tol),
             "{what}: {} = {} vs {} (diff {:e})",
             names[i],
             got[i],
@@ -110,7 +111,10 @@ fn discrete_arches_agree_with_the_symmetric_route() {
                 &Settings::default(),
             ));
             let w = sym_mu(&symmetric::friction(&a.with_k(k)));
-            assert!((g - w).abs() < 1e-9, "N = {n}, K = {k}: {g} vs {w}");
+            assert!(
+                abs_diff_eq!(g, w, epsilon = 1e-9),
+                "N = {n}, K = {k}: {g} vs {w}"
+            );
         }
     }
 }
@@ -148,7 +152,7 @@ fn segmental_and_horseshoe_arches_agree_with_the_symmetric_route() {
         ];
         for i in 0..4 {
             assert!(
-                (g[i] - w[i]).abs() < 1e-9,
+                abs_diff_eq!(g[i], w[i], epsilon = 1e-9),
                 "α = {alpha}: value {i}: {} vs {} ({:e})",
                 g[i],
                 w[i],
@@ -179,12 +183,12 @@ fn rotational_mechanism_at_k_c() {
     ];
     for ((a, f), (wa, wf)) in angles.iter().zip(want) {
         assert_eq!(*f, wf);
-        assert!((a - wa).abs() < 1e-6, "{angles:?}");
+        assert!(abs_diff_eq!(*a, wa, epsilon = 1e-6), "{angles:?}");
     }
     // The limit state is symmetric: no shear at the crown, thrust = μ at the bifurcation.
     let crown = s.state.crown;
-    assert!(crown.shear_over_half_weight.abs() < 1e-12);
-    assert!((crown.thrust_over_half_weight - MU_ROT).abs() < 1e-9);
+    assert_abs_diff_eq!(crown.shear_over_half_weight, 0.0, epsilon = 1e-12);
+    assert_abs_diff_eq!(crown.thrust_over_half_weight, MU_ROT, epsilon = 1e-9);
 }
 
 #[test]
@@ -201,14 +205,10 @@ fn sliding_mechanism_at_mu_min() {
         .map(|j| (j.angle_deg, j.sense))
         .collect();
     assert_eq!(j.len(), 4, "{j:?}");
-    assert!(
-        (j[2].0 - 28.63619468).abs() < 1e-6 && j[2].1 == Sense::Inward,
-        "{j:?}"
-    );
-    assert!(
-        (j[3].0 - 90.0).abs() < 1e-12 && j[3].1 == Sense::Outward,
-        "{j:?}"
-    );
+    assert!(abs_diff_eq!(j[2].0, 28.63619468, epsilon = 1e-6), "{j:?}");
+    assert_eq!(j[2].1, Sense::Inward, "{j:?}");
+    assert!(abs_diff_eq!(j[3].0, 90.0, epsilon = 1e-12), "{j:?}");
+    assert_eq!(j[3].1, Sense::Outward, "{j:?}");
     assert_eq!((j[0].1, j[1].1), (Sense::Outward, Sense::Inward), "{j:?}");
 }
 
@@ -351,7 +351,11 @@ fn load_factor_vanishes_at_collapse_and_matches_the_margin() {
             let s = Settings { lambda, ..s };
             margin(&g, 0.6f64.atan(), RowSet::All, &s).margin
         };
-        assert!(at(lf.lambda).abs() < 1e-10, "{}", at(lf.lambda));
+        assert!(
+            abs_diff_eq!(at(lf.lambda), 0.0, epsilon = 1e-10),
+            "{}",
+            at(lf.lambda)
+        );
         assert!(at(lf.lambda - 1e-3) > 0.0);
         assert!(at(lf.lambda + 1e-3) < 0.0);
     }
@@ -430,20 +434,20 @@ fn clarabel_agrees_on_the_n64_programmes() {
         assert_eq!(ours.status, lp::Status::Optimal);
         let oracle = clarabel_max(&rows);
         assert!(
-            (ours.x[3] - oracle).abs() < 1e-7,
+            abs_diff_eq!(ours.x[3], oracle, epsilon = 1e-7),
             "{set:?}: {} vs {oracle}",
             ours.x[3]
         );
         // The general route uses the same programme.
         let m = margin(&g, phi, set, &s);
-        assert!((m.margin - ours.x[3]).abs() < 1e-14);
+        assert_abs_diff_eq!(m.margin, ours.x[3], epsilon = 1e-14);
     }
     let rows = LinearRows::load_factor(&g, &thetas, 0.6f64.atan(), RowSet::All);
     let ours = lp::maximise(&OBJECTIVE, &rows.a, &rows.b, &s.lp).unwrap();
     assert_eq!(ours.status, lp::Status::Optimal);
     let oracle = clarabel_max(&rows);
     assert!(
-        (ours.x[3] - oracle).abs() < 1e-7,
+        abs_diff_eq!(ours.x[3], oracle, epsilon = 1e-7),
         "λ: {} vs {oracle}",
         ours.x[3]
     );

@@ -2,6 +2,7 @@
 
 use super::pricing::most_violated;
 use super::*;
+use approx::{abs_diff_eq, assert_abs_diff_eq};
 
 fn solve<const D: usize>(c: [f64; D], a: &[[f64; D]], b: &[f64]) -> Solution<D> {
     maximise(&c, a, b, &Settings::default()).unwrap()
@@ -43,12 +44,14 @@ fn square_corner() {
         &[1.0, 2.0, 5.0],
     );
     assert_eq!(s.status, Status::Optimal);
-    assert!((s.x[0] - 1.0).abs() < 1e-15 && (s.x[1] - 2.0).abs() < 1e-15);
-    assert!((s.objective - 3.0).abs() < 1e-15);
+    assert_abs_diff_eq!(s.x[0], 1.0, epsilon = 1e-15);
+    assert_abs_diff_eq!(s.x[1], 2.0, epsilon = 1e-15);
+    assert_abs_diff_eq!(s.objective, 3.0, epsilon = 1e-15);
     let mut basis: Vec<_> = s.basis.iter().flatten().copied().collect();
     basis.sort();
     assert_eq!(basis, vec![0, 1]);
-    assert!((s.duals[0] - 1.0).abs() < 1e-15 && (s.duals[1] - 1.0).abs() < 1e-15);
+    assert_abs_diff_eq!(s.duals[0], 1.0, epsilon = 1e-15);
+    assert_abs_diff_eq!(s.duals[1], 1.0, epsilon = 1e-15);
 }
 
 #[test]
@@ -66,9 +69,10 @@ fn textbook_three_unknowns() {
     let b = [4.0, 5.0, 7.0, 0.0, 0.0, 0.0];
     let s = solve([3.0, 2.0, 4.0], &a, &b);
     assert_eq!(s.status, Status::Optimal);
-    assert!((s.objective - 10.5).abs() < 1e-13, "{s:?}");
-    assert!((s.x[0] - 2.5).abs() < 1e-13 && (s.x[1] - 1.5).abs() < 1e-13);
-    assert!(s.x[2].abs() < 1e-13);
+    assert!(abs_diff_eq!(s.objective, 10.5, epsilon = 1e-13), "{s:?}");
+    assert_abs_diff_eq!(s.x[0], 2.5, epsilon = 1e-13);
+    assert_abs_diff_eq!(s.x[1], 1.5, epsilon = 1e-13);
+    assert_abs_diff_eq!(s.x[2], 0.0, epsilon = 1e-13);
 }
 
 #[test]
@@ -97,7 +101,7 @@ fn free_direction_is_not_unbounded() {
         &[3.0, 1.0],
     );
     assert_eq!(s.status, Status::Optimal);
-    assert!((s.objective - 3.0).abs() < 1e-15);
+    assert_abs_diff_eq!(s.objective, 3.0, epsilon = 1e-15);
     assert_eq!(s.basis.iter().flatten().count(), 1);
 }
 
@@ -106,7 +110,7 @@ fn free_direction_needing_a_shift() {
     // max x s.t. x ≤ 1, x − y ≤ −5: y is free but must reach x + 5.
     let s = solve([1.0, 0.0], &[[1.0, 0.0], [1.0, -1.0]], &[1.0, -5.0]);
     assert_eq!(s.status, Status::Optimal);
-    assert!((s.x[0] - 1.0).abs() < 1e-15);
+    assert_abs_diff_eq!(s.x[0], 1.0, epsilon = 1e-15);
     assert!(s.x[0] - s.x[1] <= -5.0 + 1e-12, "{s:?}");
     assert!(s.max_violation <= 1e-12);
 }
@@ -133,7 +137,7 @@ fn zero_rows_and_infinite_rhs() {
     let a = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [5.0, 5.0]];
     let s = solve([1.0, 1.0], &a, &[0.0, 1.0, 1.0, f64::INFINITY]);
     assert_eq!(s.status, Status::Optimal);
-    assert!((s.objective - 2.0).abs() < 1e-15);
+    assert_abs_diff_eq!(s.objective, 2.0, epsilon = 1e-15);
     let s = solve([1.0, 1.0], &a, &[-1e-300, 1.0, 1.0, 3.0]);
     assert_eq!(s.status, Status::Infeasible);
     let s = solve([1.0, 1.0], &a, &[0.0, 1.0, 1.0, f64::NEG_INFINITY]);
@@ -188,10 +192,10 @@ fn heavily_degenerate_polygon() {
     let s = solve([0.0, 1.0], &a, &b);
     assert_eq!(s.status, Status::Optimal);
     assert!(
-        (s.objective - s0.objective).abs() < 1e-13,
+        abs_diff_eq!(s.objective, s0.objective, epsilon = 1e-13),
         "{s:?} vs {s0:?}"
     );
-    assert!((s0.objective - 1.0).abs() < 1e-5);
+    assert_abs_diff_eq!(s0.objective, 1.0, epsilon = 1e-5);
 }
 
 #[test]
@@ -212,7 +216,7 @@ fn parallel_and_duplicate_rows() {
     }
     let s = solve([1.0, 1.0, 1.0], &a, &b);
     assert_eq!(s.status, Status::Optimal);
-    assert!((s.objective - 3.0).abs() < 1e-14);
+    assert_abs_diff_eq!(s.objective, 3.0, epsilon = 1e-14);
 }
 
 #[test]
@@ -234,7 +238,7 @@ fn cycling_example_of_beale() {
     }
     let s = solve([0.75, -20.0, 0.5, -6.0], &a, &b);
     assert_eq!(s.status, Status::Optimal);
-    assert!((s.objective - 1.25).abs() < 1e-13, "{s:?}");
+    assert!(abs_diff_eq!(s.objective, 1.25, epsilon = 1e-13), "{s:?}");
 }
 
 #[test]
@@ -263,7 +267,7 @@ fn random_programmes_match_vertex_enumeration() {
         let s_bland = maximise(&c, &a, &b, &always_bland).unwrap();
         assert_eq!(s.status, s_bland.status);
         if s.status == Status::Optimal {
-            assert!((s.objective - s_bland.objective).abs() < 1e-12);
+            assert_abs_diff_eq!(s.objective, s_bland.objective, epsilon = 1e-12);
         }
         let mut best = f64::NEG_INFINITY;
         for i in 0..a.len() {
@@ -284,7 +288,7 @@ fn random_programmes_match_vertex_enumeration() {
         if best.is_finite() {
             assert_eq!(s.status, Status::Optimal);
             assert!(
-                (s.objective - best).abs() < 1e-10,
+                abs_diff_eq!(s.objective, best, epsilon = 1e-10),
                 "{} vs {best}",
                 s.objective
             );
@@ -345,7 +349,11 @@ fn random_four_unknown_programmes_match_clarabel() {
         assert_eq!(solver.solution.status, SolverStatus::Solved);
         let theirs = dot(&c, &[0, 1, 2, 3].map(|i| solver.solution.x[i]));
         assert!(
-            (ours.objective - theirs).abs() < 1e-6 * (1.0 + theirs.abs()),
+            abs_diff_eq!(
+                ours.objective,
+                theirs,
+                epsilon = 1e-6 * (1.0 + theirs.abs())
+            ),
             "{} vs {theirs}",
             ours.objective
         );

@@ -4,6 +4,7 @@ use super::domains::{concave_peak, discrete_rotational_peak};
 use super::*;
 use crate::analysis::types::Face;
 use crate::model::{Discretisation, WeightModel};
+use approx::{abs_diff_eq, assert_abs_diff_eq};
 
 const K_C: f64 = 1.113581813339;
 const MU_ROT: f64 = 0.395265252140;
@@ -18,9 +19,13 @@ fn semi(k: f64) -> Arch {
 fn rotational_collapse_thickness_matches_reference() {
     let c = thickness(&semi(1.5), Friction::INFINITE);
     let s = c.found().expect("K_c exists");
-    assert!((s.k - K_C).abs() < 1e-9, "K_c = {}", s.k);
-    assert!((crate::model::t_over_r_from_k(s.k) - 0.107478038107).abs() < 1e-9);
-    assert!((s.thrust_over_half_weight - MU_ROT).abs() < 1e-9);
+    assert!(abs_diff_eq!(s.k, K_C, epsilon = 1e-9), "K_c = {}", s.k);
+    assert_abs_diff_eq!(
+        crate::model::t_over_r_from_k(s.k),
+        0.107478038107,
+        epsilon = 1e-9
+    );
+    assert_abs_diff_eq!(s.thrust_over_half_weight, MU_ROT, epsilon = 1e-9);
     assert_eq!(s.mechanism.kind, crate::analysis::MechanismKind::Rotational);
     let haunch = s
         .mechanism
@@ -29,7 +34,7 @@ fn rotational_collapse_thickness_matches_reference() {
         .find(|h| h.face == Face::Intrados)
         .unwrap();
     assert!(
-        (haunch.angle_deg.abs() - 54.48397403).abs() < 1e-6,
+        abs_diff_eq!(haunch.angle_deg.abs(), 54.48397403, epsilon = 1e-6),
         "{haunch:?}"
     );
     // Crown extrados, two haunches, two springings.
@@ -40,7 +45,11 @@ fn rotational_collapse_thickness_matches_reference() {
 fn sliding_threshold_matches_reference() {
     let c = sliding_threshold(&semi(1.3));
     let s = c.found().unwrap();
-    assert!((s.mu - MU_MIN).abs() < 1e-9, "μ_min = {}", s.mu);
+    assert!(
+        abs_diff_eq!(s.mu, MU_MIN, epsilon = 1e-9),
+        "μ_min = {}",
+        s.mu
+    );
     let angles: Vec<f64> = s
         .mechanism
         .sliding_joints
@@ -48,8 +57,11 @@ fn sliding_threshold_matches_reference() {
         .map(|j| j.angle_deg)
         .collect();
     assert_eq!(angles.len(), 4);
-    assert!((angles[2] - 28.63619468).abs() < 1e-6, "{angles:?}");
-    assert!((angles[3] - 90.0).abs() < 1e-9);
+    assert!(
+        abs_diff_eq!(angles[2], 28.63619468, epsilon = 1e-6),
+        "{angles:?}"
+    );
+    assert_abs_diff_eq!(angles[3], 90.0, epsilon = 1e-9);
 }
 
 #[test]
@@ -58,12 +70,12 @@ fn bifurcations_match_reference() {
     let kc = thickness(&semi(1.5), Friction::INFINITE).found().unwrap().k;
     let f = friction(&semi(kc));
     let s = f.found().unwrap();
-    assert!((s.mu - MU_ROT).abs() < 1e-9, "μ = {}", s.mu);
+    assert!(abs_diff_eq!(s.mu, MU_ROT, epsilon = 1e-9), "μ = {}", s.mu);
     // Mixed/sliding: K_c at μ_min.
     let mu_min = sliding_threshold(&semi(1.3)).found().unwrap().mu;
     let t = thickness(&semi(1.5), Friction::new(mu_min).unwrap());
     let s = t.found().unwrap();
-    assert!((s.k - K_BIF).abs() < 1e-8, "K = {}", s.k);
+    assert!(abs_diff_eq!(s.k, K_BIF, epsilon = 1e-8), "K = {}", s.k);
 }
 
 #[test]
@@ -71,9 +83,9 @@ fn friction_on_the_sliding_segment_is_the_sliding_mechanism() {
     // Beyond the mixed/sliding bifurcation μ_c = μ_min, where H^s is a single thrust
     // (μ_min·W_half at the springings) inside H^r: no hinge, four sliding joints.
     let s = friction(&semi(1.3)).found().cloned().unwrap();
-    assert!((s.mu - MU_MIN).abs() < 1e-9, "μ = {}", s.mu);
+    assert!(abs_diff_eq!(s.mu, MU_MIN, epsilon = 1e-9), "μ = {}", s.mu);
     assert_eq!(s.mechanism.kind, crate::analysis::MechanismKind::Sliding);
-    assert!((s.thrust_over_half_weight - MU_MIN).abs() < 1e-9);
+    assert_abs_diff_eq!(s.thrust_over_half_weight, MU_MIN, epsilon = 1e-9);
     assert!(s.mechanism.hinges.is_empty(), "{:?}", s.mechanism.hinges);
     let angles: Vec<f64> = s
         .mechanism
@@ -82,7 +94,8 @@ fn friction_on_the_sliding_segment_is_the_sliding_mechanism() {
         .map(|j| j.angle_deg)
         .collect();
     assert_eq!(angles.len(), 4, "{angles:?}");
-    assert!((angles[2] - 28.63619468).abs() < 1e-6 && (angles[3] - 90.0).abs() < 1e-9);
+    assert_abs_diff_eq!(angles[2], 28.63619468, epsilon = 1e-6);
+    assert_abs_diff_eq!(angles[3], 90.0, epsilon = 1e-9);
 }
 
 #[test]
@@ -103,12 +116,12 @@ fn closed_form_peak_matches_bisection_on_the_supergradient() {
                     continue;
                 }
                 assert!(
-                    (g1 - g2).abs() < 1e-13,
+                    abs_diff_eq!(g1, g2, epsilon = 1e-13),
                     "α = {alpha}, K = {k}: {g1} vs {g2}"
                 );
                 assert!(g1 >= g2 - 1e-15, "the closed form is the true maximum");
                 assert!(
-                    (h1 - h2).abs() < 1e-6 * (1.0 + h1.abs()),
+                    abs_diff_eq!(h1, h2, epsilon = 1e-6 * (1.0 + h1.abs())),
                     "α = {alpha}, K = {k}: {h1} vs {h2}"
                 );
             }
@@ -141,7 +154,7 @@ fn discrete_peak_matches_bisection_on_the_supergradient() {
                     continue;
                 }
                 assert!(
-                    (g1 - g2).abs() < 1e-12,
+                    abs_diff_eq!(g1, g2, epsilon = 1e-12),
                     "N = {n}, α = {alpha}, K = {k}: {g1} vs {g2} at {h1} / {h2}"
                 );
             }
@@ -154,7 +167,7 @@ fn min_thrust_hinge_at_k_1_35() {
     let (lo, _) = thrust(&semi(1.35), Friction::INFINITE).unwrap();
     let haunch = lo.hinges.iter().find(|h| h.face == Face::Intrados).unwrap();
     assert!(
-        (haunch.angle_deg.abs() - 63.2903024).abs() < 1e-6,
+        abs_diff_eq!(haunch.angle_deg.abs(), 63.2903024, epsilon = 1e-6),
         "{:?}",
         lo.hinges
     );
