@@ -2,9 +2,9 @@
 //! x = (F_x, F_y, M₀), the force and moment the left part exerts on the right part at the
 //! crown (over W_half and W_half·r), and optionally the load factor λ (DESIGN.md §1).
 //!
-//! Every joint θ gives four rows a·x + a_λ λ ≤ b ([`joint_rows`], paper eqs. 1 and 3). The
-//! arch can stand iff the rows of all joints have a common solution. Feasibility is measured
-//! by a continuous margin, the largest τ with
+//! Every joint θ gives four rows a·x + a_λ λ ≤ b ([`joint_rows`](super::statics::joint_rows),
+//! paper eqs. 1 and 3). The arch can stand iff the rows of all joints have a common
+//! solution. Feasibility is measured by a continuous margin, the largest τ with
 //!
 //! a_i·x + τ |a_i| ≤ b_i − a_λ,i λ  for every row i,  τ ≤ τ_cap,
 //!

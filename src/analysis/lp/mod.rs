@@ -137,7 +137,7 @@ pub(super) fn inf_norm<const D: usize>(x: &[f64; D]) -> f64 {
     x.iter().fold(0.0, |m, v| m.max(v.abs()))
 }
 
-/// Maximises c·x subject to a[r]·x ≤ b[r] for every row r, x free.
+/// Maximises c·x subject to a\[r\]·x ≤ b\[r\] for every row r, x free.
 ///
 /// Rows with b = +∞ are ignored; a row with b = −∞, or with a = 0 and b < 0, makes the
 /// programme infeasible. Invariants: the multipliers stay non-negative, c·x never increases
