@@ -16,8 +16,16 @@
 //! minimum at an end joint. The sliding rows (eqs. 4a, 4b) are
 //! h sin(θ − φ) ≤ w cos(θ − φ) and h sin(θ + φ) ≥ w cos(θ + φ).
 
+use super::settings::GeometrySettings;
 use super::statics::{ArchGeometry, Joint, Resultant};
 use crate::model::{Arch, Discretisation};
+
+/// The numerical thresholds of the closed forms: series switches and rounding zeros, fixed
+/// for every arch (see [`GeometrySettings`]).
+const GEOMETRY: GeometrySettings = GeometrySettings::DEFAULT;
+/// Floor of the bracket scale in the Newton stopping test, so that a zero end does not make
+/// the test impossible.
+const MIN_BRACKET_SCALE: f64 = 1e-300;
 
 /// The circular arch as a general [`ArchGeometry`] (radial joints, self-weight).
 #[derive(Debug, Clone, Copy)]
@@ -87,7 +95,7 @@ impl ArchGeometry for CircularArch {
 
 /// θ cot θ, accurate near 0.
 pub fn theta_cot_theta(t: f64) -> f64 {
-    if t.abs() < 1e-4 {
+    if t.abs() < GEOMETRY.series_switch {
         let t2 = t * t;
         1.0 - t2 / 3.0 - t2 * t2 / 45.0
     } else {
@@ -108,18 +116,18 @@ pub fn solve_theta_cot(c: f64) -> f64 {
     } else {
         0.5 * (lo + hi)
     };
-    for _ in 0..100 {
+    for _ in 0..GEOMETRY.max_newton_steps {
         let q = theta_cot_theta(t) - c;
         if q > 0.0 {
             lo = t;
         } else {
             hi = t;
         }
-        if hi - lo < 4.0 * f64::EPSILON * hi.max(1e-300) {
+        if hi - lo < 4.0 * f64::EPSILON * hi.max(MIN_BRACKET_SCALE) {
             break;
         }
         let s = t.sin();
-        let dq = if t.abs() < 1e-4 {
+        let dq = if t.abs() < GEOMETRY.series_switch {
             -2.0 * t / 3.0
         } else {
             (s * t.cos() - t) / (s * s)
@@ -154,8 +162,8 @@ pub enum SlidingBound {
 fn bound_from_row(a: f64, b: f64) -> SlidingBound {
     // Coefficients are sines of angles in [0, 2π): below this they are rounding noise of an
     // exact zero (θ = φ or θ + φ = π), where the row reads 0 ≤ b.
-    const ZERO: f64 = 1e-14;
-    let a = if a.abs() < ZERO { 0.0 } else { a };
+    let zero = GEOMETRY.tol_zero_coefficient;
+    let a = if a.abs() < zero { 0.0 } else { a };
     if a > 0.0 {
         SlidingBound::Upper(b / a)
     } else if a < 0.0 {
@@ -293,7 +301,7 @@ impl SymmetricCircular {
         if t0 == t1 {
             return (u0, s0, [Some(t0), None]);
         }
-        let tie = (u0 - u1).abs() <= 1e-14 * (1.0 + u0.abs());
+        let tie = (u0 - u1).abs() <= GEOMETRY.tol_tie * (1.0 + u0.abs());
         if tie {
             (u0.min(u1), s0.min(s1), [Some(t0), Some(t1)])
         } else if u0 < u1 {
@@ -344,7 +352,7 @@ impl SymmetricCircular {
             return None;
         }
         let g = |t: f64| 0.5 * (2.0 * (t + phi)).sin() - t;
-        super::roots::brent(g, 0.0, top, 1e-16)
+        super::roots::brent(g, 0.0, top, GEOMETRY.tol_sliding_peak)
     }
 
     /// Candidate joints for the extreme sliding bounds: the end joints and the joints at or
@@ -379,12 +387,16 @@ impl SymmetricCircular {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use approx::{abs_diff_eq, assert_abs_diff_eq};
 
     #[test]
     fn theta_cot_root_is_inverse() {
         for c in [0.99, 0.5, 0.0, -1.0, -10.0, 0.999999999] {
             let t = solve_theta_cot(c);
-            assert!((theta_cot_theta(t) - c).abs() < 1e-12, "c = {c}, t = {t}");
+            assert!(
+                abs_diff_eq!(theta_cot_theta(t), c, epsilon = 1e-12),
+                "c = {c}, t = {t}"
+            );
         }
         assert_eq!(solve_theta_cot(1.0), 0.0);
     }
@@ -406,8 +418,8 @@ mod tests {
                 let v_e = rows[1].violation(&x, 0.0);
                 assert_eq!(rows[0].condition, Condition::Intrados);
                 // Intrados violated iff m < L; extrados violated iff m > U.
-                assert!((v_i - (sym.intrados(theta, h) - m)).abs() < 1e-14);
-                assert!((v_e - (m - sym.extrados(theta, h))).abs() < 1e-14);
+                assert_abs_diff_eq!(v_i, (sym.intrados(theta, h) - m), epsilon = 1e-14);
+                assert_abs_diff_eq!(v_e, (m - sym.extrados(theta, h)), epsilon = 1e-14);
             }
         }
     }

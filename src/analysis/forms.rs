@@ -40,9 +40,13 @@
 //!   The continuum has both sides of the load as joints: the joint at a (load on the crown
 //!   side) and the joint at the adjacent float on the far side.
 
+use super::settings::GeometrySettings;
 use super::statics::{ArchGeometry, Joint, Point, Resultant};
 use crate::model::{Arch, ArchForm, Discretisation, JointOrientation, Load, WeightModel};
 use std::f64::consts::FRAC_PI_2;
+
+/// The numerical thresholds of the forms (see [`GeometrySettings`]).
+const GEOMETRY: GeometrySettings = GeometrySettings::DEFAULT;
 
 /// Why a form, an arch and a load do not make a valid scene.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -183,7 +187,9 @@ impl ArchModel {
                 max_k,
             });
         }
-        if form.joints == JointOrientation::Vertical && alpha > FRAC_PI_2 + 1e-12 {
+        if form.joints == JointOrientation::Vertical
+            && alpha > FRAC_PI_2 + GEOMETRY.tol_vertical_alpha
+        {
             return Err(FormError::VerticalBeyondQuadrant(arch.half_angle_deg()));
         }
         let d = form.centre_offset(k);
@@ -214,7 +220,7 @@ impl ArchModel {
         };
         if let Load::Point { at_deg } = load {
             let a = at_deg.to_radians();
-            if !(a.abs() <= alpha * (1.0 + 1e-15)) {
+            if !(a.abs() <= alpha * (1.0 + GEOMETRY.tol_joint_range)) {
                 return Err(FormError::LoadOutside {
                     at_deg,
                     half_angle_deg: arch.half_angle_deg(),
@@ -536,6 +542,7 @@ mod tests {
     use crate::analysis::circular::CircularArch;
     use crate::analysis::statics::joint_rows;
     use crate::model::Shape;
+    use approx::{abs_diff_eq, assert_abs_diff_eq};
 
     fn arch(k: f64, alpha: f64, weight: WeightModel, joints: Discretisation) -> Arch {
         Arch::new(k, alpha, weight, joints).unwrap()
@@ -595,7 +602,7 @@ mod tests {
             let q = quadrature(&m, theta);
             for c in 0..3 {
                 assert!(
-                    (exact[c] - q[c]).abs() < 2e-3 * exact[0],
+                    abs_diff_eq!(exact[c], q[c], epsilon = 2e-3 * exact[0]),
                     "e = {e}, {joints:?}: {exact:?} vs {q:?}"
                 );
             }
@@ -612,7 +619,10 @@ mod tests {
                 let raw = m.region(&m.half_joint(theta)).0.map(|v| v / m.w_half);
                 let cf = m.weight_moments(theta);
                 for c in 0..3 {
-                    assert!((raw[c] - cf[c]).abs() < 1e-14, "{theta}: {raw:?} vs {cf:?}");
+                    assert!(
+                        abs_diff_eq!(raw[c], cf[c], epsilon = 1e-14),
+                        "{theta}: {raw:?} vs {cf:?}"
+                    );
                 }
             }
         }
@@ -628,9 +638,10 @@ mod tests {
                 let (r1, r2) = (joint_rows(&m, theta, 0.4), joint_rows(&c, theta, 0.4));
                 for (x, y) in r1.iter().zip(&r2) {
                     assert_eq!(x.condition, y.condition);
-                    assert!((x.b - y.b).abs() < 1e-15 && (x.a_lambda - y.a_lambda).abs() < 1e-15);
+                    assert_abs_diff_eq!(x.b, y.b, epsilon = 1e-15);
+                    assert_abs_diff_eq!(x.a_lambda, y.a_lambda, epsilon = 1e-15);
                     for i in 0..3 {
-                        assert!((x.a[i] - y.a[i]).abs() < 1e-15);
+                        assert_abs_diff_eq!(x.a[i], y.a[i], epsilon = 1e-15);
                     }
                 }
             }
@@ -647,8 +658,12 @@ mod tests {
             Discretisation::Continuum,
         );
         let m = ArchModel::new(a, form(0.5, JointOrientation::Radial), Load::SelfWeight).unwrap();
-        assert!((m.w_half - 0.2 * 1.1 * (FRAC_PI_2 - 0.5f64.asin())).abs() < 1e-15);
-        assert!((m.weight_moments(FRAC_PI_2)[0] - 1.0).abs() < 1e-15);
+        assert_abs_diff_eq!(
+            m.w_half,
+            0.2 * 1.1 * (FRAC_PI_2 - 0.5f64.asin()),
+            epsilon = 1e-15
+        );
+        assert_abs_diff_eq!(m.weight_moments(FRAC_PI_2)[0], 1.0, epsilon = 1e-15);
         assert_eq!(m.weight_moments(0.0), [0.0, 0.0, 0.0]);
     }
 
@@ -663,14 +678,14 @@ mod tests {
             let m = ArchModel::new(a, form(e, joints), Load::SelfWeight).unwrap();
             // The support carries the whole half weight; the crown nothing.
             let s = m.support_param(1.0);
-            assert!((m.weight_moments(s)[0] - 1.0).abs() < 1e-14);
-            assert!((m.weight_moments(-s)[0] + 1.0).abs() < 1e-14);
+            assert_abs_diff_eq!(m.weight_moments(s)[0], 1.0, epsilon = 1e-14);
+            assert_abs_diff_eq!(m.weight_moments(-s)[0], -1.0, epsilon = 1e-14);
             assert!(m.weight_moments(0.0).iter().all(|v| v.abs() < 1e-15));
             // The first joint of the family next to the crown: a vertical one is the crown
             // joint itself; a radial one of a pointed arch encloses the keystone wedge.
             let w1 = m.weight_moments(m.psi_1.max(1e-300))[0];
             if joints == JointOrientation::Vertical {
-                assert!(w1.abs() < 1e-14, "{w1}");
+                assert!(abs_diff_eq!(w1, 0.0, epsilon = 1e-14), "{w1}");
             } else {
                 assert!(w1 > 0.0);
             }
@@ -698,7 +713,7 @@ mod tests {
         // Its moment is that of P at the extrados point.
         let x = 1.3 * at.sin();
         let m = ArchModel::new(a, ArchForm::default(), Load::Point { at_deg: 30.0 }).unwrap();
-        assert!((m.live_load(1.0).m + 2.0 * x).abs() < 1e-15);
+        assert_abs_diff_eq!(m.live_load(1.0).m, -2.0 * x, epsilon = 1e-15);
     }
 
     #[test]
@@ -790,14 +805,14 @@ mod tests {
             assert_eq!(solver.solution.status, SolverStatus::Solved);
             let oracle = solver.solution.x[3];
             assert!(
-                (ours.x[3] - oracle).abs() < 1e-7 * (1.0 + oracle.abs()),
+                abs_diff_eq!(ours.x[3], oracle, epsilon = 1e-7 * (1.0 + oracle.abs())),
                 "{f:?} {load:?}: {} vs {oracle}",
                 ours.x[3]
             );
             // The analysis solves the same programme.
             let lf = general::load_factor(&g, phi, &Settings::default());
             assert!(
-                (lf.lambda - ours.x[3]).abs() < 1e-12,
+                abs_diff_eq!(lf.lambda, ours.x[3], epsilon = 1e-12),
                 "{} vs {}",
                 lf.lambda,
                 ours.x[3]
@@ -823,7 +838,7 @@ mod tests {
         let p = ArchModel::new(a, form(0.5, JointOrientation::Radial), Load::SelfWeight).unwrap();
         let jp = p.discrete_joints().unwrap();
         let psi1 = p.first_joint();
-        assert!((jp[3] - (psi1 + 0.5 * (FRAC_PI_2 - psi1))).abs() < 1e-15);
+        assert_abs_diff_eq!(jp[3], psi1 + 0.5 * (FRAC_PI_2 - psi1), epsilon = 1e-15);
         assert_eq!(jp[2], 0.0);
     }
 }

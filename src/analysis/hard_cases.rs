@@ -5,6 +5,7 @@
 use super::symmetric::{Critical, friction, sliding_threshold, state, thickness, thrust};
 use super::{Face, MechanismKind, Regime};
 use crate::model::{Arch, Discretisation, Friction, WeightModel};
+use approx::{abs_diff_eq, assert_abs_diff_eq};
 
 const K_C: f64 = 1.113581813339;
 const MU_ROT: f64 = 0.395265252140;
@@ -48,7 +49,7 @@ fn assert_sane_state(a: &Arch, f: Friction) -> Regime {
 #[test]
 fn thickness_within_1e12_of_kc_on_both_sides() {
     let kc = exact_kc();
-    assert!((kc - K_C).abs() < 1e-11);
+    assert_abs_diff_eq!(kc, K_C, epsilon = 1e-11);
     let above = assert_sane_state(&semi(kc + 1e-12), Friction::INFINITE);
     let below = assert_sane_state(&semi(kc - 1e-12), Friction::INFINITE);
     assert_eq!(above, Regime::Stable);
@@ -64,7 +65,7 @@ fn thickness_within_1e12_of_kc_on_both_sides() {
     );
     // The critical friction just above K_c is the rotational/mixed threshold.
     let f = friction(&semi(kc + 1e-12));
-    assert!((f.found().unwrap().mu - MU_ROT).abs() < 1e-9);
+    assert_abs_diff_eq!(f.found().unwrap().mu, MU_ROT, epsilon = 1e-9);
     // Just below, no friction helps (or the state is the limit itself).
     match friction(&semi(kc - 1e-10)) {
         Critical::NeverStands => {}
@@ -77,10 +78,10 @@ fn friction_within_1e12_of_mu_min() {
     let m = exact_mu_min();
     let above = thickness(&semi(1.5), mu(m + 1e-12));
     let k = above.found().unwrap().k;
-    assert!((k - K_BIF).abs() < 1e-8, "K = {k}");
+    assert!(abs_diff_eq!(k, K_BIF, epsilon = 1e-8), "K = {k}");
     // Within the tolerance below μ_min the limit state is still the single-valued H^s.
     match thickness(&semi(1.5), mu(m - 1e-12)) {
-        Critical::Found(s) => assert!((s.k - K_BIF).abs() < 1e-8),
+        Critical::Found(s) => assert_abs_diff_eq!(s.k, K_BIF, epsilon = 1e-8),
         Critical::NeverStands => {}
         Critical::AlwaysStands => panic!("cannot always stand below μ_min"),
     }
@@ -100,7 +101,11 @@ fn friction_within_1e12_of_the_rotational_threshold() {
     for x in [m_rot - 1e-12, m_rot, m_rot + 1e-12] {
         let s = thickness(&semi(1.5), mu(x));
         let s = s.found().unwrap();
-        assert!((s.k - kc).abs() < 1e-9, "μ = {x}: K = {}", s.k);
+        assert!(
+            abs_diff_eq!(s.k, kc, epsilon = 1e-9),
+            "μ = {x}: K = {}",
+            s.k
+        );
         assert!(matches!(
             s.mechanism.kind,
             MechanismKind::Rotational | MechanismKind::Mixed
@@ -125,10 +130,8 @@ fn singular_joints_of_the_sliding_bounds() {
     // The limits of the interval are continuous through the singular value.
     for dx in [1e-9, -1e-9] {
         let t = state(&n6, mu(phi.tan() + dx)).domains.sliding.interval;
-        assert!(
-            (t.lo - s.lo).abs() < 1e-7 && (t.hi - s.hi).abs() < 1e-7,
-            "{s:?} vs {t:?}"
-        );
+        assert!(abs_diff_eq!(t.lo, s.lo, epsilon = 1e-7), "{s:?} vs {t:?}");
+        assert!(abs_diff_eq!(t.hi, s.hi, epsilon = 1e-7), "{s:?} vs {t:?}");
         assert_eq!(assert_sane_state(&n6, mu(phi.tan() + dx)), r);
     }
     let t = thickness(&n6, at);
@@ -150,7 +153,11 @@ fn nearly_zero_thickness() {
     );
     assert_eq!(friction(&a), Critical::NeverStands);
     assert!(thrust(&a, Friction::INFINITE).is_none());
-    assert!((thickness(&a, Friction::INFINITE).found().unwrap().k - K_C).abs() < 1e-9);
+    assert_abs_diff_eq!(
+        thickness(&a, Friction::INFINITE).found().unwrap().k,
+        K_C,
+        epsilon = 1e-9
+    );
 }
 
 #[test]
@@ -158,12 +165,15 @@ fn very_thick_arch() {
     let a = semi(100.0);
     assert_eq!(assert_sane_state(&a, Friction::INFINITE), Regime::Stable);
     let (lo, hi) = thrust(&a, Friction::INFINITE).unwrap();
-    assert!(lo.thrust_over_half_weight.abs() < 1e-12, "{lo:?}");
+    assert!(
+        abs_diff_eq!(lo.thrust_over_half_weight, 0.0, epsilon = 1e-12),
+        "{lo:?}"
+    );
     assert!(hi.thrust_over_half_weight.is_finite() && hi.thrust_over_half_weight > 10.0);
     // Thick enough for the halves to stand alone: friction only has to stop sliding.
     let f = friction(&a);
     let s = f.found().unwrap();
-    assert!((s.mu - exact_mu_min()).abs() < 1e-9);
+    assert_abs_diff_eq!(s.mu, exact_mu_min(), epsilon = 1e-9);
     assert_eq!(s.mechanism.kind, MechanismKind::Sliding);
 }
 
@@ -172,7 +182,7 @@ fn zero_and_huge_friction() {
     assert_eq!(assert_sane_state(&semi(1.3), mu(0.0)), Regime::Sliding);
     assert_eq!(thickness(&semi(1.3), mu(0.0)), Critical::NeverStands);
     let big = thickness(&semi(1.3), mu(1e9)).found().unwrap().k;
-    assert!((big - K_C).abs() < 1e-9);
+    assert_abs_diff_eq!(big, K_C, epsilon = 1e-9);
     assert_eq!(assert_sane_state(&semi(1.3), mu(1e9)), Regime::Stable);
 }
 
@@ -257,7 +267,7 @@ fn weight_models_agree_as_the_arch_gets_thin() {
     .found()
     .unwrap()
     .k;
-    assert!((kc_a - kc_c).abs() < 5e-3, "{kc_a} vs {kc_c}");
+    assert!(abs_diff_eq!(kc_a, kc_c, epsilon = 5e-3), "{kc_a} vs {kc_c}");
 }
 
 #[test]
@@ -309,7 +319,7 @@ fn critical_friction_exactly_at_the_collapse_thickness() {
         if a.half_angle_deg() == 90.0 {
             // Semicircle: H_max^s = μ W_half at the springing, so μ_c is the thrust at K_c.
             assert!(
-                (m - kc.thrust_over_half_weight).abs() < 1e-9,
+                abs_diff_eq!(m, kc.thrust_over_half_weight, epsilon = 1e-9),
                 "{a:?}: {m} vs {}",
                 kc.thrust_over_half_weight
             );

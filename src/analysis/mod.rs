@@ -9,6 +9,7 @@ pub mod general;
 pub mod kinematics;
 pub mod lp;
 pub mod roots;
+pub mod settings;
 pub mod statics;
 pub mod symmetric;
 pub mod types;

@@ -4,6 +4,15 @@
 //! values of archstudy are roots of continuous, monotone margin functions, found by Brent's
 //! method, never by fixed-step scans.
 
+/// Largest number of steps of [`brent`]; it converges in far fewer, this only bounds a
+/// pathological function.
+const MAX_ROOT_STEPS: usize = 400;
+/// Largest number of steps of [`maximise_1d`].
+const MAX_MAXIMISE_STEPS: usize = 200;
+/// Relative tolerance on the argument added to the absolute one in [`maximise_1d`]: about
+/// the spacing of doubles near x.
+const REL_ARG_TOL: f64 = 1e-15;
+
 /// Brent's method for a root of `f` in `[a, b]`, where `f(a)` and `f(b)` differ in sign (or one
 /// is zero). Stops when the bracket is shorter than `tol` (absolute) plus four ulps.
 ///
@@ -42,7 +51,7 @@ pub fn brent_with_values<F: FnMut(f64) -> f64>(
     let mut fc = fa;
     let mut d = b - a;
     let mut e = d;
-    for _ in 0..400 {
+    for _ in 0..MAX_ROOT_STEPS {
         if fb.signum() == fc.signum() {
             c = a;
             fc = fa;
@@ -123,14 +132,92 @@ pub fn argmax_concave<D: FnMut(f64) -> f64>(mut slope: D, lo: f64, hi: f64, tol:
     brent_with_values(&mut slope, lo, slo, hi, shi, tol).unwrap_or(0.5 * (lo + hi))
 }
 
+/// Brent's method for a local maximum of `f` on [a, b] (golden section with parabolic
+/// steps), to an absolute tolerance `tol` in the argument. Returns (argmax, max).
+pub fn maximise_1d<F: FnMut(f64) -> f64>(mut f: F, a: f64, b: f64, tol: f64) -> (f64, f64) {
+    const CGOLD: f64 = 0.381_966_011_250_105_1;
+    let (mut a, mut b) = (a.min(b), a.max(b));
+    let mut x = a + CGOLD * (b - a);
+    let (mut w, mut v) = (x, x);
+    let mut fx = -f(x);
+    let (mut fw, mut fv) = (fx, fx);
+    let (mut d, mut e): (f64, f64) = (0.0, 0.0);
+    for _ in 0..MAX_MAXIMISE_STEPS {
+        let xm = 0.5 * (a + b);
+        let tol1 = tol + REL_ARG_TOL * x.abs();
+        let tol2 = 2.0 * tol1;
+        if (x - xm).abs() <= tol2 - 0.5 * (b - a) {
+            break;
+        }
+        let mut golden = true;
+        if e.abs() > tol1 {
+            let r = (x - w) * (fx - fv);
+            let mut q = (x - v) * (fx - fw);
+            let mut p = (x - v) * q - (x - w) * r;
+            q = 2.0 * (q - r);
+            if q > 0.0 {
+                p = -p;
+            }
+            q = q.abs();
+            let etemp = e;
+            if !(p.abs() >= (0.5 * q * etemp).abs() || p <= q * (a - x) || p >= q * (b - x)) {
+                e = d;
+                d = p / q;
+                let u = x + d;
+                if u - a < tol2 || b - u < tol2 {
+                    d = tol1.copysign(xm - x);
+                }
+                golden = false;
+            }
+        }
+        if golden {
+            e = if x >= xm { a - x } else { b - x };
+            d = CGOLD * e;
+        }
+        let u = if d.abs() >= tol1 {
+            x + d
+        } else {
+            x + tol1.copysign(d)
+        };
+        let fu = -f(u);
+        if fu.is_nan() {
+            break;
+        }
+        if fu <= fx {
+            if u >= x {
+                a = x;
+            } else {
+                b = x;
+            }
+            (v, w, x) = (w, x, u);
+            (fv, fw, fx) = (fw, fx, fu);
+        } else {
+            if u < x {
+                a = u;
+            } else {
+                b = u;
+            }
+            if fu <= fw || w == x {
+                (v, w) = (w, u);
+                (fv, fw) = (fw, fu);
+            } else if fu <= fv || v == x || v == w {
+                v = u;
+                fv = fu;
+            }
+        }
+    }
+    (x, -fx)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use approx::assert_abs_diff_eq;
 
     #[test]
     fn brent_finds_cube_root_of_two() {
         let x = brent(|x| x * x * x - 2.0, 0.0, 2.0, 1e-15).unwrap();
-        assert!((x - 2f64.cbrt()).abs() < 1e-14);
+        assert_abs_diff_eq!(x, 2f64.cbrt(), epsilon = 1e-14);
     }
 
     #[test]
@@ -154,6 +241,15 @@ mod tests {
             5.0,
             1e-14,
         );
-        assert!((x - 1.0).abs() < 1e-13);
+        assert_abs_diff_eq!(x, 1.0, epsilon = 1e-13);
+    }
+
+    #[test]
+    fn maximise_1d_finds_interior_and_end_maxima() {
+        let (x, f) = maximise_1d(|t| -(t - 0.3) * (t - 0.3), 0.0, 1.0, 1e-12);
+        assert_abs_diff_eq!(x, 0.3, epsilon = 1e-8);
+        assert_abs_diff_eq!(f, 0.0, epsilon = 1e-16);
+        let (x, _) = maximise_1d(|t| t, 0.0, 1.0, 1e-12);
+        assert!(x > 1.0 - 1e-9);
     }
 }

@@ -10,7 +10,10 @@
 //! state's kind is the collapse mechanism, the other is kept as an alternative.
 
 use super::work::{LimitState, WorkEquation, work_equation};
-use super::{FlowRule, ModeStatus, VelocityField, Violation, mechanism_modes, pattern_of};
+use super::{
+    FlowRule, KinematicsSettings, ModeStatus, VelocityField, Violation, mechanism_modes_with,
+    pattern_of,
+};
 use crate::analysis::circular::CircularArch;
 use crate::analysis::symmetric::CriticalState;
 use crate::analysis::types::Sense;
@@ -45,10 +48,15 @@ fn arch_at(arch: &Arch, state: &CriticalState) -> Arch {
 }
 
 /// The mechanism of `state` on `arch` (its K replaced by the state's) under `rule`.
-pub fn mechanism_at(arch: &Arch, state: &CriticalState, rule: FlowRule) -> CollapseMechanism {
+pub fn mechanism_at(
+    arch: &Arch,
+    state: &CriticalState,
+    rule: FlowRule,
+    settings: &KinematicsSettings,
+) -> CollapseMechanism {
     let geom = CircularArch::new(arch_at(arch, state));
     let joints = pattern_of(&state.mechanism);
-    let Ok(modes) = mechanism_modes(&geom, &joints, rule, true) else {
+    let Ok(modes) = mechanism_modes_with(&geom, &joints, rule, true, settings) else {
         return CollapseMechanism {
             status: ModeStatus::Failed,
             mechanism_dof: 0,
@@ -79,7 +87,16 @@ pub fn mechanism_at(arch: &Arch, state: &CriticalState, rule: FlowRule) -> Colla
 
 /// The collapse mechanism of a critical state (non-associative friction, the paper's).
 pub fn collapse_mechanism(arch: &Arch, state: &CriticalState) -> CollapseMechanism {
-    mechanism_at(arch, state, FlowRule::NonAssociative)
+    collapse_mechanism_with(arch, state, &KinematicsSettings::DEFAULT)
+}
+
+/// [`collapse_mechanism`] with the given settings.
+pub fn collapse_mechanism_with(
+    arch: &Arch,
+    state: &CriticalState,
+    settings: &KinematicsSettings,
+) -> CollapseMechanism {
+    mechanism_at(arch, state, FlowRule::NonAssociative, settings)
 }
 
 /// Slip and dilatancy at one sliding joint under both flow rules.
@@ -115,9 +132,19 @@ pub struct FlowRuleComparison {
 /// Both mechanisms at a critical state (the table of the report: per bifurcation point, the
 /// thickness or friction, the mechanism and the dilatancy at its sliding joints).
 pub fn compare_flow_rules(arch: &Arch, state: &CriticalState) -> FlowRuleComparison {
-    let non_associative = collapse_mechanism(arch, state);
+    compare_flow_rules_with(arch, state, &KinematicsSettings::DEFAULT)
+}
+
+/// [`compare_flow_rules`] with the given settings.
+pub fn compare_flow_rules_with(
+    arch: &Arch,
+    state: &CriticalState,
+    settings: &KinematicsSettings,
+) -> FlowRuleComparison {
+    let non_associative = collapse_mechanism_with(arch, state, settings);
     let associative = if state.mu.is_finite() {
-        mechanism_at(arch, state, FlowRule::Associative { tan_phi: state.mu })
+        let rule = FlowRule::Associative { tan_phi: state.mu };
+        mechanism_at(arch, state, rule, settings)
     } else {
         non_associative.clone()
     };
@@ -132,7 +159,7 @@ pub fn compare_flow_rules(arch: &Arch, state: &CriticalState) -> FlowRuleCompari
                     .and_then(|f| {
                         f.joints
                             .iter()
-                            .find(|j| (j.angle_deg() - s.angle_deg).abs() < 1e-7)
+                            .find(|j| (j.angle_deg() - s.angle_deg).abs() < settings.tol_match_deg)
                             .map(|j| (j.slip, j.dilatancy))
                     })
                     .unwrap_or((f64::NAN, f64::NAN))

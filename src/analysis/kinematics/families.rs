@@ -15,7 +15,10 @@
 //! 150°. The velocity field of each family is its one mode, signed by normality at the hinges
 //! (the sliding families by the sense given to their last joint).
 
-use super::{ActiveJoint, FlowRule, KinematicsError, ModeStatus, Modes, mechanism_modes};
+use super::{
+    ActiveJoint, FlowRule, KinematicsError, KinematicsSettings, ModeStatus, Modes,
+    mechanism_modes_with,
+};
 use crate::analysis::statics::ArchGeometry;
 use crate::analysis::types::{Face, MechanismKind, Sense};
 
@@ -176,13 +179,22 @@ pub fn template_joints(t: &FamilyTemplate, alpha: f64) -> Vec<ActiveJoint> {
         .collect()
 }
 
-/// One family on an arch (any template, e.g. one with other positions).
+/// One family on an arch with the default settings ([`family_with`]).
 pub fn family<G: ArchGeometry + ?Sized>(
     geom: &G,
     template: &FamilyTemplate,
 ) -> Result<Family, KinematicsError> {
+    family_with(geom, template, &KinematicsSettings::DEFAULT)
+}
+
+/// One family on an arch (any template, e.g. one with other positions).
+pub fn family_with<G: ArchGeometry + ?Sized>(
+    geom: &G,
+    template: &FamilyTemplate,
+    settings: &KinematicsSettings,
+) -> Result<Family, KinematicsError> {
     let joints = template_joints(template, geom.half_angle());
-    let modes = mechanism_modes(geom, &joints, FlowRule::NonAssociative, false)?;
+    let modes = mechanism_modes_with(geom, &joints, FlowRule::NonAssociative, false, settings)?;
     Ok(Family {
         template: *template,
         joints,
@@ -221,7 +233,11 @@ pub fn margin(f: &Family) -> f64 {
 
 /// The family of `template` at the inner positions (on a grid of α/10, springings kept)
 /// that give the largest [`margin`]; `None` when no grid position is admissible.
-fn best_positions<G: ArchGeometry + ?Sized>(geom: &G, template: &FamilyTemplate) -> Option<Family> {
+fn best_positions<G: ArchGeometry + ?Sized>(
+    geom: &G,
+    template: &FamilyTemplate,
+    settings: &KinematicsSettings,
+) -> Option<Family> {
     const STEPS: i32 = 10;
     let alpha = geom.half_angle();
     let base = template_joints(template, alpha);
@@ -241,7 +257,8 @@ fn best_positions<G: ArchGeometry + ?Sized>(geom: &G, template: &FamilyTemplate)
         }
         let ordered = joints.windows(2).all(|w| w[0].theta < w[1].theta);
         if ordered
-            && let Ok(modes) = mechanism_modes(geom, &joints, FlowRule::NonAssociative, false)
+            && let Ok(modes) =
+                mechanism_modes_with(geom, &joints, FlowRule::NonAssociative, false, settings)
         {
             let fam = Family {
                 template: *template,
@@ -274,14 +291,22 @@ fn best_positions<G: ArchGeometry + ?Sized>(geom: &G, template: &FamilyTemplate)
 /// largest margin; a family with no admissible position on the grid is returned at the
 /// representative positions with its status.
 pub fn families<G: ArchGeometry + ?Sized>(geom: &G) -> Result<Vec<Family>, KinematicsError> {
+    families_with(geom, &KinematicsSettings::DEFAULT)
+}
+
+/// [`families`] with the given settings.
+pub fn families_with<G: ArchGeometry + ?Sized>(
+    geom: &G,
+    settings: &KinematicsSettings,
+) -> Result<Vec<Family>, KinematicsError> {
     REPRESENTATIVE
         .iter()
         .map(|t| {
-            let f = family(geom, t)?;
+            let f = family_with(geom, t, settings)?;
             if margin(&f) > 0.0 {
                 return Ok(f);
             }
-            Ok(best_positions(geom, t).unwrap_or(f))
+            Ok(best_positions(geom, t, settings).unwrap_or(f))
         })
         .collect()
 }

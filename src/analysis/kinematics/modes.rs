@@ -1,15 +1,17 @@
 //! The mechanisms of a pattern of active joints: the null space of its compatibility system
-//! (SVD, relative rank tolerance [`RANK_TOL`]) and, within it, the fields obeying the flow
+//! (SVD, relative rank tolerance `tol_rank`) and, within it, the fields obeying the flow
 //! rules: the extreme rays of the cone of admissible fields (one for a single mechanism, two at
 //! a bifurcation).
 
-use super::{ActiveJoint, Compatibility, FlowRule, KinematicsError, RANK_TOL, VelocityField};
+use super::{
+    ActiveJoint, Compatibility, FlowRule, KinematicsError, KinematicsSettings, VelocityField,
+};
 use crate::analysis::statics::ArchGeometry;
 use nalgebra::DMatrix;
 
 /// An orthonormal basis (as columns) of the null space of `a`, by SVD with the relative
-/// tolerance [`RANK_TOL`]; `None` when an entry is not finite.
-pub fn null_space(a: &DMatrix<f64>) -> Option<DMatrix<f64>> {
+/// tolerance `tol_rank`; `None` when an entry is not finite.
+pub fn null_space(a: &DMatrix<f64>, settings: &KinematicsSettings) -> Option<DMatrix<f64>> {
     let (m, n) = a.shape();
     if n == 0 {
         return Some(DMatrix::zeros(0, 0));
@@ -20,10 +22,16 @@ pub fn null_space(a: &DMatrix<f64>) -> Option<DMatrix<f64>> {
     // Pad to at least n rows so that the SVD returns the full V.
     let mut padded = DMatrix::zeros(m.max(n), n);
     padded.view_mut((0, 0), (m, n)).copy_from(a);
-    let svd = nalgebra::SVD::try_new(padded, false, true, f64::EPSILON, 500)?;
+    let svd = nalgebra::SVD::try_new(
+        padded,
+        false,
+        true,
+        f64::EPSILON,
+        settings.max_svd_iterations,
+    )?;
     let v_t = svd.v_t?;
     let top = svd.singular_values.iter().fold(0.0_f64, |x, &s| x.max(s));
-    let tol = RANK_TOL * top.max(1.0);
+    let tol = settings.tol_rank * top.max(1.0);
     let cols: Vec<usize> = (0..n).filter(|&i| svd.singular_values[i] <= tol).collect();
     Some(DMatrix::from_fn(n, cols.len(), |r, c| v_t[(cols[c], r)]))
 }
@@ -69,25 +77,42 @@ pub struct Modes {
     pub fields: Vec<VelocityField>,
 }
 
-/// The mechanisms of a pattern: the null space of its compatibility system and, within it
-/// (within its symmetric part when `prefer_symmetric`, the pattern is symmetric and that part
-/// is not empty; otherwise in the whole null space), the
-/// fields obeying the normality rule at the hinges (eq. 5 with δα of the sign of the face)
-/// and maximum dissipation at sliding joints that carry a sense (eq. 10).
+/// The mechanisms of a pattern with the default settings ([`mechanism_modes_with`]).
 pub fn mechanism_modes<G: ArchGeometry + ?Sized>(
     geom: &G,
     joints: &[ActiveJoint],
     rule: FlowRule,
     prefer_symmetric: bool,
 ) -> Result<Modes, KinematicsError> {
-    let sys = Compatibility::new(geom, joints, rule)?;
+    mechanism_modes_with(
+        geom,
+        joints,
+        rule,
+        prefer_symmetric,
+        &KinematicsSettings::DEFAULT,
+    )
+}
+
+/// The mechanisms of a pattern: the null space of its compatibility system and, within it
+/// (within its symmetric part when `prefer_symmetric`, the pattern is symmetric and that part
+/// is not empty; otherwise in the whole null space), the
+/// fields obeying the normality rule at the hinges (eq. 5 with δα of the sign of the face)
+/// and maximum dissipation at sliding joints that carry a sense (eq. 10).
+pub fn mechanism_modes_with<G: ArchGeometry + ?Sized>(
+    geom: &G,
+    joints: &[ActiveJoint],
+    rule: FlowRule,
+    prefer_symmetric: bool,
+    settings: &KinematicsSettings,
+) -> Result<Modes, KinematicsError> {
+    let sys = Compatibility::new(geom, joints, rule, settings)?;
     let failed = |dof| Modes {
         status: ModeStatus::Failed,
         dof,
         symmetric_dof: None,
         fields: Vec::new(),
     };
-    let Some(full) = null_space(&sys.matrix) else {
+    let Some(full) = null_space(&sys.matrix, settings) else {
         return Ok(failed(0));
     };
     let dof = full.ncols() as u32;
@@ -100,7 +125,7 @@ pub fn mechanism_modes<G: ArchGeometry + ?Sized>(
                 sym[(i - sys.matrix.nrows(), j)]
             }
         });
-        let Some(b) = null_space(&stacked) else {
+        let Some(b) = null_space(&stacked, settings) else {
             return Ok(failed(dof));
         };
         let d = b.ncols() as u32;
@@ -122,7 +147,7 @@ pub fn mechanism_modes<G: ArchGeometry + ?Sized>(
         });
     }
     let g = admissibility_in_basis(&sys, &basis);
-    let rays = extreme_rays(&g, basis.ncols());
+    let rays = extreme_rays(&g, basis.ncols(), settings);
     let (status, coeffs) = if rays.is_empty() {
         (
             ModeStatus::Inadmissible,
@@ -154,22 +179,23 @@ fn admissibility_in_basis(sys: &Compatibility, basis: &DMatrix<f64>) -> Vec<Vec<
         .filter_map(|r| {
             let row = nalgebra::RowDVector::from_row_slice(&r) * basis;
             let norm = row.norm();
-            (norm > RANK_TOL).then(|| row.iter().map(|v| v / norm).collect())
+            (norm > sys.settings.tol_rank).then(|| row.iter().map(|v| v / norm).collect())
         })
         .collect()
 }
 
 /// The extreme rays of the cone {c : g c ≥ 0} in R^d (d ≤ 4), unit vectors in a stable
 /// order; for a cone without constraints in one dimension, both directions.
-fn extreme_rays(g: &[Vec<f64>], d: usize) -> Vec<Vec<f64>> {
-    const FEAS_TOL: f64 = 1e-9;
+fn extreme_rays(g: &[Vec<f64>], d: usize, settings: &KinematicsSettings) -> Vec<Vec<f64>> {
     if d > 4 {
         return Vec::new();
     }
     let mut rays: Vec<Vec<f64>> = Vec::new();
     for subset in combinations(g.len(), d - 1) {
         let a = DMatrix::from_fn(subset.len(), d, |i, j| g[subset[i]][j]);
-        let Some(ns) = null_space(&a) else { continue };
+        let Some(ns) = null_space(&a, settings) else {
+            continue;
+        };
         if ns.ncols() != 1 {
             continue;
         }
@@ -177,10 +203,10 @@ fn extreme_rays(g: &[Vec<f64>], d: usize) -> Vec<Vec<f64>> {
             let c: Vec<f64> = ns.column(0).iter().map(|v| sign * v).collect();
             let feasible = g
                 .iter()
-                .all(|r| r.iter().zip(&c).map(|(a, b)| a * b).sum::<f64>() >= -FEAS_TOL);
-            let known = rays
-                .iter()
-                .any(|q| q.iter().zip(&c).map(|(a, b)| (a - b).abs()).sum::<f64>() < 1e-6);
+                .all(|r| r.iter().zip(&c).map(|(a, b)| a * b).sum::<f64>() >= -settings.tol_cone);
+            let known = rays.iter().any(|q| {
+                q.iter().zip(&c).map(|(a, b)| (a - b).abs()).sum::<f64>() < settings.tol_same_ray
+            });
             if feasible && !known {
                 rays.push(c);
             }

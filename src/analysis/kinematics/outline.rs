@@ -7,7 +7,7 @@
 //! over r; the field is normalised (largest block-corner speed 1), so ε is the largest corner
 //! displacement over r.
 
-use super::{RigidVelocity, VelocityField};
+use super::{KinematicsSettings, RigidVelocity, VelocityField};
 use crate::analysis::statics::{ArchGeometry, Point};
 use crate::analysis::types::{Face, Sense};
 use serde::{Deserialize, Serialize};
@@ -105,15 +105,21 @@ impl MechanismDrawing {
     }
 }
 
-/// The point p moved by the rigid motion of amplitude ε of a virtual velocity.
-pub fn displace(v: &RigidVelocity, p: Point, amplitude: f64) -> Point {
+/// The point p moved by the rigid motion of amplitude ε of a virtual velocity (small-angle
+/// series below `settings.small_rotation`).
+pub fn displace(
+    v: &RigidVelocity,
+    p: Point,
+    amplitude: f64,
+    settings: &KinematicsSettings,
+) -> Point {
     let beta = amplitude * v.rotation;
     let d = [p[0] - v.reference[0], p[1] - v.reference[1]];
     let u = v.translation;
     let (sb, cb) = beta.sin_cos();
     // Rotation by β about the instant centre c = ref + k×u/ω, written without dividing by ω:
     // p' = p + (cos β − 1) d + sin β k×d + (sin β/ω) u + ((1 − cos β)/ω) k×u.
-    let (f1, f2) = if beta.abs() < 1e-8 {
+    let (f1, f2) = if beta.abs() < settings.small_rotation {
         (amplitude, 0.5 * amplitude * beta)
     } else {
         (sb / v.rotation, (1.0 - cb) / v.rotation)
@@ -135,12 +141,22 @@ fn polygon<G: ArchGeometry + ?Sized>(geom: &G, from: f64, to: f64, step: f64) ->
     out
 }
 
-/// The drawing of a field with displacement amplitude ε (over r; 0.08 shows a mechanism
-/// clearly on a semicircle).
+/// The drawing of a field with the default settings ([`drawing_with`]).
 pub fn drawing<G: ArchGeometry + ?Sized>(
     geom: &G,
     field: &VelocityField,
     amplitude: f64,
+) -> MechanismDrawing {
+    drawing_with(geom, field, amplitude, &KinematicsSettings::DEFAULT)
+}
+
+/// The drawing of a field with displacement amplitude ε (over r; 0.08 shows a mechanism
+/// clearly on a semicircle).
+pub fn drawing_with<G: ArchGeometry + ?Sized>(
+    geom: &G,
+    field: &VelocityField,
+    amplitude: f64,
+    settings: &KinematicsSettings,
 ) -> MechanismDrawing {
     let step = 1.0_f64.to_radians();
     let outlines = field
@@ -151,7 +167,7 @@ pub fn drawing<G: ArchGeometry + ?Sized>(
             let original = polygon(geom, p.theta_from, p.theta_to, step);
             let displaced = original
                 .iter()
-                .map(|&q| displace(&p.velocity, q, amplitude))
+                .map(|&q| displace(&p.velocity, q, amplitude, settings))
                 .collect();
             BlockOutline {
                 theta_from: p.theta_from,
@@ -174,7 +190,7 @@ pub fn drawing<G: ArchGeometry + ?Sized>(
             };
             hinges.push(HingeMark {
                 point,
-                displaced: displace(&left, point, amplitude),
+                displaced: displace(&left, point, amplitude, settings),
                 face,
                 relative_rotation: m.relative_rotation,
             });
@@ -203,8 +219,8 @@ pub fn drawing<G: ArchGeometry + ?Sized>(
         };
         let j = geom.joint(t);
         voussoir_joints.push([
-            displace(&p.velocity, j.intrados, amplitude),
-            displace(&p.velocity, j.extrados, amplitude),
+            displace(&p.velocity, j.intrados, amplitude, settings),
+            displace(&p.velocity, j.extrados, amplitude, settings),
         ]);
     }
     let alpha = geom.half_angle();

@@ -2,9 +2,11 @@
 //! equation (eqs. 9, 11); the ten families of Figs. 3–5; the associative comparison.
 
 use super::*;
+use crate::analysis::MechanismKind;
 use crate::analysis::circular::CircularArch;
 use crate::analysis::symmetric::{CriticalState, friction, sliding_threshold, thickness};
 use crate::model::{Arch, Discretisation, Friction, WeightModel};
+use approx::{abs_diff_eq, assert_abs_diff_eq};
 
 const K_C: f64 = 1.113581813339;
 const MU_ROT: f64 = 0.395265252140;
@@ -29,15 +31,27 @@ fn found(c: crate::analysis::symmetric::Critical) -> CriticalState {
 fn assert_work(geom: &CircularArch, state: &CriticalState, f: &VelocityField) -> WorkEquation {
     let w = work_equation(geom, &LimitState::symmetric(state), f);
     assert!(w.work_residual < 1e-9, "{w:?}");
-    assert!(w.work_normal.abs() < 1e-9 * w.load_scale, "{w:?}");
+    assert!(
+        abs_diff_eq!(w.work_normal, 0.0, epsilon = 1e-9 * w.load_scale),
+        "{w:?}"
+    );
     match f.kind() {
         Some(MechanismKind::Rotational) => {
-            assert!(w.work_friction.abs() < 1e-12 * w.load_scale, "{w:?}");
-            assert!(w.work_loads.abs() < 1e-9 * w.load_scale, "{w:?}");
+            assert!(
+                abs_diff_eq!(w.work_friction, 0.0, epsilon = 1e-12 * w.load_scale),
+                "{w:?}"
+            );
+            assert!(
+                abs_diff_eq!(w.work_loads, 0.0, epsilon = 1e-9 * w.load_scale),
+                "{w:?}"
+            );
         }
         _ => {
             assert!(w.work_loads > 0.0 && w.work_friction < 0.0, "{w:?}");
-            assert!((w.work_tangential - w.work_friction).abs() < 1e-9, "{w:?}");
+            assert!(
+                abs_diff_eq!(w.work_tangential, w.work_friction, epsilon = 1e-9),
+                "{w:?}"
+            );
         }
     }
     w
@@ -55,7 +69,7 @@ fn moving(f: &VelocityField) -> Vec<(f64, bool, bool)> {
 #[test]
 fn rotational_collapse_at_kc_is_the_symmetric_five_hinge_mode() {
     let s = found(thickness(&semi(1.5), Friction::INFINITE));
-    assert!((s.k - K_C).abs() < 1e-9);
+    assert_abs_diff_eq!(s.k, K_C, epsilon = 1e-9);
     let arch = semi(s.k);
     let m = collapse_mechanism(&arch, &s);
     assert_eq!(m.status, ModeStatus::Admissible);
@@ -68,7 +82,7 @@ fn rotational_collapse_at_kc_is_the_symmetric_five_hinge_mode() {
     let expect = [-90.0, -HAUNCH_DEG, 0.0, HAUNCH_DEG, 90.0];
     assert_eq!(angles.len(), 5, "{angles:?}");
     for (a, e) in angles.iter().zip(expect) {
-        assert!((a - e).abs() < 1e-6, "{angles:?}");
+        assert!(abs_diff_eq!(*a, e, epsilon = 1e-6), "{angles:?}");
     }
     // Normality: the crown and springings open at the intrados, the haunches at the extrados,
     // and eq. (5) holds as an equality: δr_G^n = (h/2)|δα|.
@@ -80,7 +94,11 @@ fn rotational_collapse_at_kc_is_the_symmetric_five_hinge_mode() {
             -1.0
         };
         assert!(sign * j.relative_rotation > 0.1, "{j:?}");
-        assert!((j.opening - 0.5 * h * j.relative_rotation.abs()).abs() < 1e-12);
+        assert_abs_diff_eq!(
+            j.opening,
+            0.5 * h * j.relative_rotation.abs(),
+            epsilon = 1e-12
+        );
         assert!(j.constraint_residual < 1e-12);
     }
     // The crown goes down.
@@ -93,7 +111,7 @@ fn rotational_collapse_at_kc_is_the_symmetric_five_hinge_mode() {
 #[test]
 fn mixed_collapse_slides_outward_at_the_springings() {
     let s = found(thickness(&semi(1.5), mu(0.35)));
-    assert!((s.k - 1.16434).abs() < 1e-5, "K = {}", s.k);
+    assert!(abs_diff_eq!(s.k, 1.16434, epsilon = 1e-5), "K = {}", s.k);
     let arch = semi(s.k);
     let m = collapse_mechanism(&arch, &s);
     assert_eq!(m.status, ModeStatus::Admissible);
@@ -102,9 +120,10 @@ fn mixed_collapse_slides_outward_at_the_springings() {
     assert_eq!(f.kind(), Some(MechanismKind::Mixed));
     for j in &f.joints {
         if j.joint.slides {
-            assert!((j.angle_deg().abs() - 90.0).abs() < 1e-12);
+            assert_abs_diff_eq!(j.angle_deg().abs(), 90.0, epsilon = 1e-12);
             assert_eq!(j.slip_sense(), Some(Sense::Outward));
-            assert!(j.relative_rotation.abs() < 1e-12 && j.dilatancy.abs() < 1e-12);
+            assert_abs_diff_eq!(j.relative_rotation, 0.0, epsilon = 1e-12);
+            assert_abs_diff_eq!(j.dilatancy, 0.0, epsilon = 1e-12);
         } else {
             assert!(j.rotates());
         }
@@ -117,13 +136,13 @@ fn mixed_collapse_slides_outward_at_the_springings() {
         .filter(|j| j.joint.slides)
         .map(|j| j.slip.abs())
         .sum();
-    assert!((w.work_friction + 0.35 * slips).abs() < 1e-12);
+    assert_abs_diff_eq!(w.work_friction, -0.35 * slips, epsilon = 1e-12);
 }
 
 #[test]
 fn sliding_collapse_at_mu_min_slides_at_29_and_90_degrees() {
     let s = found(sliding_threshold(&semi(1.3)));
-    assert!((s.mu - MU_MIN).abs() < 1e-9);
+    assert_abs_diff_eq!(s.mu, MU_MIN, epsilon = 1e-9);
     for k in [K_BIF + 0.01, 1.3, 2.0] {
         let arch = semi(k);
         let m = collapse_mechanism(&arch, &s);
@@ -139,7 +158,7 @@ fn sliding_collapse_at_mu_min_slides_at_29_and_90_degrees() {
             (SLIDE_DEG, Sense::Inward),
             (90.0, Sense::Outward),
         ]) {
-            assert!((j.angle_deg() - deg).abs() < 1e-6, "{j:?}");
+            assert!(abs_diff_eq!(j.angle_deg(), deg, epsilon = 1e-6), "{j:?}");
             assert_eq!(j.slip_sense(), Some(sense));
         }
         // Pure translations: no block rotates.
@@ -151,7 +170,7 @@ fn sliding_collapse_at_mu_min_slides_at_29_and_90_degrees() {
 #[test]
 fn bifurcation_rotational_mixed_has_both_mechanisms() {
     let s = found(friction(&semi(K_C)));
-    assert!((s.mu - MU_ROT).abs() < 1e-9);
+    assert_abs_diff_eq!(s.mu, MU_ROT, epsilon = 1e-9);
     let arch = semi(K_C);
     let m = collapse_mechanism(&arch, &s);
     assert_eq!(m.status, ModeStatus::Admissible);
@@ -173,7 +192,7 @@ fn bifurcation_rotational_mixed_has_both_mechanisms() {
 #[test]
 fn bifurcation_mixed_sliding_has_both_mechanisms() {
     let s = found(thickness(&semi(1.5), mu(MU_MIN)));
-    assert!((s.k - K_BIF).abs() < 1e-8);
+    assert_abs_diff_eq!(s.k, K_BIF, epsilon = 1e-8);
     let arch = semi(s.k);
     let m = collapse_mechanism(&arch, &s);
     assert_eq!(m.status, ModeStatus::Admissible);
@@ -191,7 +210,7 @@ fn bifurcation_mixed_sliding_has_both_mechanisms() {
     assert_eq!(slides(f), vec![-90.0, 90.0]);
     let sl = slides(alt);
     assert_eq!(sl.len(), 4);
-    assert!((sl[2] - SLIDE_DEG).abs() < 1e-6);
+    assert_abs_diff_eq!(sl[2], SLIDE_DEG, epsilon = 1e-6);
 }
 
 #[test]
@@ -231,7 +250,7 @@ fn discrete_rotational_collapse_uses_joints_of_the_voussoirs() {
     let f = m.field.unwrap();
     for j in &f.joints {
         let steps = j.angle_deg() / (180.0 / 16.0);
-        assert!((steps - steps.round()).abs() < 1e-9, "{j:?}");
+        assert!(abs_diff_eq!(steps, steps.round(), epsilon = 1e-9), "{j:?}");
     }
 }
 
@@ -244,14 +263,28 @@ fn associative_mechanism_dilates_and_balances_with_zero_work() {
     assert_eq!(c.associative.mechanism_dof, c.non_associative.mechanism_dof);
     assert_eq!(c.rows.len(), 2);
     for r in &c.rows {
-        assert!(r.dilatancy_non_associative.abs() < 1e-12, "{r:?}");
+        assert!(
+            abs_diff_eq!(r.dilatancy_non_associative, 0.0, epsilon = 1e-12),
+            "{r:?}"
+        );
         assert!(r.slip_associative > 0.0 && r.slip_non_associative > 0.0);
-        assert!((r.dilatancy_associative - 0.35 * r.slip_associative.abs()).abs() < 1e-12);
+        assert_abs_diff_eq!(
+            r.dilatancy_associative,
+            0.35 * r.slip_associative.abs(),
+            epsilon = 1e-12
+        );
     }
     // With dilatancy the friction dissipates nothing: dL^(a) = 0 at the same state.
     let w = c.associative.work.unwrap();
-    assert!(w.work_loads.abs() < 1e-9 * w.load_scale, "{w:?}");
-    assert!((w.work_normal + w.work_tangential + w.work_loads).abs() < 1e-9);
+    assert!(
+        abs_diff_eq!(w.work_loads, 0.0, epsilon = 1e-9 * w.load_scale),
+        "{w:?}"
+    );
+    assert_abs_diff_eq!(
+        w.work_normal + w.work_tangential + w.work_loads,
+        0.0,
+        epsilon = 1e-9
+    );
     // The rotational state has nothing to slide: both rules give the same mechanism.
     let r = found(thickness(&semi(1.5), Friction::INFINITE));
     let c = compare_flow_rules(&semi(r.k), &r);
@@ -266,8 +299,12 @@ fn associative_sliding_mechanism_at_mu_min() {
     assert_eq!(c.rows.len(), 4);
     for r in &c.rows {
         assert_eq!(r.slip_associative.signum(), r.slip_non_associative.signum());
-        assert!((r.dilatancy_associative - s.mu * r.slip_associative.abs()).abs() < 1e-12);
-        assert!(r.dilatancy_non_associative.abs() < 1e-12);
+        assert_abs_diff_eq!(
+            r.dilatancy_associative,
+            s.mu * r.slip_associative.abs(),
+            epsilon = 1e-12
+        );
+        assert_abs_diff_eq!(r.dilatancy_non_associative, 0.0, epsilon = 1e-12);
     }
 }
 
@@ -293,7 +330,8 @@ fn ten_distinct_admissible_families_on_the_semicircle() {
                 // Every joint of a one-dof family moves; pure sliding does not dilate.
                 assert!(j.rotates() || j.slips(), "{id}: {j:?}");
                 if j.joint.hinge.is_none() {
-                    assert!(j.relative_rotation.abs() < 1e-12 && j.dilatancy.abs() < 1e-12);
+                    assert_abs_diff_eq!(j.relative_rotation, 0.0, epsilon = 1e-12);
+                    assert_abs_diff_eq!(j.dilatancy, 0.0, epsilon = 1e-12);
                 }
             }
             let sig: Vec<String> = field
@@ -381,7 +419,7 @@ fn displaced_blocks_keep_their_shape_and_meet_at_hinges() {
             let (pd, qd) = (o.displaced[0], o.displaced[o.original.len() / 2]);
             let l0 = (p[0] - q[0]).hypot(p[1] - q[1]);
             let l1 = (pd[0] - qd[0]).hypot(pd[1] - qd[1]);
-            assert!((l0 - l1).abs() < 1e-12);
+            assert_abs_diff_eq!(l0, l1, epsilon = 1e-12);
             // Corner displacements are at most ε (field normalised to corner speed 1).
             for (a, b) in o.original.iter().zip(&o.displaced) {
                 assert!((a[0] - b[0]).hypot(a[1] - b[1]) <= eps * (1.0 + 1e-6));
@@ -396,8 +434,18 @@ fn displaced_blocks_keep_their_shape_and_meet_at_hinges() {
                 } else {
                     j.extrados
                 };
-                let a = outline::displace(&field.parts[k].velocity, p, eps);
-                let b = outline::displace(&field.parts[k + 1].velocity, p, eps);
+                let a = outline::displace(
+                    &field.parts[k].velocity,
+                    p,
+                    eps,
+                    &KinematicsSettings::DEFAULT,
+                );
+                let b = outline::displace(
+                    &field.parts[k + 1].velocity,
+                    p,
+                    eps,
+                    &KinematicsSettings::DEFAULT,
+                );
                 assert!(
                     (a[0] - b[0]).hypot(a[1] - b[1]) < 10.0 * eps * eps,
                     "{}",
@@ -444,7 +492,7 @@ fn la_hire_joint_is_merged_from_a_state_pattern() {
     let s = found(friction(&semi(K_C)));
     let joints = pattern_of(&s.mechanism);
     let geom = CircularArch::new(semi(K_C));
-    let merged = normalise_pattern(&geom, &joints).unwrap();
+    let merged = normalise_pattern(&geom, &joints, &KinematicsSettings::DEFAULT).unwrap();
     assert_eq!(merged.len(), 5);
     let spr = merged.last().unwrap();
     assert_eq!(

@@ -1,0 +1,309 @@
+//! Critical values of the general route: K_c, μ_c and μ_min as roots of the margin in K or
+//! φ (Brent).
+
+use super::margin::{MarginSolution, margin};
+use super::{Outcome, RowSet, Settings};
+use crate::analysis::circular::CircularArch;
+use crate::analysis::roots::brent;
+use crate::analysis::statics::ArchGeometry;
+use crate::analysis::types::Mechanism;
+use crate::model::{Arch, Friction};
+use std::cell::Cell;
+use std::f64::consts::FRAC_PI_2;
+
+/// A limit state found by a critical-value search.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LimitState {
+    /// K = R/r at the limit for a thickness search; `None` for a friction search (the
+    /// geometry's own K applies).
+    pub k: Option<f64>,
+    /// μ at the limit (infinite when friction plays no part).
+    pub mu: f64,
+    /// The margin solution there: crown state and active rows.
+    pub state: MarginSolution,
+    /// The mechanism named by the active rows.
+    pub mechanism: Option<Mechanism>,
+}
+
+/// The outcome of a critical-value search.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Critical {
+    /// A limit state exists.
+    Found(LimitState),
+    /// No value of the searched parameter lets the arch stand.
+    NeverStands,
+    /// The arch stands for every admissible value of the searched parameter.
+    AlwaysStands,
+    /// A margin could not be computed.
+    Failed(Outcome),
+}
+
+impl Critical {
+    /// The limit state when found.
+    pub fn found(&self) -> Option<&LimitState> {
+        match self {
+            Critical::Found(s) => Some(s),
+            _ => None,
+        }
+    }
+}
+
+/// Brent on `psi` over [lo, hi] where psi(lo) < 0 ≤ psi(hi); a failed margin inside is
+/// reported through `failed`.
+fn root_of_margin(
+    psi: impl Fn(f64) -> f64,
+    lo: f64,
+    hi: f64,
+    tol: f64,
+    failed: &Cell<Option<Outcome>>,
+) -> Result<Option<f64>, Outcome> {
+    let r = brent(&psi, lo, hi, tol);
+    match failed.get() {
+        Some(o) => Err(o),
+        None => Ok(r),
+    }
+}
+
+/// The margin of all rows shifted for a root search: τ − τ_ref + tol, where τ_ref ≤ 0 is
+/// the margin of the rows the search does not relax (see [`thickness`]). NaN on failure
+/// (which stops Brent), recorded in `failed`.
+fn shifted_margin(
+    m: &MarginSolution,
+    reference: f64,
+    settings: &Settings,
+    failed: &Cell<Option<Outcome>>,
+) -> f64 {
+    if m.outcome == Outcome::Solved {
+        m.margin - reference + settings.tol_margin
+    } else {
+        failed.set(Some(m.outcome));
+        f64::NAN
+    }
+}
+
+/// A search that ends without a limit state.
+#[derive(Debug, Clone, Copy)]
+enum Stop {
+    Never,
+    Always,
+    Failed(Outcome),
+}
+
+impl From<Stop> for Critical {
+    fn from(s: Stop) -> Critical {
+        match s {
+            Stop::Never => Critical::NeverStands,
+            Stop::Always => Critical::AlwaysStands,
+            Stop::Failed(o) => Critical::Failed(o),
+        }
+    }
+}
+
+/// The reference τ_ref = min(τ, 0) of a margin that a search cannot improve, or the outcome
+/// of the search when that margin already decides it.
+fn reference(m: &MarginSolution, settings: &Settings) -> Result<f64, Stop> {
+    if m.outcome != Outcome::Solved {
+        return Err(Stop::Failed(m.outcome));
+    }
+    if !m.feasible(settings) {
+        return Err(Stop::Never);
+    }
+    Ok(m.margin.min(0.0))
+}
+
+/// The bracket and tolerance of a [`search`].
+#[derive(Debug, Clone, Copy)]
+struct Bracket {
+    /// The lower end, where the arch is expected not to stand.
+    lo: f64,
+    /// The first upper end.
+    hi: f64,
+    /// `hi` never goes beyond this.
+    cap: f64,
+    /// Absolute tolerance of the root.
+    tol: f64,
+    /// Whether `hi` doubles away from `lo` while psi(hi) < 0.
+    grow_hi: bool,
+    /// Largest hi − lo explored.
+    max_span: f64,
+}
+
+/// The smallest p in [lo, hi] with psi(p) ≥ 0, for psi whose sign is non-decreasing; `hi`
+/// doubles away from `lo` (up to `cap`) while psi(hi) < 0 when `grow_hi`.
+fn search(
+    psi: impl Fn(f64) -> f64,
+    bracket: &Bracket,
+    failed: &Cell<Option<Outcome>>,
+) -> Result<f64, Stop> {
+    let Bracket {
+        lo,
+        hi,
+        cap,
+        tol,
+        grow_hi,
+        max_span,
+    } = *bracket;
+    let check = |f: f64| match failed.get() {
+        Some(o) => Err(Stop::Failed(o)),
+        None => Ok(f),
+    };
+    if check(psi(lo))? >= 0.0 {
+        return Err(Stop::Always);
+    }
+    let mut hi = hi.min(cap);
+    while check(psi(hi))? < 0.0 {
+        if !grow_hi || hi >= cap {
+            return Err(Stop::Never);
+        }
+        hi = (lo + 2.0 * (hi - lo)).min(cap);
+        if hi - lo > max_span {
+            return Err(Stop::Never);
+        }
+    }
+    match root_of_margin(psi, lo, hi, tol, failed) {
+        Err(o) => Err(Stop::Failed(o)),
+        Ok(None) => Err(Stop::Never),
+        Ok(Some(p)) => Ok(p),
+    }
+}
+
+/// The collapse thickness K_c of a circular arch at friction μ: the smallest K at which all
+/// rows are feasible (the collapse condition of the paper's §5), by Brent on the margin in
+/// K ∈ (1, ∞).
+///
+/// The root is taken of τ_all(K) − τ_ref + tol with τ_ref = min(τ_sliding, 0): thickness
+/// cannot make the sliding rows more feasible, so when μ sits at μ_min (τ_sliding ≈ 0⁻) the
+/// search measures the thickness against what sliding allows instead of against noise.
+/// Invariant: τ_all ≥ τ_ref − `tol_margin` ≥ −2 `tol_margin` at the returned K.
+pub fn thickness(arch: &Arch, friction: Friction, settings: &Settings) -> Critical {
+    thickness_with(
+        |k| Some(CircularArch::new(arch.with_k(k))),
+        f64::INFINITY,
+        Some(arch.k),
+        friction,
+        settings,
+    )
+}
+
+/// The collapse thickness of any family of arches K ↦ `at(K)`, K ∈ (1, `k_max`), at
+/// friction μ and the load factor `settings.lambda`: as [`thickness`].
+///
+/// `at(K)` is `None` where the family does not exist (it counts as not standing there).
+/// `sliding_reference` is a K at which to take τ_ref when the sliding rows do not depend on
+/// K (circular arches with radial joints: the loads over W_half are the same at every K);
+/// `None` takes τ_ref = 0. A family that does not stand up to `k_max` never stands.
+pub fn thickness_with<G: ArchGeometry, F: Fn(f64) -> Option<G>>(
+    at: F,
+    k_max: f64,
+    sliding_reference: Option<f64>,
+    friction: Friction,
+    settings: &Settings,
+) -> Critical {
+    let phi = friction.angle();
+    let failed = Cell::new(None);
+    let tau_ref = match sliding_reference {
+        Some(k) => match at(k).map(|g| margin(&g, phi, RowSet::Sliding, settings)) {
+            Some(m) => match reference(&m, settings) {
+                Ok(r) => r,
+                Err(c) => return c.into(),
+            },
+            None => 0.0,
+        },
+        None => 0.0,
+    };
+    let psi = |k: f64| match at(k) {
+        Some(g) => shifted_margin(
+            &margin(&g, phi, RowSet::All, settings),
+            tau_ref,
+            settings,
+            &failed,
+        ),
+        None => -1.0,
+    };
+    // Stay clear of the end of the family, where it degenerates.
+    let cap = if k_max.is_finite() {
+        1.0 + (k_max - 1.0) * (1.0 - settings.family_end_clearance)
+    } else {
+        f64::INFINITY
+    };
+    let bracket = Bracket {
+        lo: 1.0 + settings.k_search_offset,
+        hi: settings.k_search_start,
+        cap,
+        tol: settings.tol_thickness,
+        grow_hi: true,
+        max_span: settings.max_bracket,
+    };
+    let k = match search(psi, &bracket, &failed) {
+        Ok(k) => k,
+        Err(c) => return c.into(),
+    };
+    let Some(g) = at(k) else {
+        return Critical::NeverStands;
+    };
+    let state = margin(&g, phi, RowSet::All, settings);
+    Critical::Found(LimitState {
+        k: Some(k),
+        mu: friction.mu(),
+        mechanism: state.mechanism_with(settings),
+        state,
+    })
+}
+
+/// The smallest μ = tan φ at which the rows of `set` are feasible, by Brent on the margin
+/// in φ ∈ [0, π/2], shifted by the reference margin `tau_ref` ≤ 0.
+fn friction_search<G: ArchGeometry + ?Sized>(
+    geom: &G,
+    set: RowSet,
+    tau_ref: f64,
+    settings: &Settings,
+) -> Critical {
+    let failed = Cell::new(None);
+    let psi = |phi: f64| {
+        shifted_margin(
+            &margin(geom, phi, set, settings),
+            tau_ref,
+            settings,
+            &failed,
+        )
+    };
+    let bracket = Bracket {
+        lo: 0.0,
+        hi: FRAC_PI_2,
+        cap: f64::INFINITY,
+        tol: settings.tol_friction_angle,
+        grow_hi: false,
+        max_span: settings.max_bracket,
+    };
+    let phi = match search(psi, &bracket, &failed) {
+        Ok(p) => p,
+        Err(c) => return c.into(),
+    };
+    let state = margin(geom, phi, set, settings);
+    Critical::Found(LimitState {
+        k: None,
+        mu: phi.tan(),
+        mechanism: state.mechanism_with(settings),
+        state,
+    })
+}
+
+/// The critical friction μ_c (paper §5): the smallest μ = tan φ at which the arch stands
+/// (all rows feasible), by Brent on the margin in φ.
+///
+/// As in [`thickness`], the root is taken of τ_all(φ) − τ_ref + tol with
+/// τ_ref = min(τ_rotational, 0), so that at K = K_c (τ_rotational ≈ 0⁻) the result is the
+/// bifurcation friction rather than noise. Invariant: τ_all ≥ −2 `tol_margin` at the result.
+pub fn friction<G: ArchGeometry + ?Sized>(geom: &G, settings: &Settings) -> Critical {
+    let rotational = margin(geom, FRAC_PI_2, RowSet::Rotational, settings);
+    match reference(&rotational, settings) {
+        Ok(r) => friction_search(geom, RowSet::All, r, settings),
+        Err(c) => c.into(),
+    }
+}
+
+/// μ_min: the smallest μ at which the sliding rows alone are feasible (H^s shrinks to a
+/// point there, paper §2); below it no thickness lets the arch stand.
+pub fn sliding_threshold<G: ArchGeometry + ?Sized>(geom: &G, settings: &Settings) -> Critical {
+    friction_search(geom, RowSet::Sliding, 0.0, settings)
+}
