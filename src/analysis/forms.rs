@@ -21,7 +21,7 @@
 //!   extrados apex (ψ_e = asin(d/K)), named 0. Joints with 0 < |θ| < ψ₁ do not exist: the
 //!   radius through them would leave the half arch.
 //!
-//! # Weights (DESIGN.md §1)
+//! # Weights (docs/mechanics.md §1)
 //! `annular`: the true area of the region R(θ) between the crown joint and joint θ. Its area
 //! and first moments (A, S_x = ∫x dA, S_y = ∫y dA) are exact closed forms by Green's theorem
 //! on the boundary of R(θ) (two straight joints and two circular arcs):
@@ -30,7 +30,7 @@
 //! which are used directly. `centreline`: weight t per unit length of the centreline arc
 //! between the points where the crown joint and joint θ cross it.
 //!
-//! # Loads (per unit λ, DESIGN.md §1)
+//! # Loads (per unit λ, docs/mechanics.md §1)
 //! - horizontal: the body force λ·dW toward +x; between the crown and θ its resultant is
 //!   (w(θ), 0) with moment −∫y dW about the origin;
 //! - point: P = λ·W_total = 2λ W_half downward at the extrados end X of the joint at θ = a;

@@ -1,7 +1,7 @@
 //! Kinematics of rigid-block mechanisms (paper §3): the blocks between the active joints,
 //! the compatibility system of their virtual velocities and its null space.
 //!
-//! Conventions (DESIGN.md §1, statics.rs): origin at the centre, x right, y up, lengths over
+//! Conventions (docs/mechanics.md §1, statics.rs): origin at the centre, x right, y up, lengths over
 //! r. The active joints θ₁ < … < θ_n cut the arch into n + 1 parts; the first and the last
 //! part are held by the supports (they are empty when the joint is a springing), the n − 1
 //! parts between are free rigid blocks with virtual velocity (u_x, u_y, ω) (u the velocity of
@@ -56,9 +56,6 @@ pub const RANK_TOL: f64 = KinematicsSettings::DEFAULT.tol_rank;
 /// The default threshold below which a relative rotation or slip counts as zero
 /// ([`KinematicsSettings::tol_motion`]).
 pub const MOTION_TOL: f64 = KinematicsSettings::DEFAULT.tol_motion;
-/// Former name of [`MOTION_TOL`], kept for the mechanism figures (it is not the symmetric
-/// route's hinge tolerance, `SymmetricSettings::tol_hinge`).
-pub const ACTIVE_TOL: f64 = MOTION_TOL;
 
 /// Why a pattern of joints cannot be analysed (bad input, not an outcome).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

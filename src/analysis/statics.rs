@@ -1,7 +1,7 @@
 //! General statics of an arch of rigid blocks: joints, cumulative loads and the linear
 //! conditions at every joint (paper eqs. 1 and 3).
 //!
-//! Conventions (DESIGN.md §1): origin at the centre, x right, y up, lengths over r. A joint is
+//! Conventions (docs/mechanics.md §1): origin at the centre, x right, y up, lengths over r. A joint is
 //! named by a parameter θ (its angle from the crown for radial joints). The internal force F at
 //! joint θ is the resultant the part left of θ exerts on the part to its right, with moment M
 //! about the origin. With the crown force F₀ = (F_x, F_y) and moment M₀ as redundant unknowns

@@ -126,7 +126,7 @@ impl Mechanism {
     }
 }
 
-/// The regime of a point (K, μ, loads) (DESIGN.md §1).
+/// The regime of a point (K, μ, loads) (docs/mechanics.md §1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, PartialOrd, Ord)]
 #[serde(rename_all = "lowercase")]
 pub enum Regime {

@@ -6,7 +6,7 @@
 //! and draws it, to PNG or SVG by the extension of the path it is given.
 
 use crate::analysis::Sense;
-use crate::analysis::kinematics::{ACTIVE_TOL, MechanismDrawing};
+use crate::analysis::kinematics::{MOTION_TOL, MechanismDrawing};
 use crate::analysis::statics::Point;
 use anyhow::{Result, anyhow};
 use plotters::coord::Shift;
@@ -280,7 +280,7 @@ impl<DB: DrawingBackend> Panel<'_, DB> {
         let root = self.root;
         for hm in &self.drawing.hinges {
             let at = self.frame.px(hm.displaced);
-            if hm.relative_rotation.abs() > ACTIVE_TOL {
+            if hm.relative_rotation.abs() > MOTION_TOL {
                 root.draw(&Circle::new(at, r, HINGE.filled()))?;
                 root.draw(&Circle::new(at, r, BLACK.stroke_width(1)))?;
             } else {

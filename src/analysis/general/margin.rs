@@ -82,7 +82,7 @@ pub fn margin<G: ArchGeometry + ?Sized>(
     }
 }
 
-/// The regime of a point with its three margins (DESIGN.md §1 "Regimes").
+/// The regime of a point with its three margins (docs/mechanics.md §1 "Regimes").
 #[derive(Debug, Clone, PartialEq)]
 pub struct RegimeReport {
     /// The regime; `None` when a margin could not be computed.

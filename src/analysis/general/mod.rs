@@ -1,6 +1,6 @@
 //! The general statics of an arch in three redundant unknowns, with no symmetry assumed:
 //! x = (F_x, F_y, M₀), the force and moment the left part exerts on the right part at the
-//! crown (over W_half and W_half·r), and optionally the load factor λ (DESIGN.md §1).
+//! crown (over W_half and W_half·r), and optionally the load factor λ (docs/mechanics.md §1).
 //!
 //! Every joint θ gives four rows a·x + a_λ λ ≤ b ([`joint_rows`](super::statics::joint_rows),
 //! paper eqs. 1 and 3). The arch can stand iff the rows of all joints have a common

@@ -290,7 +290,7 @@ fn degenerate_points_give_finite_answers() {
     );
 }
 
-/// The semicircular arch with a horizontal body force λ·g to the right (DESIGN.md §1).
+/// The semicircular arch with a horizontal body force λ·g to the right (docs/mechanics.md §1).
 struct Horizontal(CircularArch);
 
 impl ArchGeometry for Horizontal {

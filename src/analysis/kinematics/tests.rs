@@ -1,4 +1,4 @@
-//! The mechanisms of the reference states of DESIGN.md, their degrees of freedom and the work
+//! The mechanisms of the reference states of docs/mechanics.md §3, their degrees of freedom and the work
 //! equation (eqs. 9, 11); the ten families of Figs. 3–5; the associative comparison.
 
 use super::*;

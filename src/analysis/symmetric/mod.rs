@@ -59,7 +59,7 @@ pub struct Domains {
     pub sliding: SlidingDomain,
 }
 
-/// The regime of a point (DESIGN.md §1), tolerance-aware: limit states count as admissible.
+/// The regime of a point (docs/mechanics.md §1), tolerance-aware: limit states count as admissible.
 pub fn regime_of_with(rot: &RotationalDomain, sld: &SlidingDomain, settings: &Settings) -> Regime {
     let r_ok = !rot.interval.is_empty();
     let s_ok = !sld.interval.is_empty();
