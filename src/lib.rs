@@ -14,6 +14,7 @@ pub mod analysis;
 pub mod app;
 pub mod archive;
 pub mod boundaries;
+pub mod citation;
 pub mod engine;
 pub mod error;
 pub mod figdata;

@@ -71,6 +71,48 @@ impl RunLayout {
     pub fn report_md(&self) -> PathBuf {
         self.dir.join("report.md")
     }
+
+    /// ro-crate-metadata.json: how to cite the run and what it holds.
+    pub fn crate_metadata(&self) -> PathBuf {
+        self.dir.join(CRATE_METADATA)
+    }
+
+    /// Every regular file of the run directory (recursively, hidden files and the crate
+    /// metadata itself left out) as `/`-separated relative paths with their sizes in bytes,
+    /// sorted by path. Links are not followed.
+    pub fn files(&self) -> Result<Vec<(String, u64)>> {
+        let mut out = Vec::new();
+        list_files(&self.dir, "", &mut out)?;
+        out.retain(|(rel, _)| rel != CRATE_METADATA);
+        out.sort();
+        Ok(out)
+    }
+}
+
+/// The file name of a run's RO-Crate metadata.
+pub const CRATE_METADATA: &str = "ro-crate-metadata.json";
+
+fn list_files(dir: &Path, prefix: &str, out: &mut Vec<(String, u64)>) -> Result<()> {
+    let entries =
+        std::fs::read_dir(dir).with_context(|| format!("cannot list {}", dir.display()))?;
+    for entry in entries {
+        let entry = entry.with_context(|| format!("cannot list {}", dir.display()))?;
+        let name = entry.file_name().to_string_lossy().into_owned();
+        if name.starts_with('.') {
+            continue;
+        }
+        let kind = entry
+            .file_type()
+            .with_context(|| format!("cannot read {}", entry.path().display()))?;
+        let rel = format!("{prefix}{name}");
+        if kind.is_dir() {
+            list_files(&entry.path(), &format!("{rel}/"), out)?;
+        } else if kind.is_file() {
+            let len = entry.metadata().map(|m| m.len()).unwrap_or(0);
+            out.push((rel, len));
+        }
+    }
+    Ok(())
 }
 
 /// A run being written: staging directory and final place.

@@ -11,7 +11,7 @@ use crate::provenance::{
     CaseCounts, RunInfo, StageTimings, git_commit, now_rfc3339, rustc_version, sha256_hex, version,
 };
 use crate::store;
-use crate::{figdata, report};
+use crate::{citation, figdata, report};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -156,7 +156,8 @@ fn publish(
     })?;
     info.stages.report_ms = report_ms;
     info.finished_at = now_rfc3339();
-    write_run_json(layout, info)
+    write_run_json(layout, info)?;
+    citation::write_crate_metadata(layout, &plan.manifest, info)
 }
 
 /// The worker pool of a run: `jobs` threads, or one per core.

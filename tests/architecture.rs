@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 /// The top-level modules of the library, lowest first. A module may use the modules before
 /// it, never one after it (docs/architecture.md says what each owns).
-const LAYERS: [&str; 21] = [
+const LAYERS: [&str; 22] = [
     "error",
     "progress",
     "provenance",
@@ -15,6 +15,7 @@ const LAYERS: [&str; 21] = [
     "analysis",
     "scene",
     "manifest",
+    "citation",
     "plan",
     "engine",
     "records",

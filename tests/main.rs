@@ -4,6 +4,7 @@
 mod architecture;
 mod archive;
 mod boundaries;
+mod citation;
 mod common;
 mod loads;
 mod report;

@@ -13,8 +13,8 @@ mod validate;
 pub use error::ManifestError;
 pub use raw::{Number, RawVoussoirs};
 pub use types::{
-    ArchOptions, AxisName, DEFAULT_BOUNDARY_TOLERANCE, GridAxis, LoadCase, LoadKind, Manifest,
-    SceneSpec,
+    ArchOptions, Author, AxisName, DEFAULT_BOUNDARY_TOLERANCE, GridAxis, LoadCase, LoadKind,
+    Manifest, SceneSpec,
 };
 pub use validate::MAX_AXIS_STEPS;
 

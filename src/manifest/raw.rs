@@ -145,6 +145,15 @@ pub(super) struct RawBoundaries {
     pub(super) tolerance: Option<Spanned<f64>>,
 }
 
+/// An author of a study as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawAuthor {
+    pub(super) name: String,
+    pub(super) orcid: Option<String>,
+    pub(super) affiliation: Option<String>,
+}
+
 /// The manifest as written.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -152,6 +161,8 @@ pub(super) struct RawManifest {
     pub(super) name: Spanned<String>,
     pub(super) title: Option<String>,
     pub(super) description: Option<String>,
+    pub(super) authors: Option<Vec<Spanned<RawAuthor>>>,
+    pub(super) license: Option<Spanned<String>>,
     #[serde(default)]
     pub(super) arch: RawArch,
     pub(super) grid: Option<RawGrid>,

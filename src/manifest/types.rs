@@ -166,6 +166,19 @@ pub struct SceneSpec {
     pub mu: f64,
 }
 
+/// An author of a study, cited in the run's metadata.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Author {
+    /// Name as it should be cited.
+    pub name: String,
+    /// ORCID iD, `0000-0000-0000-0000` (the last character may be `X`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub orcid: Option<String>,
+    /// Affiliation.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub affiliation: Option<String>,
+}
+
 /// A validated study manifest.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Manifest {
@@ -175,6 +188,10 @@ pub struct Manifest {
     pub title: Option<String>,
     /// Description for reports.
     pub description: Option<String>,
+    /// Authors of the study, for the citation metadata of its runs.
+    pub authors: Vec<Author>,
+    /// Licence of the study's results, an SPDX expression (e.g. `CC-BY-4.0`).
+    pub license: Option<String>,
     /// Arch options.
     pub arch: ArchOptions,
     /// Grid axes, in plan order (outermost first).

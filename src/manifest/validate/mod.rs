@@ -3,6 +3,7 @@
 //! the loads, scenes, boundary tolerance). Every error names the key and the value at fault.
 
 mod arch;
+mod citation;
 mod grid;
 mod load_checks;
 mod loads;
@@ -74,6 +75,8 @@ pub(super) fn manifest(raw: RawManifest, path: &Path) -> Result<Manifest, Manife
         name: raw.name.value,
         title: raw.title,
         description: raw.description,
+        authors: citation::validate_authors(raw.authors.as_deref().unwrap_or(&[]), cx)?,
+        license: citation::validate_license(raw.license.as_ref(), cx)?,
         arch,
         grid,
         load_cases,
