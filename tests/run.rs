@@ -4,6 +4,7 @@
 use crate::common::reference::{K_BIF, K_C, MU_MIN, MU_ROT};
 use crate::common::{archstudy, assert_usage_error, manifest, scratch, solve_json, stderr, stdout};
 use approx::{abs_diff_eq, assert_abs_diff_eq};
+use archstudy::scene::Find;
 use archstudy::store;
 use std::path::Path;
 
@@ -174,11 +175,28 @@ fn parquet_schema_reads_back_with_documented_names_and_types() {
         ("message", DataType::String),
         ("solve_time_us", DataType::Float64),
     ];
+    // A thickness study stores the columns a thickness find fills, and only those.
     for (name, dtype) in &expect {
-        let c = df
-            .column(name)
-            .unwrap_or_else(|_| panic!("column {name} missing"));
-        assert_eq!(c.dtype(), dtype, "column {name}");
+        let filled = store::filled_by(name).is_none_or(|by| by.contains(&Find::Thickness));
+        match df.column(name) {
+            Ok(c) => {
+                assert!(
+                    filled,
+                    "column {name} stored though a thickness study leaves it empty"
+                );
+                assert_eq!(c.dtype(), dtype, "column {name}");
+            }
+            Err(_) => assert!(!filled, "column {name} missing"),
+        }
+    }
+    for absent in [
+        "regime",
+        "thrust_r_min",
+        "mu_crit",
+        "thrust_min",
+        "k_c_rotational",
+    ] {
+        assert!(df.column(absent).is_err(), "{absent}");
     }
     let k = store::f64_column(&df, "k_crit").unwrap();
     assert!(k[0].is_none(), "μ = 0.25 < μ_min: no collapse thickness");

@@ -13,7 +13,7 @@ pub use figures::{
     CurvePoint, MechanismRow, ReferenceRow, StateRow, curves_frame, mechanisms_frame, read_curves,
     read_mechanisms, read_reference, read_states, reference_frame, states_frame,
 };
-pub use results::results_frame;
+pub use results::{filled_by, results_frame};
 pub use rows::{
     BifurcationRow, BoundaryRow, JointLists, ResultRow, read_bifurcations, read_boundaries,
     read_results,
@@ -189,11 +189,21 @@ pub fn read_parquet(path: &Path) -> Result<DataFrame> {
         .with_context(|| format!("cannot read {} as Parquet", path.display()))
 }
 
-/// Reads the named columns of a Parquet file (the others are not decoded).
+/// Reads those of the named columns that a Parquet file has (the others are not decoded; a
+/// study's results hold only the columns its finds fill).
 pub fn read_parquet_columns(path: &Path, columns: &[&str]) -> Result<DataFrame> {
     let file = File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
-    ParquetReader::new(file)
-        .with_columns(Some(columns.iter().map(|c| c.to_string()).collect()))
+    let mut reader = ParquetReader::new(file);
+    let schema = reader
+        .schema()
+        .with_context(|| format!("cannot read {} as Parquet", path.display()))?;
+    let present: Vec<String> = columns
+        .iter()
+        .filter(|c| schema.contains(c))
+        .map(|c| c.to_string())
+        .collect();
+    reader
+        .with_columns(Some(present))
         .finish()
         .with_context(|| format!("cannot read {} as Parquet", path.display()))
 }

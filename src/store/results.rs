@@ -4,6 +4,7 @@ use super::TableBuilder;
 use crate::analysis::{Hinge, SlidingJoint};
 use crate::engine::CaseResult;
 use crate::plan::Plan;
+use crate::scene::Find;
 use anyhow::Result;
 use polars::prelude::DataFrame;
 use rayon::prelude::*;
@@ -41,6 +42,20 @@ enum Spec<'a> {
 }
 
 impl<'a> Spec<'a> {
+    fn name(&self) -> &'static str {
+        match self {
+            Spec::U64(n, ..)
+            | Spec::F64(n, ..)
+            | Spec::OptF64(n, ..)
+            | Spec::OptU32(n, ..)
+            | Spec::Bool(n, ..)
+            | Spec::Str(n, ..)
+            | Spec::OptStr(n, ..)
+            | Spec::ListF64(n, ..)
+            | Spec::ListStr(n, ..) => n,
+        }
+    }
+
     fn reserve(&mut self, n: usize) {
         match self {
             Spec::U64(_, v, _) => v.reserve(n),
@@ -111,17 +126,75 @@ const BLOCK_ROWS: usize = 1 << 18;
 /// Blocks of [`BLOCK_ROWS`] rows are built in parallel (on the current rayon pool) and
 /// stacked; each is built in one pass over its rows (every column of a row is read while the
 /// row is in cache): a million-row state grid is read once, not once per column.
+///
+/// Only the answer columns that the study's finds fill are written ([`filled_by`]): a
+/// `state` study has no `k_crit` column, a `thickness` study no `regime` column.
 pub fn results_frame(plan: &Plan, rows: &[CaseResult]) -> Result<DataFrame> {
-    frame_in_blocks(plan, rows, BLOCK_ROWS)
+    frame_in_blocks(plan, rows, BLOCK_ROWS, Columns::OfStudy)
 }
 
-fn frame_in_blocks(plan: &Plan, rows: &[CaseResult], block_rows: usize) -> Result<DataFrame> {
+/// Which answer columns a results table holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Columns {
+    /// Those the study's finds fill.
+    OfStudy,
+    /// Every column (tests compare both).
+    #[cfg(test)]
+    All,
+}
+
+/// The finds whose cases fill an answer column of results.parquet; `None` when every find
+/// may fill it (outcome, status, message, solve time).
+pub fn filled_by(column: &str) -> Option<&'static [Find]> {
+    use Find::{Friction, LoadFactor, State, Thickness, Thresholds, Thrust};
+    Some(match column {
+        "regime" | "thrust_r_min" | "thrust_r_max" | "thrust_s_min" | "thrust_s_max" => &[State],
+        "k_crit" | "t_over_r_crit" => &[Thickness],
+        "mu_crit" => &[Friction],
+        "load_factor" | "load_factor_unbounded" => &[LoadFactor],
+        "mechanism"
+        | "thrust_over_half_weight"
+        | "crown_moment"
+        | "crown_shear"
+        | "hinge_angles_deg"
+        | "hinge_faces"
+        | "sliding_angles_deg"
+        | "sliding_senses"
+        | "work_loads"
+        | "work_friction"
+        | "work_residual"
+        | "mechanism_dof" => &[Thickness, Friction, LoadFactor],
+        "k_c_rotational" | "mu_rotational_mixed" | "mu_min" | "k_mixed_sliding" => &[Thresholds],
+        "thrust_min"
+        | "thrust_max"
+        | "hinges_min_angles_deg"
+        | "hinges_min_faces"
+        | "hinges_max_angles_deg"
+        | "hinges_max_faces" => &[Thrust],
+        _ => return None,
+    })
+}
+
+/// The finds of a plan's load cases.
+fn study_finds(plan: &Plan) -> Vec<Find> {
+    let mut finds: Vec<Find> = plan.manifest.load_cases.iter().map(|l| l.find).collect();
+    finds.sort_by_key(|f| f.as_str());
+    finds.dedup();
+    finds
+}
+
+fn frame_in_blocks(
+    plan: &Plan,
+    rows: &[CaseResult],
+    block_rows: usize,
+    columns: Columns,
+) -> Result<DataFrame> {
     if rows.len() <= block_rows {
-        return block_frame(plan, rows);
+        return block_frame(plan, rows, columns);
     }
     let blocks = rows
         .par_chunks(block_rows)
-        .map(|b| block_frame(plan, b))
+        .map(|b| block_frame(plan, b, columns))
         .collect::<Result<Vec<DataFrame>>>()?;
     let mut blocks = blocks.into_iter();
     let mut df = blocks.next().unwrap_or_default();
@@ -215,9 +288,13 @@ fn answer_columns<'a>() -> Vec<Spec<'a>> {
 }
 
 /// One block of the results table, built in one pass over its rows.
-fn block_frame<'a>(plan: &'a Plan, rows: &'a [CaseResult]) -> Result<DataFrame> {
+fn block_frame<'a>(plan: &'a Plan, rows: &'a [CaseResult], columns: Columns) -> Result<DataFrame> {
+    let finds = study_finds(plan);
     let mut specs = input_columns(plan);
-    specs.extend(answer_columns());
+    specs.extend(answer_columns().into_iter().filter(|s| {
+        columns != Columns::OfStudy
+            || filled_by(s.name()).is_none_or(|by| by.iter().any(|f| finds.contains(f)))
+    }));
     for s in specs.iter_mut() {
         s.reserve(rows.len());
     }
@@ -249,11 +326,80 @@ mod tests {
         .unwrap();
         let plan = crate::plan::build(m).unwrap();
         let rows = engine::run(&plan, &crate::progress::Silent);
-        let whole = frame_in_blocks(&plan, &rows, usize::MAX).unwrap();
-        let blocks = frame_in_blocks(&plan, &rows, 7).unwrap();
+        let whole = frame_in_blocks(&plan, &rows, usize::MAX, Columns::OfStudy).unwrap();
+        let blocks = frame_in_blocks(&plan, &rows, 7, Columns::OfStudy).unwrap();
         assert_eq!(whole.height(), 143);
         assert_eq!(whole.get_column_names(), blocks.get_column_names());
         // Solve times differ between runs of a case but not between two tables of one run.
         assert!(whole.equals_missing(&blocks));
+    }
+
+    /// Every find of a small study: the columns a study leaves out are null in every row
+    /// of the full table, and the ones it keeps are exactly those its finds fill.
+    #[test]
+    fn a_study_writes_the_columns_its_finds_fill() {
+        let cases = [
+            (
+                "state",
+                "grid:\n  k: {values: [1.05, 1.12, 1.3]}\n  mu: {values: [0.3, 0.5, inf]}\n",
+            ),
+            (
+                "thickness",
+                "find: thickness\ngrid:\n  mu: {values: [0.2, 0.35, 0.5]}\n",
+            ),
+            (
+                "friction",
+                "find: friction\ngrid:\n  k: {values: [1.1, 1.2, 1.4]}\n",
+            ),
+            (
+                "thrust",
+                "find: thrust\ngrid:\n  k: {values: [1.2, 1.4]}\n  mu: {values: [0.3, inf]}\n",
+            ),
+            (
+                "thresholds",
+                "find: thresholds\ngrid:\n  half_angle_deg: {values: [60, 90]}\n",
+            ),
+            (
+                "load_factor",
+                "find: load_factor\nload_cases:\n  - {name: h, kind: horizontal}\n  - {name: p, kind: point, at_deg: 30}\ngrid:\n  k: {values: [1.2, 1.4]}\n  mu: {values: [0.3, 0.6]}\n",
+            ),
+            (
+                "state and horizontal",
+                "grid:\n  k: {values: [1.2, 1.4]}\n  mu: {values: [0.3, 0.6]}\nload_cases:\n  - {name: g, kind: self_weight}\n  - {name: h, kind: horizontal, lambda: 0.05}\n",
+            ),
+        ];
+        for (what, text) in cases {
+            let m =
+                crate::manifest::parse(&format!("name: a\n{text}"), Path::new("a.yaml")).unwrap();
+            let plan = crate::plan::build(m).unwrap();
+            let rows = engine::run(&plan, &crate::progress::Silent);
+            let all = frame_in_blocks(&plan, &rows, BLOCK_ROWS, Columns::All).unwrap();
+            let kept = results_frame(&plan, &rows).unwrap();
+            for c in all.columns() {
+                let name = c.name().as_str();
+                let filled = c.null_count() < c.len()
+                    && !(c.dtype().is_list()
+                        && c.list()
+                            .unwrap()
+                            .iter()
+                            .all(|l| l.is_none_or(|s| s.is_empty())))
+                    && !(name == "load_factor_unbounded"
+                        && c.bool().unwrap().iter().all(|b| b != Some(true)));
+                let is_kept = kept.column(name).is_ok();
+                assert!(
+                    !filled || is_kept,
+                    "{what}: `{name}` is filled but left out"
+                );
+            }
+            let finds = study_finds(&plan);
+            for c in kept.columns() {
+                let name = c.name().as_str();
+                assert!(
+                    filled_by(name).is_none_or(|by| by.iter().any(|f| finds.contains(f))),
+                    "{what}: `{name}` kept though no find fills it"
+                );
+            }
+            assert!(kept.width() < all.width(), "{what}: nothing left out");
+        }
     }
 }

@@ -2,6 +2,7 @@
 //! columns a report needs), boundaries.parquet and bifurcations.parquet (schemas in the
 //! README and docs/report-files.md).
 
+use super::results::filled_by;
 use super::{
     bool_column, f64_column, list_f64_column, list_str_column, read_parquet, read_parquet_columns,
     str_column, u64_column,
@@ -220,8 +221,20 @@ const RESULT_ROW_COLUMNS: [&str; 20] = [
 pub fn read_results(path: &Path) -> Result<Vec<ResultRow>> {
     let df = read_parquet_columns(path, &RESULT_ROW_COLUMNS)?;
     let cx = || format!("in {}", path.display());
-    let f = |name: &str| f64_column(&df, name).with_context(cx);
-    let s = |name: &str| shared_str_column(&df, name).with_context(cx);
+    // An answer column the study's finds do not fill is not stored: all null.
+    let absent = |name: &str| df.column(name).is_err() && filled_by(name).is_some();
+    let f = |name: &str| {
+        if absent(name) {
+            return Ok(vec![None; df.height()]);
+        }
+        f64_column(&df, name).with_context(cx)
+    };
+    let s = |name: &str| {
+        if absent(name) {
+            return Ok(vec![None; df.height()]);
+        }
+        shared_str_column(&df, name).with_context(cx)
+    };
     let case_id = u64_column(&df, "case_id").with_context(cx)?;
     let load_case = required(s("load_case")?, "load_case", path)?;
     let find = required(s("find")?, "find", path)?;
