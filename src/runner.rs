@@ -17,14 +17,76 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
-/// Reads, validates and expands a manifest (every error here is bad input: exit 2).
-pub fn load_plan(path: &Path) -> Result<(Plan, Vec<u8>)> {
-    let bytes = std::fs::read(path).map_err(|e| manifest::ManifestError {
+/// Installs the handler of Ctrl-C (SIGINT) and SIGTERM: the staging directory and every
+/// temporary file this process is writing are removed, then the process exits with status
+/// 128 + the signal (130 for Ctrl-C, 143 for SIGTERM). Called once by the command line;
+/// later calls do nothing.
+pub fn remove_partial_output_on_interrupt() -> Result<()> {
+    use signal_hook::consts::{SIGINT, SIGTERM};
+    static INSTALLED: std::sync::OnceLock<()> = std::sync::OnceLock::new();
+    if INSTALLED.get().is_some() {
+        return Ok(());
+    }
+    let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM])
+        .context("cannot install the Ctrl-C and SIGTERM handler")?;
+    let _ = INSTALLED.set(());
+    std::thread::Builder::new()
+        .name("interrupt".into())
+        .spawn(move || {
+            if let Some(sig) = signals.forever().next() {
+                crate::output::remove_pending();
+                std::process::exit(128 + sig);
+            }
+        })
+        .context("cannot start the Ctrl-C and SIGTERM handler")?;
+    Ok(())
+}
+
+/// Largest manifest file read, in bytes: a study manifest is a few hundred bytes; anything
+/// over this (or a device such as /dev/zero) is refused before it is read.
+pub const MAX_MANIFEST_BYTES: u64 = 1 << 20;
+
+/// Reads a manifest file of at most [`MAX_MANIFEST_BYTES`].
+fn read_manifest(path: &Path) -> Result<Vec<u8>, manifest::ManifestError> {
+    use std::io::Read;
+    let err = |message: String| manifest::ManifestError {
         path: path.to_path_buf(),
         position: None,
         key: None,
-        message: format!("cannot read the manifest: {e}"),
-    })?;
+        message,
+    };
+    let file =
+        std::fs::File::open(path).map_err(|e| err(format!("cannot read the manifest: {e}")))?;
+    let meta = file
+        .metadata()
+        .map_err(|e| err(format!("cannot read the manifest: {e}")))?;
+    if !meta.is_file() {
+        return Err(err(
+            "not a regular file: a manifest is a YAML file (devices, pipes and directories are not read)".into(),
+        ));
+    }
+    let too_big = || {
+        err(format!(
+            "the manifest is larger than {MAX_MANIFEST_BYTES} bytes (1 MiB), the limit of a study \
+             manifest: describe the grid with {{from, to, steps}} ranges rather than long value lists"
+        ))
+    };
+    if meta.len() > MAX_MANIFEST_BYTES {
+        return Err(too_big());
+    }
+    let mut bytes = Vec::new();
+    file.take(MAX_MANIFEST_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| err(format!("cannot read the manifest: {e}")))?;
+    if bytes.len() as u64 > MAX_MANIFEST_BYTES {
+        return Err(too_big());
+    }
+    Ok(bytes)
+}
+
+/// Reads, validates and expands a manifest (every error here is bad input: exit 2).
+pub fn load_plan(path: &Path) -> Result<(Plan, Vec<u8>)> {
+    let bytes = read_manifest(path)?;
     let text = String::from_utf8(bytes.clone()).map_err(|_| manifest::ManifestError {
         path: path.to_path_buf(),
         position: None,
@@ -187,8 +249,7 @@ pub fn run_study(opts: &RunOptions) -> Result<RunSummary> {
     // Output is staged first: a bad output path fails before any work.
     let staged = StagedRun::create(&opts.out, &plan.manifest.name)?;
     let layout = staged.layout.clone();
-    std::fs::write(layout.manifest(), &bytes)
-        .with_context(|| format!("cannot write {}", layout.manifest().display()))?;
+    write_atomic(&layout.manifest(), &bytes)?;
 
     let t = Instant::now();
     let results: Vec<CaseResult> = pool.install(|| engine::run(&plan, progress));

@@ -78,6 +78,9 @@ pub struct ArchiveArgs {
     /// in the current directory; in FILE when it is a directory).
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub output: Option<PathBuf>,
+    /// Replace the archive file if it exists (without it, an existing file is refused).
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// `archstudy verify`.
