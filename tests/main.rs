@@ -5,6 +5,7 @@ mod architecture;
 mod archive;
 mod boundaries;
 mod common;
+mod hardening;
 mod loads;
 mod report;
 mod run;
