@@ -28,6 +28,43 @@ use std::path::{Path, PathBuf};
 /// The files every run directory must hold (relative paths).
 pub const REQUIRED_FILES: [&str; 3] = ["manifest.yaml", "run.json", "results.parquet"];
 
+/// The files at the top of a run directory that a run writes (besides plots/STEM.svg and
+/// plots/STEM.png): nothing else is archived, and an archive holding anything else fails
+/// `verify`.
+pub const RUN_TOP_FILES: [&str; 11] = [
+    "manifest.yaml",
+    "run.json",
+    "results.parquet",
+    "boundaries.parquet",
+    "bifurcations.parquet",
+    "curves.parquet",
+    "states.parquet",
+    "reference.parquet",
+    "mechanisms.parquet",
+    "report.html",
+    "report.md",
+];
+
+/// Whether `rel` (relative, `/`-separated) is a file a run writes: one of
+/// [`RUN_TOP_FILES`], or a figure `plots/STEM.svg` / `plots/STEM.png` (STEM of letters,
+/// digits, `_` and `-`).
+pub fn is_run_file(rel: &str) -> bool {
+    if RUN_TOP_FILES.contains(&rel) {
+        return true;
+    }
+    let Some(fig) = rel.strip_prefix("plots/") else {
+        return false;
+    };
+    let Some((stem, ext)) = fig.rsplit_once('.') else {
+        return false;
+    };
+    matches!(ext, "svg" | "png")
+        && !stem.is_empty()
+        && stem
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+}
+
 /// Hex digits of the manifest's SHA-256 in an archive's name.
 pub const HASH_PREFIX_LEN: usize = 12;
 
@@ -200,8 +237,17 @@ pub struct ArchiveSummary {
 }
 
 /// Writes the archive of a run directory to `out`, or to `<stem>.tar.gz` in the current
-/// directory (in `out` when it is a directory).
+/// directory (in `out` when it is a directory); an existing archive file is replaced.
 pub fn write_archive(run_dir: &Path, out: Option<&Path>) -> Result<ArchiveSummary> {
+    write_archive_with(run_dir, out, true)
+}
+
+/// [`write_archive`], refusing to replace an existing file unless `force`.
+pub fn write_archive_with(
+    run_dir: &Path,
+    out: Option<&Path>,
+    force: bool,
+) -> Result<ArchiveSummary> {
     if !run_dir.is_dir() {
         return Err(UsageError::new(
             "RUN_DIR",
@@ -218,7 +264,33 @@ pub fn write_archive(run_dir: &Path, out: Option<&Path>) -> Result<ArchiveSummar
         Some(o) if o.is_dir() => o.join(&file_name),
         Some(o) => o.to_path_buf(),
     };
-    let (files, skipped) = run_files(run_dir)?;
+    if std::fs::symlink_metadata(&path).is_ok() && !force {
+        return Err(UsageError::new(
+            "--output",
+            path.display(),
+            "the archive file exists and is not replaced: give --force to replace it, or \
+             another -o FILE",
+        )
+        .into());
+    }
+    if let Some(parent) = path.parent() {
+        let parent = if parent.as_os_str().is_empty() {
+            Path::new(".")
+        } else {
+            parent
+        };
+        crate::output::sweep_temporaries(parent);
+    }
+    crate::output::sweep_temporaries(run_dir);
+    let (mut files, mut skipped) = run_files(run_dir)?;
+    // Only the files a run writes are packed: a leftover temporary or a stray file is not.
+    skipped.extend(
+        files
+            .iter()
+            .filter(|f| !is_run_file(&f.rel))
+            .map(|f| f.rel.clone()),
+    );
+    files.retain(|f| is_run_file(&f.rel));
     let mtime = prov
         .finished_at
         .as_deref()
@@ -226,6 +298,7 @@ pub fn write_archive(run_dir: &Path, out: Option<&Path>) -> Result<ArchiveSummar
         .map_or(0, |t| u64::try_from(t.timestamp()).unwrap_or(0));
 
     let tmp = temp_sibling(&path);
+    crate::output::register_pending(&tmp);
     let result = (|| -> Result<u64> {
         let file =
             File::create(&tmp).with_context(|| format!("cannot create {}", tmp.display()))?;
@@ -248,6 +321,7 @@ pub fn write_archive(run_dir: &Path, out: Option<&Path>) -> Result<ArchiveSummar
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
     }
+    crate::output::unregister_pending(&tmp);
     Ok(ArchiveSummary {
         path,
         top,

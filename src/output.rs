@@ -4,8 +4,126 @@
 //! place only when complete, so a crash or Ctrl-C never leaves a half-written run directory;
 //! single files are written to a temporary sibling and renamed.
 
+use crate::error::UsageError;
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+/// Paths this process is writing and would leave half-written if it were stopped: staging
+/// directories and temporary files. A signal handler removes them ([`remove_pending`]).
+static PENDING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Records a staging directory or temporary file to remove if the process is interrupted.
+pub fn register_pending(path: &Path) {
+    if let Ok(mut p) = PENDING.lock() {
+        p.push(path.to_path_buf());
+    }
+}
+
+/// Forgets a path recorded by [`register_pending`] (it was renamed into place or removed).
+pub fn unregister_pending(path: &Path) {
+    if let Ok(mut p) = PENDING.lock()
+        && let Some(i) = p.iter().rposition(|x| x == path)
+    {
+        p.swap_remove(i);
+    }
+}
+
+/// Removes every staging directory and temporary file this process is writing; called when
+/// the process is interrupted (Ctrl-C, SIGTERM), just before it exits.
+pub fn remove_pending() {
+    let paths = match PENDING.lock() {
+        Ok(p) => p.clone(),
+        Err(e) => e.into_inner().clone(),
+    };
+    for p in paths {
+        let _ = std::fs::remove_dir_all(&p).or_else(|_| std::fs::remove_file(&p));
+    }
+}
+
+/// Whether `dir` is a run directory `archstudy run` wrote (a directory, not a symbolic link,
+/// holding run.json and manifest.yaml), so that a new run of the same name may replace it.
+pub fn is_run_dir(dir: &Path) -> bool {
+    std::fs::symlink_metadata(dir).is_ok_and(|m| m.is_dir())
+        && dir.join("run.json").is_file()
+        && dir.join("manifest.yaml").is_file()
+}
+
+/// Refuses a run's target `OUT/NAME` when something other than a run directory is there:
+/// nothing but an earlier run is ever replaced.
+pub fn check_replaceable(target: &Path) -> Result<(), UsageError> {
+    if std::fs::symlink_metadata(target).is_err() || is_run_dir(target) {
+        return Ok(());
+    }
+    Err(UsageError::new(
+        "--out",
+        target.display(),
+        "the run directory OUT/NAME exists and is not a run directory (no run.json and \
+         manifest.yaml, or a symbolic link); it is never replaced: move it away, or choose \
+         another --out or study name",
+    ))
+}
+
+/// Refuses to write through a symbolic link: `path` (a file or directory a command writes in
+/// a run directory) must not be one, so no write leaves the run directory.
+pub fn refuse_symlink(path: &Path) -> Result<(), UsageError> {
+    if std::fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_symlink()) {
+        return Err(UsageError::new(
+            "RUN_DIR",
+            path.display(),
+            "a file or directory the command writes is a symbolic link, which could lead \
+             outside the run directory: remove the link (the command recreates it as a plain \
+             file or directory)",
+        ));
+    }
+    Ok(())
+}
+
+/// Refuses a run directory whose plots/, report.html, report.md or any figure file is a
+/// symbolic link: re-rendering writes only inside the run directory.
+pub fn refuse_symlinks_in(layout: &RunLayout) -> Result<(), UsageError> {
+    refuse_symlink(&layout.plots())?;
+    refuse_symlink(&layout.report_html())?;
+    refuse_symlink(&layout.report_md())?;
+    if let Ok(entries) = std::fs::read_dir(layout.plots()) {
+        for e in entries.flatten() {
+            refuse_symlink(&e.path())?;
+        }
+    }
+    Ok(())
+}
+
+/// The process id in a leftover's name `.NAME.partial-PID`, `.NAME.old-PID` or
+/// `.NAME.tmp-PID`, when that process no longer runs.
+fn dead_owner(file_name: &str, markers: &[&str]) -> Option<u32> {
+    let pid = markers.iter().find_map(|m| {
+        let i = file_name.rfind(m)?;
+        file_name[i + m.len()..].parse::<u32>().ok()
+    })?;
+    (file_name.starts_with('.')
+        && pid != std::process::id()
+        && !Path::new(&format!("/proc/{pid}")).exists())
+    .then_some(pid)
+}
+
+/// Removes the temporary files `.FILE.tmp-PID` that processes which no longer run left in
+/// `dir` (and, for a run directory, in its plots/), e.g. after kill -9 or a full disk.
+pub fn sweep_temporaries(dir: &Path) {
+    for d in [dir.to_path_buf(), dir.join("plots")] {
+        let Ok(entries) = std::fs::read_dir(&d) else {
+            continue;
+        };
+        for e in entries.flatten() {
+            let name = e.file_name();
+            if let Some(f) = name.to_str()
+                && dead_owner(f, &[".tmp-"]).is_some()
+                && e.file_type().is_ok_and(|t| t.is_file())
+            {
+                let _ = std::fs::remove_file(e.path());
+            }
+        }
+    }
+}
 
 /// The files of one run directory.
 #[derive(Debug, Clone)]
@@ -131,11 +249,14 @@ impl StagedRun {
         std::fs::create_dir_all(out)
             .with_context(|| format!("cannot create the output directory {}", out.display()))?;
         remove_stale_staging(out, name);
+        sweep_temporaries(out);
+        check_replaceable(&out.join(name))?;
         let staging = out.join(format!(".{name}.partial-{}", std::process::id()));
         if staging.exists() {
             std::fs::remove_dir_all(&staging)
                 .with_context(|| format!("cannot clear {}", staging.display()))?;
         }
+        register_pending(&staging);
         std::fs::create_dir_all(staging.join("plots"))
             .with_context(|| format!("cannot create {}", staging.display()))?;
         Ok(StagedRun {
@@ -155,7 +276,8 @@ impl StagedRun {
                 .unwrap_or("run"),
             std::process::id()
         ));
-        let had_old = self.target.exists();
+        check_replaceable(&self.target)?;
+        let had_old = is_run_dir(&self.target);
         if had_old {
             std::fs::rename(&self.target, &old).with_context(|| {
                 format!(
@@ -170,6 +292,7 @@ impl StagedRun {
             let _ = std::fs::remove_dir_all(&old);
         }
         self.committed = true;
+        unregister_pending(&self.layout.dir);
         Ok(self.target.clone())
     }
 }
@@ -178,6 +301,7 @@ impl Drop for StagedRun {
     fn drop(&mut self) {
         if !self.committed {
             let _ = std::fs::remove_dir_all(&self.layout.dir);
+            unregister_pending(&self.layout.dir);
         }
     }
 }
@@ -191,13 +315,11 @@ fn remove_stale_staging(out: &Path, name: &str) {
     for e in entries.flatten() {
         let file = e.file_name();
         let Some(f) = file.to_str() else { continue };
-        let pid = f
-            .strip_prefix(&format!(".{name}.partial-"))
-            .or_else(|| f.strip_prefix(&format!(".{name}.old-")))
-            .and_then(|p| p.parse::<u32>().ok());
-        if let Some(pid) = pid
-            && pid != std::process::id()
-            && !Path::new(&format!("/proc/{pid}")).exists()
+        let ours =
+            f.starts_with(&format!(".{name}.partial-")) || f.starts_with(&format!(".{name}.old-"));
+        if ours
+            && dead_owner(f, &[".partial-", ".old-"]).is_some()
+            && e.file_type().is_ok_and(|t| t.is_dir())
         {
             let _ = std::fs::remove_dir_all(e.path());
         }
@@ -210,11 +332,128 @@ pub fn temp_sibling(path: &Path) -> PathBuf {
     path.with_file_name(format!(".{name}.tmp-{}", std::process::id()))
 }
 
-/// Writes bytes to a file atomically.
+/// Writes bytes to a file atomically: to a temporary sibling, renamed onto the file once
+/// complete; the temporary is removed on any error (a full disk leaves nothing behind).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     let tmp = temp_sibling(path);
-    std::fs::write(&tmp, bytes).with_context(|| format!("cannot write {}", tmp.display()))?;
-    std::fs::rename(&tmp, path)
-        .with_context(|| format!("cannot move {} into place", path.display()))?;
-    Ok(())
+    register_pending(&tmp);
+    let result = std::fs::write(&tmp, bytes)
+        .with_context(|| format!("cannot write {}", tmp.display()))
+        .and_then(|()| {
+            std::fs::rename(&tmp, path)
+                .with_context(|| format!("cannot move {} into place", path.display()))
+        });
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    unregister_pending(&tmp);
+    result
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A process id no process has (Linux pids stay below 2^22).
+    const DEAD: u32 = 4_000_000_000;
+
+    #[test]
+    fn only_an_absent_target_or_an_earlier_run_may_be_replaced() {
+        let t = tempfile::tempdir().unwrap();
+        let out = t.path();
+        assert!(check_replaceable(&out.join("absent")).is_ok());
+        std::fs::write(out.join("file"), "mine").unwrap();
+        assert!(check_replaceable(&out.join("file")).is_err());
+        std::fs::create_dir(out.join("dir")).unwrap();
+        std::fs::write(out.join("dir/notes.txt"), "mine").unwrap();
+        assert!(check_replaceable(&out.join("dir")).is_err());
+        std::fs::create_dir(out.join("run")).unwrap();
+        std::fs::write(out.join("run/run.json"), "{}").unwrap();
+        std::fs::write(out.join("run/manifest.yaml"), "name: run").unwrap();
+        assert!(check_replaceable(&out.join("run")).is_ok());
+        std::os::unix::fs::symlink(out.join("run"), out.join("link")).unwrap();
+        assert!(check_replaceable(&out.join("link")).is_err());
+    }
+
+    #[test]
+    fn a_staged_run_never_replaces_a_users_directory() {
+        let t = tempfile::tempdir().unwrap();
+        let out = t.path();
+        std::fs::create_dir(out.join("study")).unwrap();
+        std::fs::write(out.join("study/thesis.tex"), "years of work").unwrap();
+        let e = StagedRun::create(out, "study").unwrap_err();
+        assert!(e.is::<UsageError>(), "{e:#}");
+        assert!(e.to_string().contains("not a run directory"), "{e}");
+        let names: Vec<String> = std::fs::read_dir(out)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
+        assert_eq!(names, ["study"]);
+        assert_eq!(
+            std::fs::read_to_string(out.join("study/thesis.tex")).unwrap(),
+            "years of work"
+        );
+    }
+
+    #[test]
+    fn a_failed_atomic_write_leaves_no_temporary() {
+        let t = tempfile::tempdir().unwrap();
+        // The rename fails: a non-empty directory is where the file should go.
+        let target = t.path().join("report.html");
+        std::fs::create_dir(&target).unwrap();
+        std::fs::write(target.join("x"), "x").unwrap();
+        assert!(write_atomic(&target, b"<html>").is_err());
+        assert!(!temp_sibling(&target).exists());
+        assert_eq!(std::fs::read_dir(t.path()).unwrap().count(), 1);
+        assert!(!PENDING.lock().unwrap().contains(&temp_sibling(&target)));
+    }
+
+    #[test]
+    fn leftovers_of_dead_processes_are_swept_and_others_kept() {
+        let t = tempfile::tempdir().unwrap();
+        let d = t.path();
+        std::fs::create_dir(d.join("plots")).unwrap();
+        let dead = [
+            format!(".report.html.tmp-{DEAD}"),
+            format!("plots/.a.svg.tmp-{DEAD}"),
+        ];
+        let kept = [
+            format!(".report.html.tmp-{}", std::process::id()),
+            "notes.tmp-12".to_string(),
+            "report.md".to_string(),
+        ];
+        for f in dead.iter().chain(&kept) {
+            std::fs::write(d.join(f), "x").unwrap();
+        }
+        sweep_temporaries(d);
+        for f in &dead {
+            assert!(!d.join(f).exists(), "{f} left");
+        }
+        for f in &kept {
+            assert!(d.join(f).exists(), "{f} removed");
+        }
+        std::fs::create_dir(d.join(format!(".s.partial-{DEAD}"))).unwrap();
+        std::fs::create_dir(d.join(format!(".s.old-{DEAD}"))).unwrap();
+        std::fs::create_dir(d.join(format!(".other.partial-{DEAD}"))).unwrap();
+        remove_stale_staging(d, "s");
+        assert!(!d.join(format!(".s.partial-{DEAD}")).exists());
+        assert!(!d.join(format!(".s.old-{DEAD}")).exists());
+        assert!(d.join(format!(".other.partial-{DEAD}")).exists());
+    }
+
+    #[test]
+    fn pending_paths_are_removed_on_interrupt() {
+        let t = tempfile::tempdir().unwrap();
+        let staging = t.path().join(".s.partial-1");
+        std::fs::create_dir_all(staging.join("plots")).unwrap();
+        std::fs::write(staging.join("plots/a.svg"), "x").unwrap();
+        let tmp = t.path().join(".f.tmp-1");
+        std::fs::write(&tmp, "x").unwrap();
+        register_pending(&staging);
+        register_pending(&tmp);
+        remove_pending();
+        unregister_pending(&staging);
+        unregister_pending(&tmp);
+        assert!(!staging.exists() && !tmp.exists());
+    }
 }

@@ -48,7 +48,9 @@ pub fn verify(opts: &VerifyOptions, out: &mut dyn Write) -> Result<bool> {
     }
     let is_archive = !target.is_dir();
     let unpacked = if is_archive {
-        Some(archive::unpack(target)?)
+        let u = archive::unpack(target)?;
+        crate::output::register_pending(u.temp.path());
+        Some(u)
     } else {
         None
     };
@@ -143,6 +145,10 @@ fn integrity(
     for s in &skipped {
         writeln!(out, "  note: {s} is not a regular file; not checked")?;
     }
+    for f in present.iter().filter(|p| !archive::is_run_file(p)) {
+        ok = false;
+        writeln!(out, "  not a file a run writes: {f}")?;
+    }
     for f in REQUIRED_FILES {
         if !present.iter().any(|p| p == f) {
             ok = false;
@@ -197,6 +203,7 @@ fn rerun_and_compare(dir: &Path, tolerance: f64, out: &mut dyn Write) -> Result<
         .prefix("archstudy-rerun-")
         .tempdir()
         .context("cannot create a temporary directory for the re-run")?;
+    crate::output::register_pending(temp.path());
     let opts = RunOptions {
         command_line: std::env::args().collect(),
         ..RunOptions::new(dir.join("manifest.yaml"), temp.path())
@@ -237,13 +244,29 @@ fn rerun_and_compare(dir: &Path, tolerance: f64, out: &mut dyn Write) -> Result<
             differing += 1;
         }
     }
+    let same_version = archive::read_provenance(&dir.join("run.json"))
+        .ok()
+        .and_then(|p| p.archstudy_version)
+        .is_some_and(|v| v == provenance::version());
     for f in rerun_files.iter().filter(|f| is_parquet(&f.rel)) {
         if !stored_files.iter().any(|s| s.rel == f.rel) {
-            writeln!(
-                out,
-                "{}: written by this build but not stored; not compared",
-                f.rel
-            )?;
+            if same_version {
+                // The same version writes the same tables: a missing one was removed.
+                compared += 1;
+                differing += 1;
+                writeln!(
+                    out,
+                    "{}: DIFFERENT: written by the re-run of this same version, but missing \
+                     from the stored run",
+                    f.rel
+                )?;
+            } else {
+                writeln!(
+                    out,
+                    "{}: written by this build but not stored (another version); not compared",
+                    f.rel
+                )?;
+            }
         }
     }
     if differing == 0 {

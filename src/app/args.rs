@@ -2,6 +2,7 @@
 
 use crate::analysis::forms::FormError;
 use crate::error::UsageError;
+use crate::manifest::{MAX_GENERAL_VOUSSOIRS, MAX_K};
 use crate::model::{
     Arch, ArchForm, Discretisation, Friction, JointOrientation, Load, ModelError, Shape,
     WeightModel, k_from_t_over_r,
@@ -78,6 +79,9 @@ pub struct ArchiveArgs {
     /// in the current directory; in FILE when it is a directory).
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub output: Option<PathBuf>,
+    /// Replace the archive file if it exists (without it, an existing file is refused).
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// `archstudy verify`.
@@ -177,32 +181,7 @@ impl SolveArgs {
                 "one of state, thickness, friction, thrust, thresholds, load-factor",
             )
         })?;
-        let k = match (self.k, self.t_over_r) {
-            (Some(_), Some(_)) => {
-                return Err(usage(
-                    "--t-over-r",
-                    self.t_over_r.unwrap_or_default(),
-                    "give either --k or --t-over-r, not both",
-                ));
-            }
-            (Some(k), None) => {
-                if !(k > 1.0 && k.is_finite()) {
-                    return Err(usage(
-                        "--k",
-                        k,
-                        "K = R/r must be a finite number greater than 1",
-                    ));
-                }
-                k
-            }
-            (None, Some(x)) => {
-                if !(x > 0.0 && x < 2.0) {
-                    return Err(usage("--t-over-r", x, "t/R_c must be a number in (0, 2)"));
-                }
-                k_from_t_over_r(x)
-            }
-            (None, None) => 1.35,
-        };
+        let k = self.k()?;
         let friction = parse_mu(&self.mu)
             .ok_or_else(|| usage("--mu", &self.mu, "μ must be a number ≥ 0 or inf"))?;
         let weight = WeightModel::parse(&self.weight)
@@ -217,6 +196,11 @@ impl SolveArgs {
                 "--half-angle",
                 a,
                 "α must lie strictly between 0 and 180 degrees",
+            ),
+            other if self.t_over_r.is_some() => usage(
+                "--t-over-r",
+                self.t_over_r.unwrap_or_default(),
+                other.to_string(),
             ),
             other => usage("--k", k, other.to_string()),
         })?;
@@ -241,6 +225,7 @@ impl SolveArgs {
                 "load-factor needs a live load: give --load horizontal or --load point --at DEG",
             ));
         }
+        Self::check_general_voussoirs(joints, load, &form)?;
         let scene = Scene {
             arch,
             friction,
@@ -257,6 +242,73 @@ impl SolveArgs {
             | FormError::LoadInsideKeystone { at_deg, .. } => usage("--at", at_deg, e.to_string()),
         })?;
         Ok(scene)
+    }
+
+    /// K from --k or --t-over-r, within (1, MAX_K].
+    fn k(&self) -> Result<f64, UsageError> {
+        Ok(match (self.k, self.t_over_r) {
+            (Some(_), Some(_)) => {
+                return Err(usage(
+                    "--t-over-r",
+                    self.t_over_r.unwrap_or_default(),
+                    "give either --k or --t-over-r, not both",
+                ));
+            }
+            (Some(k), None) => {
+                if !(k > 1.0 && k <= MAX_K) {
+                    return Err(usage(
+                        "--k",
+                        crate::manifest::short_number(k),
+                        format!(
+                            "K = R/r must be a number greater than 1 and at most {MAX_K}: beyond \
+                             it the solver's answers are not reliable and no masonry arch is \
+                             that thick (README, Limits)"
+                        ),
+                    ));
+                }
+                k
+            }
+            (None, Some(x)) => {
+                let x_max = 2.0 * (MAX_K - 1.0) / (MAX_K + 1.0);
+                if !(x > 0.0 && x <= x_max && k_from_t_over_r(x) > 1.0) {
+                    return Err(usage(
+                        "--t-over-r",
+                        crate::manifest::short_number(x),
+                        format!(
+                            "t/R_c must be a number in (0, {x_max:.4}] (K = R/r in (1, {MAX_K}]), \
+                             large enough that K differs from 1 (t/R_c ≥ 1e-15)"
+                        ),
+                    ));
+                }
+                k_from_t_over_r(x)
+            }
+            (None, None) => 1.35,
+        })
+    }
+
+    /// The general solver's voussoir limit (live loads, pointed arches, vertical joints).
+    fn check_general_voussoirs(
+        joints: Discretisation,
+        load: Load,
+        form: &ArchForm,
+    ) -> Result<(), UsageError> {
+        if let Discretisation::Voussoirs(n) = joints
+            && n > MAX_GENERAL_VOUSSOIRS
+            && (load.is_live() || !form.is_circular_radial())
+        {
+            Err(usage(
+                "--voussoirs",
+                n,
+                format!(
+                    "a live load, a pointed outline or vertical joints are analysed by the \
+                     general solver, which answers promptly up to {MAX_GENERAL_VOUSSOIRS} \
+                     voussoirs: use at most {MAX_GENERAL_VOUSSOIRS}, or omit --voussoirs for \
+                     the continuum"
+                ),
+            ))
+        } else {
+            Ok(())
+        }
     }
 
     fn form(&self) -> Result<ArchForm, UsageError> {

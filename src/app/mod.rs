@@ -30,6 +30,7 @@ pub fn exit_code(err: &anyhow::Error) -> u8 {
 
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> Result<ExitCode> {
+    runner::remove_partial_output_on_interrupt()?;
     match cli.command {
         Command::Solve(args) => solve(&args),
         Command::Run(args) => run_study(&args),
@@ -108,9 +109,9 @@ fn render(args: &ReportArgs) -> Result<ExitCode> {
 }
 
 fn pack(args: &ArchiveArgs) -> Result<ExitCode> {
-    let s = archive::write_archive(&args.run_dir, args.output.as_deref())?;
+    let s = archive::write_archive_with(&args.run_dir, args.output.as_deref(), args.force)?;
     for k in &s.skipped {
-        eprintln!("warning: {k} is not a regular file and was left out");
+        eprintln!("warning: {k} is not a file a run writes and was left out");
     }
     eprintln!(
         "{} files and {} under {}/ ({} bytes) written to {}",

@@ -9,6 +9,14 @@ use std::fs::File;
 use std::io::BufReader;
 use std::path::{Component, Path, PathBuf};
 
+/// The most an archive may unpack to: 50 times its own size plus 16 MiB. A run's Parquet
+/// files barely compress and its SVG figures compress about tenfold, so real archives stay
+/// far below; a small archive of one huge zero-filled member (a "zip bomb") is refused
+/// before it fills the disk.
+pub fn unpack_limit(archive_bytes: u64) -> u64 {
+    archive_bytes.saturating_mul(50).saturating_add(16 << 20)
+}
+
 /// An archive unpacked into a temporary directory (removed when dropped).
 #[derive(Debug)]
 pub struct Unpacked {
@@ -35,7 +43,8 @@ pub fn unpack(archive: &Path) -> Result<Unpacked> {
         .prefix("archstudy-verify-")
         .tempdir()
         .context("cannot create a temporary directory to unpack into")?;
-    let (top, stream_damage) = unpack_into(file, temp.path()).with_context(|| {
+    let limit = unpack_limit(file.metadata().map_or(0, |m| m.len()));
+    let (top, stream_damage) = unpack_into(file, temp.path(), limit).with_context(|| {
         format!(
             "cannot read {} as an archive made by `archstudy archive` (is it corrupt or truncated?)",
             archive.display()
@@ -48,7 +57,9 @@ pub fn unpack(archive: &Path) -> Result<Unpacked> {
     })
 }
 
-fn unpack_into(file: File, dest: &Path) -> Result<(String, Option<String>)> {
+fn unpack_into(file: File, dest: &Path, limit: u64) -> Result<(String, Option<String>)> {
+    use std::io::Read;
+    let mut budget = limit;
     let mut tar = tar::Archive::new(GzDecoder::new(BufReader::new(file)));
     let mut top: Option<String> = None;
     let mut seen = BTreeSet::new();
@@ -100,10 +111,23 @@ fn unpack_into(file: File, dest: &Path) -> Result<(String, Option<String>)> {
                     std::fs::create_dir_all(parent)
                         .with_context(|| format!("cannot create {}", parent.display()))?;
                 }
+                let too_big = || {
+                    anyhow!(
+                        "member `{shown}` would unpack the archive past {limit} bytes (50 times \
+                         its size plus 16 MiB); an archive of a run is never that compressible"
+                    )
+                };
+                if entry.header().size().unwrap_or(u64::MAX) > budget {
+                    return Err(too_big());
+                }
                 let mut out = File::create(&target)
                     .with_context(|| format!("cannot create {}", target.display()))?;
-                std::io::copy(&mut entry, &mut out)
+                let written = std::io::copy(&mut (&mut entry).take(budget + 1), &mut out)
                     .with_context(|| format!("cannot read member `{shown}`"))?;
+                if written > budget {
+                    return Err(too_big());
+                }
+                budget -= written;
             }
             tar::EntryType::XGlobalHeader
             | tar::EntryType::XHeader

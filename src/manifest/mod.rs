@@ -6,17 +6,19 @@
 //! `validate` every rule, one named step per group of rules.
 
 mod error;
+mod parse_errors;
 mod raw;
 mod types;
 mod validate;
 
 pub use error::ManifestError;
+pub use parse_errors::MAX_NODES;
 pub use raw::{Number, RawVoussoirs};
 pub use types::{
     ArchOptions, Author, AxisName, DEFAULT_BOUNDARY_TOLERANCE, GridAxis, LoadCase, LoadKind,
     Manifest, SceneSpec,
 };
-pub use validate::MAX_AXIS_STEPS;
+pub use validate::{MAX_AXIS_STEPS, MAX_GENERAL_VOUSSOIRS, MAX_K, MAX_NAME_CHARS, short_number};
 
 use raw::RawManifest;
 use std::path::Path;
@@ -62,8 +64,8 @@ pub fn parse(text: &str, path: &Path) -> Result<Manifest, ManifestError> {
         ManifestError {
             path: path.to_path_buf(),
             position,
-            key: None,
-            message: first,
+            key: position.and_then(|(l, c)| parse_errors::key_at(text, l, c)),
+            message: parse_errors::friendly(&first),
         }
     })?;
     validate::manifest(raw, path)

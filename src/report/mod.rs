@@ -92,10 +92,51 @@ pub fn html(view: &view::ReportView) -> Result<String> {
     Ok(env.get_template("report.html.j2")?.render(Serde(view))?)
 }
 
-/// The Markdown report of a view model.
+/// Text from the manifest (title, description) made inert in Markdown, as report.html's
+/// escaping makes it inert in HTML: `&`, `<`, `>` become entities, Markdown punctuation is
+/// backslash-escaped (no code fence, link, emphasis or table cell can open), and a line
+/// cannot start a heading, quote, list or rule. Line breaks are kept only when `multiline`.
+pub fn markdown_text(text: &str, multiline: bool) -> String {
+    let mut out = String::with_capacity(text.len() + 16);
+    for (i, line) in text.lines().enumerate() {
+        if i > 0 {
+            out.push_str(if multiline { "\n" } else { " " });
+        }
+        let body = line.trim_start();
+        out.push_str(&line[..line.len() - body.len()]);
+        if body.starts_with(['#', '-', '+', '=']) {
+            out.push('\\');
+        }
+        // (`>` becomes `&gt;`, which opens no quote.) `1.` or `1)` would open an ordered list: the mark after the digits is escaped.
+        let digits = body.chars().take_while(char::is_ascii_digit).count();
+        for (j, c) in body.chars().enumerate() {
+            match c {
+                '&' => out.push_str("&amp;"),
+                '<' => out.push_str("&lt;"),
+                '>' => out.push_str("&gt;"),
+                '\\' | '`' | '*' | '_' | '[' | ']' | '|' | '~' => {
+                    out.push('\\');
+                    out.push(c);
+                }
+                '.' | ')' if digits > 0 && j == digits => {
+                    out.push('\\');
+                    out.push(c);
+                }
+                c => out.push(c),
+            }
+        }
+    }
+    out
+}
+
+/// The Markdown report of a view model; the title and description from the manifest are
+/// escaped ([`markdown_text`]).
 pub fn markdown(view: &view::ReportView) -> Result<String> {
     let env = environment()?;
-    let mut s = env.get_template("report.md.j2")?.render(Serde(view))?;
+    let mut view = view.clone();
+    view.title = markdown_text(&view.title, false);
+    view.description = markdown_text(&view.description, true);
+    let mut s = env.get_template("report.md.j2")?.render(Serde(&view))?;
     if !s.ends_with('\n') {
         s.push('\n');
     }
@@ -125,6 +166,8 @@ pub struct ReportSummary {
 /// from its stored files.
 pub fn render_run(dir: &Path) -> Result<ReportSummary> {
     let layout = RunLayout::at(dir);
+    crate::output::refuse_symlinks_in(&layout)?;
+    crate::output::sweep_temporaries(dir);
     let data = data::load(&layout)
         .with_context(|| format!("cannot read the run directory {}", dir.display()))?;
     let figs = draw_figures(&data, &layout)?;
@@ -134,4 +177,32 @@ pub fn render_run(dir: &Path) -> Result<ReportSummary> {
         html: layout.report_html(),
         markdown: layout.report_md(),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::markdown_text;
+
+    #[test]
+    fn manifest_text_is_inert_in_markdown() {
+        assert_eq!(
+            markdown_text("<script>alert(1)</script> & more", false),
+            "&lt;script&gt;alert(1)&lt;/script&gt; &amp; more"
+        );
+        // An unclosed code fence cannot swallow the rest of the report.
+        assert_eq!(markdown_text("```rust\nopen", true), "\\`\\`\\`rust\nopen");
+        assert_eq!(
+            markdown_text("# H\n- item\n1. one\n> q", true),
+            "\\# H\n\\- item\n1\\. one\n&gt; q"
+        );
+        assert_eq!(
+            markdown_text("a | b *c* [l](u) _d_", false),
+            "a \\| b \\*c\\* \\[l\\](u) \\_d\\_"
+        );
+        assert_eq!(markdown_text("two\nlines", false), "two lines");
+        // Ordinary text is unchanged.
+        let plain =
+            "Semicircular arch with radial joints, K = R/r and mu, after \"Further remarks\".";
+        assert_eq!(markdown_text(plain, true), plain);
+    }
 }

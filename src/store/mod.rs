@@ -162,6 +162,7 @@ impl TableBuilder {
 /// renamed into place once complete.
 pub fn write_parquet(df: &mut DataFrame, path: &Path) -> Result<()> {
     let tmp = crate::output::temp_sibling(path);
+    crate::output::register_pending(&tmp);
     let result = (|| -> Result<()> {
         let file =
             File::create(&tmp).with_context(|| format!("cannot create {}", tmp.display()))?;
@@ -178,6 +179,7 @@ pub fn write_parquet(df: &mut DataFrame, path: &Path) -> Result<()> {
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
     }
+    crate::output::unregister_pending(&tmp);
     result
 }
 

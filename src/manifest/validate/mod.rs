@@ -5,10 +5,12 @@
 mod arch;
 mod citation;
 mod grid;
+mod limits;
 mod load_checks;
 mod loads;
 
 pub use grid::MAX_AXIS_STEPS;
+pub use limits::{MAX_GENERAL_VOUSSOIRS, MAX_K, MAX_NAME_CHARS, short_number};
 
 use super::error::ManifestError;
 use super::raw::{RawBoundaries, RawManifest, RawScene};
@@ -71,6 +73,7 @@ pub(super) fn manifest(raw: RawManifest, path: &Path) -> Result<Manifest, Manife
     load_checks::check_loads(&raw, &arch, &grid, &load_cases, cx)?;
     let scenes = validate_scenes(raw.scenes.as_deref().unwrap_or(&[]), cx)?;
     let boundary_tolerance = boundary_tolerance(raw.boundaries.as_ref(), cx)?;
+    limits::check_limits(&raw, &arch, &grid, &load_cases, &scenes, cx)?;
     Ok(Manifest {
         name: raw.name.value,
         title: raw.title,

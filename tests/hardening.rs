@@ -1,0 +1,359 @@
+//! The attack catalogue of issue 20: bad input, full disks, interruptions, links out of the
+//! run directory. Each test asserts the refusal (exit 2, the key or option named) or that the
+//! earlier run is intact and no temporary is left.
+
+use crate::common::{archstudy, assert_usage_error, bin, manifest, scratch, stderr};
+use proptest::prelude::*;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const TINY: &str = "name: tiny
+grid:
+  k: {values: [1.2, 1.3]}
+  mu: {values: [0.4, 0.6]}
+";
+
+fn corpus() -> Vec<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus");
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "yaml"))
+        .collect();
+    v.sort();
+    v
+}
+
+/// Runs the binary under `sh -c` with a shell limit such as `ulimit -v 4000000`.
+fn limited(limit: &str, args: &[&str]) -> std::process::Output {
+    let exe = env!("CARGO_BIN_EXE_archstudy");
+    Command::new("sh")
+        .arg("-c")
+        .arg(format!("{limit}; exec \"$0\" \"$@\""))
+        .arg(exe)
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+/// Every hidden leftover (staging, set-aside run, temporary) under `dir`, recursively.
+fn leftovers(dir: &Path) -> Vec<String> {
+    let mut out = Vec::new();
+    for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+        let n = e.file_name().to_string_lossy().into_owned();
+        if n.contains(".partial-") || n.contains(".old-") || n.contains(".tmp-") {
+            out.push(e.path().display().to_string());
+        }
+        if e.file_type().unwrap().is_dir() {
+            out.extend(leftovers(&e.path()));
+        }
+    }
+    out
+}
+
+#[test]
+fn every_manifest_of_the_corpus_is_refused_naming_its_key() {
+    for m in corpus() {
+        let p = m.to_str().unwrap();
+        // The 3001² grid fits this machine's memory only if it is large: limit it.
+        let o = if p.ends_with("grid-3001-squared.yaml") {
+            limited("ulimit -v 4000000", &["check", p])
+        } else {
+            archstudy(&["check", p])
+        };
+        let e = stderr(&o);
+        assert_usage_error(&o, &[p, "key `"]);
+        for parser in [
+            "invalid i64",
+            "DuplicateKeyPolicy",
+            "budget breached",
+            "Nodes {",
+        ] {
+            assert!(!e.contains(parser), "{p}: parser wording: {e}");
+        }
+    }
+}
+
+#[test]
+fn a_device_or_an_oversized_manifest_is_refused_unread() {
+    let o = archstudy(&["check", "/dev/zero"]);
+    assert_usage_error(&o, &["/dev/zero", "not a regular file"]);
+    let dir = scratch("oversized");
+    let big = manifest(&dir, "big.yaml", &"#".repeat(2 << 20));
+    let o = archstudy(&["check", big.to_str().unwrap()]);
+    assert_usage_error(&o, &["big.yaml", "1 MiB"]);
+}
+
+#[test]
+fn solve_refuses_what_it_cannot_answer_naming_the_option() {
+    assert_usage_error(
+        &archstudy(&["solve", "--t-over-r", "1e-300"]),
+        &["--t-over-r"],
+    );
+    assert_usage_error(
+        &archstudy(&["solve", "--k", "1e300", "--mu", "0.4"]),
+        &["--k", "1e300", "at most 100"],
+    );
+    assert_usage_error(
+        &archstudy(&[
+            "solve",
+            "--load",
+            "horizontal",
+            "--find",
+            "load-factor",
+            "--voussoirs",
+            "1000000",
+        ]),
+        &["--voussoirs", "100000"],
+    );
+}
+
+#[test]
+fn a_plan_too_big_for_the_memory_limit_exits_2_naming_the_memory() {
+    let dir = scratch("ulimit-v");
+    let m = manifest(
+        &dir,
+        "big.yaml",
+        "name: big\ngrid:\n  k: {from: 1.05, to: 1.5, steps: 2000}\n  mu: {from: 0.2, to: 0.8, steps: 2000}\n",
+    );
+    let out = dir.join("out");
+    let o = limited(
+        "ulimit -v 2000000",
+        &[
+            "run",
+            m.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ],
+    );
+    assert_usage_error(&o, &["grid", "GiB of memory", "ulimit -v"]);
+    assert!(leftovers(&dir).is_empty());
+}
+
+#[test]
+fn run_never_replaces_a_users_directory_of_the_same_name() {
+    let dir = scratch("user-dir");
+    let m = manifest(&dir, "tiny.yaml", TINY);
+    let out = dir.join("out");
+    std::fs::create_dir_all(out.join("tiny")).unwrap();
+    std::fs::write(out.join("tiny/thesis.tex"), "mine").unwrap();
+    let o = archstudy(&[
+        "run",
+        m.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_usage_error(&o, &["--out", "not a run directory"]);
+    assert_eq!(
+        std::fs::read_to_string(out.join("tiny/thesis.tex")).unwrap(),
+        "mine"
+    );
+    assert!(leftovers(&dir).is_empty(), "{:?}", leftovers(&dir));
+}
+
+fn tiny_run(dir: &Path) -> PathBuf {
+    let m = manifest(dir, "tiny.yaml", TINY);
+    let out = dir.join("out");
+    let o = archstudy(&[
+        "run",
+        m.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    out.join("tiny")
+}
+
+#[test]
+fn archive_does_not_overwrite_a_file_without_force() {
+    let dir = scratch("archive-force");
+    let run = tiny_run(&dir);
+    let target = dir.join("precious.tar.gz");
+    std::fs::write(&target, "keep").unwrap();
+    let t = target.to_str().unwrap();
+    let o = archstudy(&["archive", run.to_str().unwrap(), "-o", t]);
+    assert_usage_error(&o, &["--output", "--force"]);
+    assert_eq!(std::fs::read_to_string(&target).unwrap(), "keep");
+    let o = archstudy(&["archive", run.to_str().unwrap(), "-o", t, "--force"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_ne!(std::fs::read(&target).unwrap(), b"keep");
+}
+
+#[test]
+fn report_does_not_write_through_a_symlink_out_of_the_run() {
+    let dir = scratch("symlink");
+    let run = tiny_run(&dir);
+    let outside = dir.join("outside");
+    std::fs::create_dir(&outside).unwrap();
+    std::fs::remove_dir_all(run.join("plots")).unwrap();
+    std::os::unix::fs::symlink(&outside, run.join("plots")).unwrap();
+    let o = archstudy(&["report", run.to_str().unwrap()]);
+    assert_usage_error(&o, &["plots", "symbolic link"]);
+    assert_eq!(std::fs::read_dir(&outside).unwrap().count(), 0);
+}
+
+#[test]
+fn a_full_disk_during_run_keeps_the_earlier_run_and_leaves_no_temporary() {
+    let dir = scratch("ulimit-f");
+    let run = tiny_run(&dir);
+    let before = std::fs::read(run.join("results.parquet")).unwrap();
+    let m = dir.join("tiny.yaml");
+    let out = dir.join("out");
+    // 20 blocks of 512 bytes: the figures cannot be written (SIGXFSZ or EFBIG).
+    let o = limited(
+        "ulimit -f 20",
+        &[
+            "run",
+            m.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ],
+    );
+    assert!(!o.status.success(), "the run fitted in 10 kB");
+    assert_eq!(std::fs::read(run.join("results.parquet")).unwrap(), before);
+    // A process killed by the limit cannot clean up; the next run sweeps what it left.
+    let o = archstudy(&[
+        "run",
+        m.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(leftovers(&dir).is_empty(), "{:?}", leftovers(&dir));
+    // report and archive under the same limit leave nothing either once rerun.
+    let _ = limited("ulimit -f 20", &["report", run.to_str().unwrap()]);
+    let a = dir.join("a.tar.gz");
+    let _ = limited(
+        "ulimit -f 20",
+        &["archive", run.to_str().unwrap(), "-o", a.to_str().unwrap()],
+    );
+    let o = archstudy(&[
+        "archive",
+        run.to_str().unwrap(),
+        "-o",
+        a.to_str().unwrap(),
+        "--force",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = archstudy(&["verify", a.to_str().unwrap(), "--no-rerun"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!crate::common::stdout(&o).contains(".tmp-"));
+}
+
+#[test]
+fn sigint_and_sigterm_mid_run_remove_the_staging_directory() {
+    let dir = scratch("sigint");
+    let run = tiny_run(&dir);
+    let before = std::fs::read(run.join("results.parquet")).unwrap();
+    let m = manifest(
+        &dir,
+        "tiny.yaml",
+        "name: tiny\ngrid:\n  k: {from: 1.05, to: 1.5, steps: 400}\n  mu: {from: 0.2, to: 0.8, steps: 400}\n",
+    );
+    let out = dir.join("out");
+    let mut interrupted = 0;
+    for (sig, code) in [("INT", 130), ("TERM", 143)] {
+        let mut child = bin()
+            .args([
+                "run",
+                m.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+                "--quiet",
+            ])
+            .spawn()
+            .unwrap();
+        // Wait (without a clock) until the staging directory exists, then interrupt.
+        let staging = out.join(format!(".tiny.partial-{}", child.id()));
+        while !staging.exists() {
+            if child.try_wait().unwrap().is_some() {
+                break;
+            }
+            std::thread::yield_now();
+        }
+        Command::new("kill")
+            .args([format!("-{sig}"), child.id().to_string()])
+            .status()
+            .unwrap();
+        let status = child.wait().unwrap();
+        if status.success() {
+            // The run finished before the signal; nothing to check for this signal.
+            continue;
+        }
+        interrupted += 1;
+        assert_eq!(status.code(), Some(code), "SIG{sig}");
+        assert!(
+            leftovers(&dir).is_empty(),
+            "SIG{sig}: {:?}",
+            leftovers(&dir)
+        );
+        assert_eq!(std::fs::read(run.join("results.parquet")).unwrap(), before);
+    }
+    assert!(interrupted > 0, "both runs finished before their signal");
+}
+
+prop_compose! {
+    /// A corpus manifest with a few bytes replaced, inserted or removed.
+    fn mutated()(seed in 0usize..64, edits in prop::collection::vec((any::<u16>(), any::<u8>(), 0u8..3), 1..6)) -> String {
+        let files = corpus();
+        let mut extra = vec![TINY.to_string(), std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("studies/seed.yaml")).unwrap()];
+        extra.extend(files.iter().filter(|f| std::fs::metadata(f).unwrap().len() < 10_000).map(|f| std::fs::read_to_string(f).unwrap()));
+        let mut bytes = extra[seed % extra.len()].clone().into_bytes();
+        for (at, b, op) in edits {
+            let i = usize::from(at) % (bytes.len() + 1);
+            match op {
+                0 if i < bytes.len() => bytes[i] = b,
+                1 => bytes.insert(i, b),
+                _ if i < bytes.len() => { bytes.remove(i); }
+                _ => {}
+            }
+        }
+        String::from_utf8_lossy(&bytes).into_owned()
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+    /// Manifest text never panics the parser: it is a plan, or an error naming the file and
+    /// a key or position, in the manifest's words.
+    #[test]
+    fn mutated_manifests_parse_or_are_refused_by_key(text in mutated()) {
+        let path = Path::new("fuzz.yaml");
+        match archstudy::manifest::parse(&text, path) {
+            Ok(m) => prop_assert!(archstudy::plan::case_count(&m) > 0),
+            Err(e) => {
+                prop_assert!(e.key.is_some() || e.position.is_some(), "{e}");
+                let s = e.to_string();
+                prop_assert!(s.starts_with("fuzz.yaml"), "{s}");
+                prop_assert!(!s.contains("invalid i64") && !s.contains("DuplicateKeyPolicy"), "{s}");
+            }
+        }
+    }
+
+    /// `solve` arguments: a scene, or a usage error naming an option; never a panic.
+    #[test]
+    fn solve_arguments_give_a_scene_or_name_an_option(
+        k in prop_oneof![Just(None), (-1e300f64..1e300).prop_map(Some), (0.9f64..200.0).prop_map(Some)],
+        t in prop_oneof![Just(None), (-1.0f64..3.0).prop_map(Some), Just(Some(1e-300))],
+        n in prop_oneof![Just(None), (-5i64..2_000_000).prop_map(Some)],
+        load in prop_oneof![Just("self-weight"), Just("horizontal"), Just("point")],
+        find in prop_oneof![Just("state"), Just("load-factor"), Just("friction"), Just("thickness")],
+    ) {
+        use clap::Parser;
+        let mut args = vec!["archstudy".to_string(), "solve".into(), "--load".into(), load.into(), "--find".into(), find.into()];
+        if let Some(k) = k { args.extend(["--k".into(), k.to_string()]); }
+        if let Some(t) = t { args.extend(["--t-over-r".into(), t.to_string()]); }
+        if let Some(n) = n { args.extend(["--voussoirs".into(), n.to_string()]); }
+        let Ok(cli) = archstudy::app::Cli::try_parse_from(&args) else { return Ok(()); };
+        let archstudy::app::Command::Solve(s) = cli.command else { unreachable!() };
+        if let Err(e) = s.scene() {
+            prop_assert!(e.option.starts_with("--"), "{e}");
+        }
+    }
+}
