@@ -31,7 +31,7 @@ pub const REQUIRED_FILES: [&str; 3] = ["manifest.yaml", "run.json", "results.par
 /// The files at the top of a run directory that a run writes (besides plots/STEM.svg and
 /// plots/STEM.png): nothing else is archived, and an archive holding anything else fails
 /// `verify`.
-pub const RUN_TOP_FILES: [&str; 11] = [
+pub const RUN_TOP_FILES: [&str; 12] = [
     "manifest.yaml",
     "run.json",
     "results.parquet",
@@ -43,6 +43,7 @@ pub const RUN_TOP_FILES: [&str; 11] = [
     "mechanisms.parquet",
     "report.html",
     "report.md",
+    crate::output::CRATE_METADATA,
 ];
 
 /// Whether `rel` (relative, `/`-separated) is a file a run writes: one of
