@@ -7,5 +7,6 @@ mod boundaries;
 mod common;
 mod loads;
 mod report;
+mod report_arches;
 mod run;
 mod solve;
