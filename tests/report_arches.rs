@@ -126,3 +126,68 @@ fn bifurcation_and_scene_states_carry_their_own_voussoir_count() {
     let md = std::fs::read_to_string(run.join("report.md")).expect("report.md");
     assert!(md.contains("N = 7 voussoirs") && md.contains("N = 12 voussoirs"));
 }
+
+/// A horizontal-load map of `nk` × `nmu` points.
+fn load_factor_map(nk: usize, nmu: usize) -> String {
+    format!(
+        "name: lambda-map
+grid:
+  k: {{from: 1.1, to: 1.6, steps: {nk}}}
+  mu: {{from: 0.3, to: 1.0, steps: {nmu}}}
+load_cases:
+  - {{name: horizontal, kind: horizontal}}
+find: load_factor
+"
+    )
+}
+
+/// The rows of the key-results table of report.md.
+fn key_result_rows(md: &str) -> Vec<String> {
+    md.split("## Key results")
+        .nth(1)
+        .and_then(|s| s.split("\n## ").next())
+        .map(|s| {
+            s.lines()
+                .filter(|l| l.starts_with("| ") && !l.starts_with("| quantity"))
+                .map(str::to_string)
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+fn assert_short_load_factor_report(nk: usize, nmu: usize) {
+    let dir = scratch(&format!("arches-lambda-{nk}x{nmu}"));
+    let run = run_study(&dir, "lambda.yaml", &load_factor_map(nk, nmu));
+    let md = std::fs::read_to_string(run.join("report.md")).expect("report.md");
+    let rows = key_result_rows(&md);
+    assert!(
+        (8..=40).contains(&rows.len()),
+        "{} key-result rows",
+        rows.len()
+    );
+    assert!(rows[0].contains("smallest λ_max"), "{}", rows[0]);
+    // Every λ row names K and μ; every change of mechanism names where it was located.
+    for r in &rows {
+        assert!(r.contains("K") && r.contains("μ"), "{r}");
+    }
+    let bifurcations = store::read_bifurcations(&RunLayout::at(&run).bifurcations())
+        .expect("bifurcations.parquet");
+    assert!(bifurcations.len() > 6, "the map crosses several mechanism changes");
+    let lines = md.lines().count();
+    assert!(lines < 300, "report.md has {lines} lines");
+    assert!(
+        std::fs::metadata(run.join("plots/load-factor.png")).is_ok(),
+        "a load_factor study draws λ against K and μ"
+    );
+}
+
+#[test]
+fn key_results_stay_short_on_a_load_factor_map() {
+    assert_short_load_factor_report(41, 29);
+}
+
+#[test]
+#[ignore = "a 191 x 141 load-factor map takes minutes in a debug build"]
+fn key_results_stay_short_on_a_191_by_141_load_factor_map() {
+    assert_short_load_factor_report(191, 141);
+}

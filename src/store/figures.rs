@@ -422,7 +422,7 @@ impl StateArchColumns {
 
 /// The arch group and load of one row of bifurcations.parquet: the columns that say on which
 /// arch and under which load the bifurcation was found.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct BifurcationGroup {
     /// Half-embrace angle α, degrees (`None` when the table lacks the column).
     pub half_angle_deg: Option<f64>,
@@ -432,6 +432,9 @@ pub struct BifurcationGroup {
     pub at_deg: Option<f64>,
     /// λ_max at the bifurcation (load_factor studies).
     pub load_factor: Option<f64>,
+    /// `k` or `mu`: the grid edge along which a change of mechanism was located (general
+    /// route), `None` on the symmetric collapse curve.
+    pub axis: Option<String>,
 }
 
 /// Reads the arch group and load of every row of bifurcations.parquet, in table order.
@@ -443,12 +446,14 @@ pub fn read_bifurcation_groups(path: &Path) -> Result<Vec<BifurcationGroup>> {
     let at = f64_or_null(&df, "at_deg");
     let lf = f64_or_null(&df, "load_factor");
     let has_voussoirs = has("voussoirs");
+    let axis = str_or_null(&df, "axis");
     Ok((0..df.height())
         .map(|i| BifurcationGroup {
             half_angle_deg: half[i],
             voussoirs: has_voussoirs.then(|| nv[i].map(|v| v as u32)),
             at_deg: at[i],
             load_factor: lf[i],
+            axis: axis[i].clone(),
         })
         .collect())
 }
@@ -486,6 +491,68 @@ pub fn read_reference(path: &Path) -> Result<Vec<ReferenceRow>> {
             quantity: q[i].clone().unwrap_or_default(),
             continuum_value: v[i],
             continuum_solve_time_us: t[i].unwrap_or(f64::NAN),
+        })
+        .collect())
+}
+
+/// One case of a load_factor study as its figures need it: the parameters that may vary and
+/// the collapse load factor with its mechanism (from results.parquet).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadFactorCase {
+    /// Row of results.parquet.
+    pub row: usize,
+    /// Load case.
+    pub load_case: String,
+    /// K = R/r.
+    pub k: f64,
+    /// μ (+inf for infinite friction).
+    pub mu: f64,
+    /// Half-embrace angle, degrees.
+    pub half_angle_deg: f64,
+    /// Voussoir count, `None` for the continuum.
+    pub voussoirs: Option<u32>,
+    /// Position of the point load, degrees from the crown.
+    pub at_deg: Option<f64>,
+    /// λ_max, multiples of the total weight (`None` when unbounded or not found).
+    pub load_factor: Option<f64>,
+    /// Collapse mechanism at λ_max.
+    pub mechanism: Option<String>,
+}
+
+/// The columns of results.parquet read into [`LoadFactorCase`].
+const LOAD_FACTOR_COLUMNS: [&str; 9] = [
+    "load_case",
+    "find",
+    "k",
+    "mu",
+    "half_angle_deg",
+    "voussoirs",
+    "at_deg",
+    "load_factor",
+    "mechanism",
+];
+
+/// Reads the load_factor cases of results.parquet (rows of other finds are skipped).
+pub fn read_load_factor_cases(path: &Path) -> Result<Vec<LoadFactorCase>> {
+    let df = super::read_parquet_columns(path, &LOAD_FACTOR_COLUMNS)?;
+    let cx = || format!("in {}", path.display());
+    let f = |name: &str| f64_column(&df, name).with_context(cx);
+    let s = |name: &str| str_column(&df, name).with_context(cx);
+    let (lc, find, mech) = (s("load_case")?, s("find")?, s("mechanism")?);
+    let (k, mu, half) = (f("k")?, f("mu")?, f("half_angle_deg")?);
+    let (nv, at, lf) = (f("voussoirs")?, f("at_deg")?, f("load_factor")?);
+    Ok((0..lc.len())
+        .filter(|&i| find[i].as_deref() == Some("load_factor"))
+        .map(|i| LoadFactorCase {
+            row: i,
+            load_case: lc[i].clone().unwrap_or_default(),
+            k: k[i].unwrap_or(f64::NAN),
+            mu: mu[i].unwrap_or(f64::NAN),
+            half_angle_deg: half[i].unwrap_or(90.0),
+            voussoirs: nv[i].map(|v| v as u32),
+            at_deg: at[i],
+            load_factor: lf[i],
+            mechanism: mech[i].clone(),
         })
         .collect())
 }
