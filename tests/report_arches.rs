@@ -172,7 +172,10 @@ fn assert_short_load_factor_report(nk: usize, nmu: usize) {
     }
     let bifurcations = store::read_bifurcations(&RunLayout::at(&run).bifurcations())
         .expect("bifurcations.parquet");
-    assert!(bifurcations.len() > 6, "the map crosses several mechanism changes");
+    assert!(
+        bifurcations.len() > 6,
+        "the map crosses several mechanism changes"
+    );
     let lines = md.lines().count();
     assert!(lines < 300, "report.md has {lines} lines");
     assert!(

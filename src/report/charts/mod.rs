@@ -139,6 +139,11 @@ pub fn build(data: &RunData) -> Vec<FigureSpec> {
     out
 }
 
+/// True when every case uses the manifest's arch (no voussoir or half-angle axis).
+pub fn single_model_of(data: &RunData) -> bool {
+    single_model(data)
+}
+
 pub(super) fn single_model(data: &RunData) -> bool {
     !data
         .manifest

@@ -59,8 +59,12 @@ pub fn key_results(data: &RunData) -> (Vec<KeyResult>, String) {
             rows.load_factor_changes(data, &lc.name, &on);
             continue;
         }
-        rows.rotational_collapse(&curve, &on);
-        rows.sliding_collapse(&curve, &on);
+        // The collapse-curve rows do not say which arch they belong to: with a half-angle or
+        // voussoir axis only the bifurcations, which name their arch, are listed.
+        if crate::report::charts::single_model_of(data) {
+            rows.rotational_collapse(&curve, &on);
+            rows.sliding_collapse(&curve, &on);
+        }
         rows.bifurcations(data, &lc.name, &on);
     }
     rows.critical_values(data);
