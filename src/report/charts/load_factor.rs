@@ -11,6 +11,17 @@ use crate::store::LoadFactorCase;
 /// At most this many lines per panel.
 const MAX_LINES: usize = 4;
 
+/// A grid value for a label: as given when short (1.25, 0.4, ∞), else to four decimals
+/// (a range axis of 191 steps gives K = 1.436842105263158).
+pub fn compact(v: f64) -> String {
+    let g = mu_text(v);
+    if g.len() <= 7 {
+        g
+    } else {
+        crate::report::format::short(v)
+    }
+}
+
 /// Distinct finite-or-infinite values, sorted.
 fn distinct(vals: impl Iterator<Item = f64>) -> Vec<f64> {
     let mut v: Vec<f64> = vals.filter(|x| !x.is_nan()).collect();
@@ -167,7 +178,7 @@ fn lambda_curves(
         let lines: Vec<Line> = spread(&mus, MAX_LINES)
             .into_iter()
             .map(|mu| Line {
-                label: format!("μ = {}", mu_text(mu)),
+                label: format!("μ = {}", compact(mu)),
                 points: own
                     .iter()
                     .filter(|c| c.mu == mu)
@@ -187,7 +198,7 @@ fn lambda_curves(
         let lines: Vec<Line> = spread(&ks, MAX_LINES)
             .into_iter()
             .map(|k| Line {
-                label: format!("K = {}", given(k)),
+                label: format!("K = {}", compact(k)),
                 points: own
                     .iter()
                     .filter(|c| c.k == k && c.mu.is_finite())
@@ -258,7 +269,7 @@ fn influence_line(
             .collect();
         pts.sort_by(|a, b| a.x.total_cmp(&b.x));
         Line {
-            label: format!("K = {}, μ = {}", given(k), mu_text(mu)),
+            label: format!("K = {}, μ = {}", compact(k), compact(mu)),
             points: pts,
         }
     };

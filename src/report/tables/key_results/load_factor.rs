@@ -4,7 +4,7 @@
 //! results.parquet and bifurcations.parquet.
 
 use super::{Rows, group_text};
-use crate::report::charts::load_factor::{spread, x_over_l};
+use crate::report::charts::load_factor::{compact, spread, x_over_l};
 use crate::report::data::RunData;
 use crate::report::format::{given, short};
 use crate::store::LoadFactorCase;
@@ -14,21 +14,13 @@ const TABLE_SIDE: usize = 3;
 /// At most this many changes of mechanism listed.
 const CHANGES: usize = 6;
 
-fn mu_text(mu: f64) -> String {
-    if mu.is_infinite() {
-        "∞".into()
-    } else {
-        given(mu)
-    }
-}
-
 /// Where a case sits: K, μ, the load's position (angle and x/L), the arch axes and the
 /// mechanism.
 fn case_text(data: &RunData, c: &LoadFactorCase) -> String {
     let has = |n: &str| data.manifest.grid.iter().any(|a| a.name == n);
     let mut parts = vec![
-        format!("K = {}", given(c.k)),
-        format!("μ = {}", mu_text(c.mu)),
+        format!("K = {}", compact(c.k)),
+        format!("μ = {}", compact(c.mu)),
     ];
     if let Some(a) = c.at_deg {
         let xl = x_over_l(&data.manifest.arch, c.k, c.half_angle_deg, a);
@@ -56,6 +48,26 @@ fn distinct(vals: impl Iterator<Item = f64>) -> Vec<f64> {
     v
 }
 
+/// The bounded cases of a load case summarised: one arch's (the continuum's when the study
+/// has it, else the first half-angle and voussoir count's).
+fn summary_cases<'a>(data: &'a RunData, lc: &str) -> Vec<&'a LoadFactorCase> {
+    let bounded: Vec<&LoadFactorCase> = data
+        .load_factors
+        .iter()
+        .filter(|c| c.load_case == lc && c.load_factor.is_some())
+        .collect();
+    let group = |c: &LoadFactorCase| (c.half_angle_deg.to_bits(), c.voussoirs);
+    let chosen = bounded
+        .iter()
+        .find(|c| c.voussoirs.is_none())
+        .or(bounded.first())
+        .map(|c| group(c));
+    bounded
+        .into_iter()
+        .filter(|c| Some(group(c)) == chosen)
+        .collect()
+}
+
 impl Rows {
     fn load_factor_row(&mut self, data: &RunData, label: String, c: &LoadFactorCase) {
         let Some(v) = c.load_factor else { return };
@@ -68,13 +80,11 @@ impl Rows {
     }
 
     /// The weakest and strongest case, and λ_max at up to 3 × 3 (K, μ) of the grid: at the
-    /// weakest position when a point load moves.
+    /// weakest position when a point load moves. With a half-angle or voussoir axis, of the
+    /// continuum when the study has it (the convergence table gives every count), else of
+    /// the first arch. Each case is listed once.
     pub(super) fn load_factor_summary(&mut self, data: &RunData, lc: &str, on: &str) {
-        let cases: Vec<&LoadFactorCase> = data
-            .load_factors
-            .iter()
-            .filter(|c| c.load_case == lc && c.load_factor.is_some())
-            .collect();
+        let cases = summary_cases(data, lc);
         let lambda = |c: &&LoadFactorCase| c.load_factor.unwrap_or(f64::NAN);
         let (Some(lo), Some(hi)) = (
             cases.iter().min_by(|a, b| lambda(a).total_cmp(&lambda(b))),
@@ -82,8 +92,12 @@ impl Rows {
         ) else {
             return;
         };
-        self.load_factor_row(data, format!("smallest λ_max of the study{on}"), lo);
-        self.load_factor_row(data, format!("largest λ_max of the study{on}"), hi);
+        let mut listed = std::collections::BTreeSet::new();
+        if lo.row != hi.row {
+            self.load_factor_row(data, format!("smallest λ_max of the study{on}"), lo);
+            self.load_factor_row(data, format!("largest λ_max of the study{on}"), hi);
+            listed.extend([lo.row, hi.row]);
+        }
         let moving = distinct(cases.iter().filter_map(|c| c.at_deg)).len() > 1;
         let ks = spread(&distinct(cases.iter().map(|c| c.k)), TABLE_SIDE);
         let mus = spread(&distinct(cases.iter().map(|c| c.mu)), TABLE_SIDE);
@@ -98,7 +112,9 @@ impl Rows {
                 } else {
                     format!("λ_max{on}")
                 };
-                if let Some(c) = weakest {
+                if let Some(c) = weakest
+                    && listed.insert(c.row)
+                {
                     self.load_factor_row(data, label, c);
                 }
             }
@@ -126,9 +142,9 @@ impl Rows {
             let extra = g.map_or(String::new(), |g| group_text(data, g));
             let along_mu = g.and_then(|g| g.axis.as_deref()) == Some("mu");
             let (q, v, col) = if along_mu {
-                (format!("μ at K = {}", given(b.k)), b.mu, "mu")
+                (format!("μ at K = {}", compact(b.k)), b.mu, "mu")
             } else {
-                (format!("K at μ = {}", mu_text(b.mu)), b.k, "k")
+                (format!("K at μ = {}", compact(b.mu)), b.k, "k")
             };
             self.push(
                 format!(
