@@ -952,9 +952,9 @@ find: thresholds
     );
     assert!(md.contains(&row), "{row} not in the report");
     assert!(md.contains("load case wind: load_factor"), "{md}");
-    // Key results: the continuum's values, each named by its stored cell.
+    // Key results: the continuum's values, each named by its stored cell and its axes.
     let key = format!(
-        "| load factor λ at K = 1.1622 (t/R_c = 0.1500), μ = 0.4, continuum (wind) | {lc:.10} | — | — | `results.parquet row 7 load_factor` |"
+        "| λ_max (wind) (K = 1.1622, μ = 0.4, continuum, mixed collapse) | {lc:.10} | — | — | `results.parquet row 7 load_factor` |"
     );
     assert!(md.contains(&key), "{key} not in the report");
     assert!(

@@ -9,5 +9,6 @@ mod common;
 mod hardening;
 mod loads;
 mod report;
+mod report_arches;
 mod run;
 mod solve;

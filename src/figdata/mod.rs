@@ -11,11 +11,11 @@ mod reference;
 pub use reference::find_of_quantity;
 
 use crate::analysis::symmetric;
-use crate::manifest::{AxisName, Manifest};
-use crate::model::{Arch, Friction};
+use crate::manifest::{AxisName, LoadCase, Manifest};
+use crate::model::{Arch, Discretisation, Friction};
 use crate::output::RunLayout;
 use crate::plan::Plan;
-use crate::store::{self, BifurcationRow, CurvePoint, JointLists, StateRow};
+use crate::store::{self, BifurcationGroup, BifurcationRow, CurvePoint, JointLists, StateRow};
 use anyhow::{Context, Result};
 use curves::Samples;
 
@@ -80,24 +80,152 @@ fn suffix(manifest: &Manifest, load_case: &str) -> String {
     }
 }
 
-fn base_arch(manifest: &Manifest, k: f64) -> Result<Arch> {
-    let a = &manifest.arch;
-    Arch::new(k, a.half_angle_deg, a.weight, a.voussoirs)
-        .with_context(|| format!("the arch of the manifest with K = {k}"))
+/// The arch of one group of cases: the manifest's arch with the values of its `half_angle_deg`
+/// and `voussoirs` axes, when it has them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct ArchGroup {
+    /// Half-embrace angle α, degrees.
+    half_angle_deg: f64,
+    /// Continuum or N voussoirs.
+    voussoirs: Discretisation,
+}
+
+impl ArchGroup {
+    fn of_manifest(manifest: &Manifest) -> Self {
+        ArchGroup {
+            half_angle_deg: manifest.arch.half_angle_deg,
+            voussoirs: manifest.arch.voussoirs,
+        }
+    }
+
+    /// The group of a stored bifurcation: its own half-angle and voussoir count, the
+    /// manifest's where the table does not have them.
+    fn of_bifurcation(manifest: &Manifest, g: Option<&BifurcationGroup>) -> Self {
+        let base = Self::of_manifest(manifest);
+        let Some(g) = g else { return base };
+        ArchGroup {
+            half_angle_deg: g.half_angle_deg.unwrap_or(base.half_angle_deg),
+            voussoirs: match g.voussoirs {
+                Some(Some(n)) => Discretisation::Voussoirs(n),
+                Some(None) => Discretisation::Continuum,
+                None => base.voussoirs,
+            },
+        }
+    }
+
+    fn arch(&self, manifest: &Manifest, k: f64) -> Result<Arch> {
+        Arch::new(k, self.half_angle_deg, manifest.arch.weight, self.voussoirs).with_context(|| {
+            format!(
+                "the arch of the study with K = {k}, α = {}°",
+                self.half_angle_deg
+            )
+        })
+    }
+
+    /// The id suffix naming the values of the arch axes the study has (`-a65`, `-n9`).
+    fn suffix(&self, manifest: &Manifest) -> String {
+        let mut out = String::new();
+        if has_axis(manifest, AxisName::HalfAngleDeg) {
+            out.push_str(&format!("-a{}", self.half_angle_deg));
+        }
+        if has_axis(manifest, AxisName::Voussoirs) {
+            match self.voussoirs.voussoirs() {
+                Some(n) => out.push_str(&format!("-n{n}")),
+                None => out.push_str("-continuum"),
+            }
+        }
+        out
+    }
+}
+
+fn has_axis(manifest: &Manifest, name: AxisName) -> bool {
+    manifest.grid.iter().any(|a| a.name == name)
+}
+
+/// Every arch of the study: the manifest's, or one per value of its arch axes.
+fn arch_groups(manifest: &Manifest) -> Vec<ArchGroup> {
+    let base = ArchGroup::of_manifest(manifest);
+    let values = |name: AxisName| -> Option<Vec<f64>> {
+        manifest
+            .grid
+            .iter()
+            .find(|a| a.name == name)
+            .map(|a| a.values.clone())
+    };
+    let halves = values(AxisName::HalfAngleDeg).unwrap_or_else(|| vec![base.half_angle_deg]);
+    let counts: Vec<Discretisation> = values(AxisName::Voussoirs).map_or_else(
+        || vec![base.voussoirs],
+        |v| {
+            v.iter()
+                .map(|&n| {
+                    if n.is_finite() {
+                        Discretisation::Voussoirs(n as u32)
+                    } else {
+                        Discretisation::Continuum
+                    }
+                })
+                .collect()
+        },
+    );
+    halves
+        .iter()
+        .flat_map(|&half_angle_deg| {
+            counts.iter().map(move |&voussoirs| ArchGroup {
+                half_angle_deg,
+                voussoirs,
+            })
+        })
+        .collect()
 }
 
 fn finite(x: f64) -> Option<f64> {
     x.is_finite().then_some(x)
 }
 
-/// The state drawn for a bifurcation, with its line of thrust.
+/// A state row with the arch and load of its case filled in and nothing drawn yet.
+fn blank_state(manifest: &Manifest, lc: &LoadCase, group: ArchGroup, id: String) -> StateRow {
+    let form = manifest.arch.form();
+    StateRow {
+        state_id: id,
+        source: String::new(),
+        state: String::new(),
+        load_case: lc.name.clone(),
+        scene_k: f64::NAN,
+        scene_mu: f64::NAN,
+        k: f64::NAN,
+        t_over_r: f64::NAN,
+        mu: f64::NAN,
+        half_angle_deg: group.half_angle_deg,
+        weight: manifest.arch.weight.as_str().into(),
+        voussoirs: group.voussoirs.voussoirs(),
+        shape: form.shape.as_str().into(),
+        eccentricity: form.shape.eccentricity(),
+        joint_orientation: form.joints.as_str().into(),
+        load: lc.kind.as_str().into(),
+        at_deg: lc.at_deg,
+        load_factor: lc.lambda,
+        regime: None,
+        mechanism: None,
+        thrust_over_half_weight: None,
+        crown_moment: None,
+        joints: JointLists::default(),
+        thrust_r_min: None,
+        thrust_r_max: None,
+        thrust_s_min: None,
+        thrust_s_max: None,
+    }
+}
+
+/// The state drawn for a bifurcation, on the arch of its own group, with its line of thrust.
 fn bifurcation_state(
     manifest: &Manifest,
+    lc: &LoadCase,
     id: String,
-    b: &BifurcationRow,
+    (b, g): (&BifurcationRow, Option<&BifurcationGroup>),
     out: &mut Collector,
 ) -> Result<StateRow> {
-    let arch = base_arch(manifest, b.k)?;
+    let group = ArchGroup::of_bifurcation(manifest, g);
+    let arch = group.arch(manifest, b.k)?;
     if let (Some(h), Some(m)) = (b.thrust_over_half_weight, b.crown_moment) {
         out.push(
             &line_of_thrust_figure(&id),
@@ -105,29 +233,20 @@ fn bifurcation_state(
             &curves::line_of_thrust(&arch, h, m),
         );
     }
-    Ok(StateRow {
-        state_id: id,
-        source: "bifurcation".into(),
-        state: "bifurcation".into(),
-        load_case: b.load_case.clone(),
-        scene_k: b.k,
-        scene_mu: b.mu,
-        k: b.k,
-        t_over_r: b.t_over_r,
-        mu: b.mu,
-        half_angle_deg: manifest.arch.half_angle_deg,
-        weight: manifest.arch.weight.as_str().into(),
-        voussoirs: manifest.arch.voussoirs.voussoirs(),
-        regime: None,
-        mechanism: Some(format!("{}/{}", b.mechanism_a, b.mechanism_b)),
-        thrust_over_half_weight: b.thrust_over_half_weight,
-        crown_moment: b.crown_moment,
-        joints: b.joints.clone(),
-        thrust_r_min: None,
-        thrust_r_max: None,
-        thrust_s_min: None,
-        thrust_s_max: None,
-    })
+    let mut row = blank_state(manifest, lc, group, id);
+    row.source = "bifurcation".into();
+    row.state = "bifurcation".into();
+    (row.scene_k, row.scene_mu, row.k, row.mu) = (b.k, b.mu, b.k, b.mu);
+    row.t_over_r = b.t_over_r;
+    row.mechanism = Some(format!("{}/{}", b.mechanism_a, b.mechanism_b));
+    row.thrust_over_half_weight = b.thrust_over_half_weight;
+    row.crown_moment = b.crown_moment;
+    row.joints = b.joints.clone();
+    if let Some(g) = g {
+        row.at_deg = g.at_deg.or(row.at_deg);
+        row.load_factor = g.load_factor.or(row.load_factor);
+    }
+    Ok(row)
 }
 
 fn joint_lists(
@@ -142,18 +261,24 @@ fn joint_lists(
     }
 }
 
+/// Where a scene is drawn: its load case, arch group and (K, μ) as listed.
+struct SceneAt<'a> {
+    lc: &'a LoadCase,
+    group: ArchGroup,
+    k: f64,
+    mu: f64,
+}
+
 /// The state drawn for a manifest scene: its minimum-thrust state when it stands, else the
 /// collapse state at its μ (at K_c(μ)), else nothing; with the curves of Fig. 2.
 fn scene_state(
     manifest: &Manifest,
     id: String,
-    load_case: &str,
-    k: f64,
-    mu: f64,
+    at: &SceneAt<'_>,
     out: &mut Collector,
 ) -> Result<StateRow> {
-    let arch = base_arch(manifest, k)?;
-    let friction = Friction::new(mu).unwrap_or(Friction::INFINITE);
+    let arch = at.group.arch(manifest, at.k)?;
+    let friction = Friction::new(at.mu).unwrap_or(Friction::INFINITE);
     let report = symmetric::state(&arch, friction);
     let (r, s) = (
         report.domains.rotational.interval,
@@ -167,52 +292,18 @@ fn scene_state(
     out.push(&fig, "h_max_r_intrados", &c.h_max_r_intrados);
     out.push(&fig, "h_min_s", &c.h_min_s);
     out.push(&fig, "h_max_s", &c.h_max_s);
-    let mut row = StateRow {
-        state_id: id.clone(),
-        source: "scene".into(),
-        state: "no_equilibrium".into(),
-        load_case: load_case.to_string(),
-        scene_k: k,
-        scene_mu: friction.mu(),
-        k,
-        t_over_r: arch.t_over_r(),
-        mu: friction.mu(),
-        half_angle_deg: manifest.arch.half_angle_deg,
-        weight: manifest.arch.weight.as_str().into(),
-        voussoirs: manifest.arch.voussoirs.voussoirs(),
-        regime: Some(report.regime.as_str().into()),
-        mechanism: None,
-        thrust_over_half_weight: None,
-        crown_moment: None,
-        joints: JointLists::default(),
-        thrust_r_min: (!r.is_empty()).then_some(r.lo).and_then(finite),
-        thrust_r_max: (!r.is_empty()).then_some(r.hi).and_then(finite),
-        thrust_s_min: (!s.is_empty()).then_some(s.lo).and_then(finite),
-        thrust_s_max: (!s.is_empty()).then_some(s.hi).and_then(finite),
-    };
-    let (draw_arch, h, m) = match symmetric::thrust(&arch, friction) {
-        Some((lo, _)) if lo.thrust_over_half_weight.is_finite() => {
-            row.state = "minimum_thrust".into();
-            row.mechanism = crate::analysis::MechanismKind::from_counts(
-                lo.hinges.len(),
-                lo.sliding_joints.len(),
-            )
-            .map(|k| k.as_str().to_string());
-            row.joints = joint_lists(&lo.hinges, &lo.sliding_joints);
-            (arch, lo.thrust_over_half_weight, lo.crown_moment)
-        }
-        _ => match symmetric::thickness(&arch, friction) {
-            symmetric::Critical::Found(c) => {
-                row.state = "collapse".into();
-                row.k = c.k;
-                row.t_over_r = crate::model::t_over_r_from_k(c.k);
-                row.mechanism = Some(c.mechanism.kind.as_str().into());
-                row.joints = joint_lists(&c.mechanism.hinges, &c.mechanism.sliding_joints);
-                (arch.with_k(c.k), c.thrust_over_half_weight, c.crown_moment)
-            }
-            _ => (arch, f64::NAN, f64::NAN),
-        },
-    };
+    let mut row = blank_state(manifest, at.lc, at.group, id.clone());
+    row.source = "scene".into();
+    row.state = "no_equilibrium".into();
+    (row.scene_k, row.k) = (at.k, at.k);
+    (row.scene_mu, row.mu) = (friction.mu(), friction.mu());
+    row.t_over_r = arch.t_over_r();
+    row.regime = Some(report.regime.as_str().into());
+    row.thrust_r_min = (!r.is_empty()).then_some(r.lo).and_then(finite);
+    row.thrust_r_max = (!r.is_empty()).then_some(r.hi).and_then(finite);
+    row.thrust_s_min = (!s.is_empty()).then_some(s.lo).and_then(finite);
+    row.thrust_s_max = (!s.is_empty()).then_some(s.hi).and_then(finite);
+    let (draw_arch, h, m) = scene_drawn_state(&arch, friction, &mut row);
     row.thrust_over_half_weight = finite(h);
     row.crown_moment = finite(m);
     if h.is_finite() && m.is_finite() {
@@ -223,6 +314,34 @@ fn scene_state(
         );
     }
     Ok(row)
+}
+
+/// The state a scene draws: its minimum-thrust state, else its collapse state at K_c(μ);
+/// fills the row's state, mechanism and joints and returns the arch, thrust and moment.
+fn scene_drawn_state(arch: &Arch, friction: Friction, row: &mut StateRow) -> (Arch, f64, f64) {
+    match symmetric::thrust(arch, friction) {
+        Some((lo, _)) if lo.thrust_over_half_weight.is_finite() => {
+            row.state = "minimum_thrust".into();
+            row.mechanism = crate::analysis::MechanismKind::from_counts(
+                lo.hinges.len(),
+                lo.sliding_joints.len(),
+            )
+            .map(|k| k.as_str().to_string());
+            row.joints = joint_lists(&lo.hinges, &lo.sliding_joints);
+            (*arch, lo.thrust_over_half_weight, lo.crown_moment)
+        }
+        _ => match symmetric::thickness(arch, friction) {
+            symmetric::Critical::Found(c) => {
+                row.state = "collapse".into();
+                row.k = c.k;
+                row.t_over_r = crate::model::t_over_r_from_k(c.k);
+                row.mechanism = Some(c.mechanism.kind.as_str().into());
+                row.joints = joint_lists(&c.mechanism.hinges, &c.mechanism.sliding_joints);
+                (arch.with_k(c.k), c.thrust_over_half_weight, c.crown_moment)
+            }
+            _ => (*arch, f64::NAN, f64::NAN),
+        },
+    }
 }
 
 fn mu_range(manifest: &Manifest) -> Option<(f64, f64)> {
@@ -256,7 +375,7 @@ fn critical_curves(
     let Some((k_lo, k_hi)) = k_range else {
         return Ok(());
     };
-    let arch = base_arch(manifest, 0.5 * (k_lo + k_hi))?;
+    let arch = ArchGroup::of_manifest(manifest).arch(manifest, 0.5 * (k_lo + k_hi))?;
     let bif_mu: Vec<f64> = bifurcations.iter().map(|b| b.mu).collect();
     let bif_k: Vec<f64> = bifurcations.iter().map(|b| b.k).collect();
     let fig = critical_figure(load_case);
@@ -283,6 +402,11 @@ pub fn run(plan: &Plan, layout: &RunLayout) -> Result<FigureDataSummary> {
     } else {
         Vec::new()
     };
+    let groups = if layout.bifurcations().exists() {
+        store::read_bifurcation_groups(&layout.bifurcations())?
+    } else {
+        Vec::new()
+    };
     let mut out = Collector { points: Vec::new() };
     let mut states = Vec::new();
     let mut mechs = Vec::new();
@@ -296,27 +420,33 @@ pub fn run(plan: &Plan, layout: &RunLayout) -> Result<FigureDataSummary> {
         .filter(|l| drawable && !l.kind.is_live())
     {
         let sfx = suffix(manifest, &lc.name);
-        let bifs: Vec<&BifurcationRow> = bifurcations
+        let bifs: Vec<(&BifurcationRow, Option<&BifurcationGroup>)> = bifurcations
             .iter()
-            .filter(|b| b.load_case == lc.name)
+            .enumerate()
+            .filter(|(_, b)| b.load_case == lc.name)
+            .map(|(i, b)| (b, groups.get(i)))
             .collect();
-        for (i, b) in bifs.iter().enumerate() {
+        for (i, &(b, g)) in bifs.iter().enumerate() {
             let id = format!("bifurcation-{}{sfx}", i + 1);
             let index = u32::try_from(i + 1).unwrap_or(u32::MAX);
-            mechs.extend(mechanisms::bifurcation_mechanisms(
-                &base_arch(manifest, b.k)?,
-                b,
-                &id,
-                index,
-            ));
-            states.push(bifurcation_state(manifest, id, b, &mut out)?);
+            let arch = ArchGroup::of_bifurcation(manifest, g).arch(manifest, b.k)?;
+            mechs.extend(mechanisms::bifurcation_mechanisms(&arch, b, &id, index));
+            states.push(bifurcation_state(manifest, lc, id, (b, g), &mut out)?);
         }
-        for (i, s) in manifest.scenes.iter().enumerate() {
-            let id = format!("scene-{}{sfx}", i + 1);
-            states.push(scene_state(manifest, id, &lc.name, s.k, s.mu, &mut out)?);
+        for group in arch_groups(manifest) {
+            for (i, s) in manifest.scenes.iter().enumerate() {
+                let id = format!("scene-{}{}{sfx}", i + 1, group.suffix(manifest));
+                let at = SceneAt {
+                    lc,
+                    group,
+                    k: s.k,
+                    mu: s.mu,
+                };
+                states.push(scene_state(manifest, id, &at, &mut out)?);
+            }
         }
         if lc.find == crate::scene::Find::State && single_model(manifest) {
-            let own: Vec<BifurcationRow> = bifs.into_iter().cloned().collect();
+            let own: Vec<BifurcationRow> = bifs.into_iter().map(|(b, _)| b.clone()).collect();
             critical_curves(manifest, &lc.name, &own, &mut out)?;
         }
     }

@@ -10,6 +10,7 @@
 pub mod accuracy;
 pub mod critical;
 pub mod domains;
+pub mod lines;
 pub mod mechanisms;
 pub mod regime_map;
 pub mod state;

@@ -149,6 +149,11 @@ pub struct RunData {
     pub reference: Vec<ReferenceRow>,
     /// mechanisms.parquet (empty when absent).
     pub mechanisms: Vec<MechanismRow>,
+    /// The load_factor cases of results.parquet with their position and mechanism (empty
+    /// when no load case finds a load factor).
+    pub load_factors: Vec<store::LoadFactorCase>,
+    /// The arch group, load position and λ of every row of bifurcations.parquet.
+    pub bifurcation_groups: Vec<store::BifurcationGroup>,
 }
 
 fn optional<T>(path: &Path, read: impl Fn(&Path) -> Result<T>) -> Result<Option<T>> {
@@ -213,6 +218,15 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
         .into());
     }
     let results = store::read_results(&layout.results())?;
+    let load_factors = if manifest
+        .load_cases
+        .iter()
+        .any(|l| manifest.find_of(&l.name) == "load_factor")
+    {
+        store::read_load_factor_cases(&layout.results())?
+    } else {
+        Vec::new()
+    };
     Ok(RunData {
         info,
         manifest,
@@ -223,6 +237,9 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
         states: optional(&layout.states(), store::read_states)?.unwrap_or_default(),
         reference: optional(&layout.reference(), store::read_reference)?.unwrap_or_default(),
         mechanisms: optional(&layout.mechanisms(), store::read_mechanisms)?.unwrap_or_default(),
+        load_factors,
+        bifurcation_groups: optional(&layout.bifurcations(), store::read_bifurcation_groups)?
+            .unwrap_or_default(),
     })
 }
 

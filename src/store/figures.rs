@@ -51,6 +51,18 @@ pub struct StateRow {
     pub weight: String,
     /// Voussoir count, `None` for the continuum.
     pub voussoirs: Option<u32>,
+    /// `circular` or `pointed`.
+    pub shape: String,
+    /// Eccentricity e of a pointed arch (0 for a circular one).
+    pub eccentricity: f64,
+    /// Orientation of the joints: `radial` or `vertical`.
+    pub joint_orientation: String,
+    /// Kind of the load case: `self_weight`, `horizontal` or `point`.
+    pub load: String,
+    /// Position of the point load, degrees from the crown (`None` for other loads).
+    pub at_deg: Option<f64>,
+    /// Load factor λ of the live load at the drawn state (`None` for self-weight alone).
+    pub load_factor: Option<f64>,
     /// Regime of the scene at (scene_k, scene_mu).
     pub regime: Option<String>,
     /// Mechanism of the drawn state (`rotational/mixed` at a bifurcation).
@@ -265,6 +277,12 @@ pub fn states_frame(rows: &[StateRow]) -> Result<DataFrame> {
         .f64("half_angle_deg", f(&|r| r.half_angle_deg))
         .str("weight", s(&|r| r.weight.clone()))
         .opt_u32("voussoirs", rows.iter().map(|r| r.voussoirs).collect())
+        .str("shape", s(&|r| r.shape.clone()))
+        .f64("eccentricity", f(&|r| r.eccentricity))
+        .str("joint_orientation", s(&|r| r.joint_orientation.clone()))
+        .str("load", s(&|r| r.load.clone()))
+        .opt_f64("at_deg", o(&|r| r.at_deg))
+        .opt_f64("load_factor", o(&|r| r.load_factor))
         .opt_str("regime", rows.iter().map(|r| r.regime.clone()).collect())
         .opt_str(
             "mechanism",
@@ -328,6 +346,7 @@ pub fn read_states(path: &Path) -> Result<Vec<StateRow>> {
         f("thrust_s_min")?,
         f("thrust_s_max")?,
     );
+    let arch = StateArchColumns::read(&df);
     let nan = |v: Option<f64>| v.unwrap_or(f64::NAN);
     Ok((0..id.len())
         .map(|i| StateRow {
@@ -343,6 +362,12 @@ pub fn read_states(path: &Path) -> Result<Vec<StateRow>> {
             half_angle_deg: nan(half[i]),
             weight: weight[i].clone().unwrap_or_default(),
             voussoirs: nv[i].map(|v| v as u32),
+            shape: arch.shape[i].clone().unwrap_or_else(|| "circular".into()),
+            eccentricity: arch.eccentricity[i].unwrap_or(0.0),
+            joint_orientation: arch.joints[i].clone().unwrap_or_else(|| "radial".into()),
+            load: arch.load[i].clone().unwrap_or_else(|| "self_weight".into()),
+            at_deg: arch.at_deg[i],
+            load_factor: arch.load_factor[i],
             regime: regime[i].clone(),
             mechanism: mech[i].clone(),
             thrust_over_half_weight: thrust[i],
@@ -357,6 +382,78 @@ pub fn read_states(path: &Path) -> Result<Vec<StateRow>> {
             thrust_r_max: rmax[i],
             thrust_s_min: smin[i],
             thrust_s_max: smax[i],
+        })
+        .collect())
+}
+
+/// A numeric column that older run directories may lack: all null then.
+fn f64_or_null(df: &DataFrame, name: &str) -> Vec<Option<f64>> {
+    f64_column(df, name).unwrap_or_else(|_| vec![None; df.height()])
+}
+
+/// A string column that older run directories may lack: all null then.
+fn str_or_null(df: &DataFrame, name: &str) -> Vec<Option<String>> {
+    str_column(df, name).unwrap_or_else(|_| vec![None; df.height()])
+}
+
+/// The columns of states.parquet naming the arch form and the load (absent from run
+/// directories written before they were added: read as the semicircle under self-weight).
+struct StateArchColumns {
+    shape: Vec<Option<String>>,
+    eccentricity: Vec<Option<f64>>,
+    joints: Vec<Option<String>>,
+    load: Vec<Option<String>>,
+    at_deg: Vec<Option<f64>>,
+    load_factor: Vec<Option<f64>>,
+}
+
+impl StateArchColumns {
+    fn read(df: &DataFrame) -> Self {
+        StateArchColumns {
+            shape: str_or_null(df, "shape"),
+            eccentricity: f64_or_null(df, "eccentricity"),
+            joints: str_or_null(df, "joint_orientation"),
+            load: str_or_null(df, "load"),
+            at_deg: f64_or_null(df, "at_deg"),
+            load_factor: f64_or_null(df, "load_factor"),
+        }
+    }
+}
+
+/// The arch group and load of one row of bifurcations.parquet: the columns that say on which
+/// arch and under which load the bifurcation was found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BifurcationGroup {
+    /// Half-embrace angle α, degrees (`None` when the table lacks the column).
+    pub half_angle_deg: Option<f64>,
+    /// Voussoir count: `Some(None)` for the continuum, `None` when the table lacks the column.
+    pub voussoirs: Option<Option<u32>>,
+    /// Position of the point load, degrees from the crown.
+    pub at_deg: Option<f64>,
+    /// λ_max at the bifurcation (load_factor studies).
+    pub load_factor: Option<f64>,
+    /// `k` or `mu`: the grid edge along which a change of mechanism was located (general
+    /// route), `None` on the symmetric collapse curve.
+    pub axis: Option<String>,
+}
+
+/// Reads the arch group and load of every row of bifurcations.parquet, in table order.
+pub fn read_bifurcation_groups(path: &Path) -> Result<Vec<BifurcationGroup>> {
+    let df = read_parquet(path)?;
+    let has = |name: &str| df.column(name).is_ok();
+    let half = f64_or_null(&df, "half_angle_deg");
+    let nv = f64_or_null(&df, "voussoirs");
+    let at = f64_or_null(&df, "at_deg");
+    let lf = f64_or_null(&df, "load_factor");
+    let has_voussoirs = has("voussoirs");
+    let axis = str_or_null(&df, "axis");
+    Ok((0..df.height())
+        .map(|i| BifurcationGroup {
+            half_angle_deg: half[i],
+            voussoirs: has_voussoirs.then(|| nv[i].map(|v| v as u32)),
+            at_deg: at[i],
+            load_factor: lf[i],
+            axis: axis[i].clone(),
         })
         .collect())
 }
@@ -394,6 +491,68 @@ pub fn read_reference(path: &Path) -> Result<Vec<ReferenceRow>> {
             quantity: q[i].clone().unwrap_or_default(),
             continuum_value: v[i],
             continuum_solve_time_us: t[i].unwrap_or(f64::NAN),
+        })
+        .collect())
+}
+
+/// One case of a load_factor study as its figures need it: the parameters that may vary and
+/// the collapse load factor with its mechanism (from results.parquet).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadFactorCase {
+    /// Row of results.parquet.
+    pub row: usize,
+    /// Load case.
+    pub load_case: String,
+    /// K = R/r.
+    pub k: f64,
+    /// μ (+inf for infinite friction).
+    pub mu: f64,
+    /// Half-embrace angle, degrees.
+    pub half_angle_deg: f64,
+    /// Voussoir count, `None` for the continuum.
+    pub voussoirs: Option<u32>,
+    /// Position of the point load, degrees from the crown.
+    pub at_deg: Option<f64>,
+    /// λ_max, multiples of the total weight (`None` when unbounded or not found).
+    pub load_factor: Option<f64>,
+    /// Collapse mechanism at λ_max.
+    pub mechanism: Option<String>,
+}
+
+/// The columns of results.parquet read into [`LoadFactorCase`].
+const LOAD_FACTOR_COLUMNS: [&str; 9] = [
+    "load_case",
+    "find",
+    "k",
+    "mu",
+    "half_angle_deg",
+    "voussoirs",
+    "at_deg",
+    "load_factor",
+    "mechanism",
+];
+
+/// Reads the load_factor cases of results.parquet (rows of other finds are skipped).
+pub fn read_load_factor_cases(path: &Path) -> Result<Vec<LoadFactorCase>> {
+    let df = super::read_parquet_columns(path, &LOAD_FACTOR_COLUMNS)?;
+    let cx = || format!("in {}", path.display());
+    let f = |name: &str| f64_column(&df, name).with_context(cx);
+    let s = |name: &str| str_column(&df, name).with_context(cx);
+    let (lc, find, mech) = (s("load_case")?, s("find")?, s("mechanism")?);
+    let (k, mu, half) = (f("k")?, f("mu")?, f("half_angle_deg")?);
+    let (nv, at, lf) = (f("voussoirs")?, f("at_deg")?, f("load_factor")?);
+    Ok((0..lc.len())
+        .filter(|&i| find[i].as_deref() == Some("load_factor"))
+        .map(|i| LoadFactorCase {
+            row: i,
+            load_case: lc[i].clone().unwrap_or_default(),
+            k: k[i].unwrap_or(f64::NAN),
+            mu: mu[i].unwrap_or(f64::NAN),
+            half_angle_deg: half[i].unwrap_or(90.0),
+            voussoirs: nv[i].map(|v| v as u32),
+            at_deg: at[i],
+            load_factor: lf[i],
+            mechanism: mech[i].clone(),
         })
         .collect())
 }

@@ -10,7 +10,8 @@ mod table;
 
 pub use boundaries::{bifurcations_frame, boundaries_frame};
 pub use figures::{
-    CurvePoint, MechanismRow, ReferenceRow, StateRow, curves_frame, mechanisms_frame, read_curves,
+    BifurcationGroup, CurvePoint, LoadFactorCase, MechanismRow, ReferenceRow, StateRow,
+    curves_frame, mechanisms_frame, read_bifurcation_groups, read_curves, read_load_factor_cases,
     read_mechanisms, read_reference, read_states, reference_frame, states_frame,
 };
 pub use results::{filled_by, results_frame};

@@ -61,15 +61,21 @@ pub fn figure(data: &RunData, s: &StateRow) -> FigureSpec {
     let regime = s.regime.as_deref().unwrap_or("");
     let r_exists = !matches!(regime, "rotational" | "none");
     let s_exists = !matches!(regime, "sliding" | "none");
+    let arch = super::state::arch_text(s);
+    let on = if arch.is_empty() {
+        String::new()
+    } else {
+        format!(" ({arch})")
+    };
     let title = format!(
-        "Domains Hʳ and Hˢ, K = {}, μ = {}",
+        "Domains Hʳ and Hˢ, K = {}, μ = {}{on}",
         given(s.scene_k),
         mu_text(s.scene_mu)
     );
     FigureSpec {
         stem: format!("domains-{}", safe(&s.state_id)),
         title: format!(
-            "Thrust domains of scene K = {}, μ = {}",
+            "Thrust domains of scene K = {}, μ = {}{on}",
             given(s.scene_k),
             mu_text(s.scene_mu)
         ),

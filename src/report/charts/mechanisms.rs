@@ -46,11 +46,17 @@ pub fn figure(data: &RunData, s: &StateRow) -> Option<FigureSpec> {
         return None;
     }
     let mech = s.mechanism.clone().unwrap_or_default().replace('/', " / ");
+    let arch = super::state::arch_text(s);
+    let on = if arch.is_empty() {
+        String::new()
+    } else {
+        format!(" ({arch})")
+    };
     Some(FigureSpec {
         stem: mechanisms_stem(&s.state_id),
-        title: format!("Collapse mechanisms at the {mech} bifurcation"),
+        title: format!("Collapse mechanisms at the {mech} bifurcation{on}"),
         caption: format!(
-            "The mechanisms admissible at the {mech} bifurcation (K = {}, μ = {}): the arch before the virtual displacement (dashed), fixed parts (grey), the displaced blocks (blue; largest displacement 0.08 r), hinges (red dots; hollow where the joint stays closed in that mechanism) and sliding joints (orange arrows: the sense in which the crown-side part moves). Non-associative panels use the paper's rule (pure sliding, no dilatancy); the associative panels use normality to the Coulomb cone, whose slip opens the joint by tan φ times the slip.",
+            "The mechanisms admissible at the {mech} bifurcation (K = {}, μ = {}{on}): the arch before the virtual displacement (dashed), fixed parts (grey), the displaced blocks (blue; largest displacement 0.08 r), hinges (red dots; hollow where the joint stays closed in that mechanism) and sliding joints (orange arrows: the sense in which the crown-side part moves). Non-associative panels use the paper's rule (pure sliding, no dilatancy); the associative panels use normality to the Coulomb cone, whose slip opens the joint by tan φ times the slip.",
             short(s.k),
             short(s.mu)
         ),

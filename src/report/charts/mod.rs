@@ -5,6 +5,7 @@
 pub mod accuracy;
 pub mod critical;
 pub mod domains;
+pub mod load_factor;
 pub mod mechanisms;
 pub mod regime_map;
 pub mod state;
@@ -17,6 +18,7 @@ use super::format::given;
 use crate::plot::accuracy::AccuracyChart;
 use crate::plot::critical::CriticalChart;
 use crate::plot::domains::DomainsChart;
+use crate::plot::lines::LinesChart;
 use crate::plot::mechanisms::MechanismPanels;
 use crate::plot::regime_map::RegimeMap;
 use crate::plot::state::StateDrawing;
@@ -37,6 +39,8 @@ pub enum Chart {
     Accuracy(AccuracyChart),
     /// Mechanisms at a bifurcation, side by side.
     Mechanisms(MechanismPanels),
+    /// Curves against a parameter, points coloured by mechanism (load factors).
+    Lines(LinesChart),
 }
 
 /// A figure of the report.
@@ -62,6 +66,7 @@ impl FigureSpec {
             Chart::Critical(c) => plot::render(c, format),
             Chart::Accuracy(c) => plot::render(c, format),
             Chart::Mechanisms(c) => plot::render(c, format),
+            Chart::Lines(c) => plot::render(c, format),
         }
     }
 }
@@ -119,6 +124,7 @@ pub fn build(data: &RunData) -> Vec<FigureSpec> {
         };
         out.extend(regime_map::figure(data, &lc));
         out.extend(critical::figure(data, &lc));
+        out.extend(load_factor::figures(data, &lc));
     }
     for s in &data.states {
         if s.source == "scene" {
@@ -131,6 +137,11 @@ pub fn build(data: &RunData) -> Vec<FigureSpec> {
     }
     out.extend(accuracy::figure(data));
     out
+}
+
+/// True when every case uses the manifest's arch (no voussoir or half-angle axis).
+pub fn single_model_of(data: &RunData) -> bool {
+    single_model(data)
 }
 
 pub(super) fn single_model(data: &RunData) -> bool {

@@ -34,7 +34,13 @@ pub fn figure(data: &RunData, s: &StateRow) -> FigureSpec {
         .copied()
         .zip(s.joints.sliding_senses.iter().cloned())
         .collect();
-    let texts = StateTexts::of(s);
+    let mut texts = StateTexts::of(s);
+    let arch = arch_text(s);
+    if !arch.is_empty() {
+        texts.title = format!("{} ({arch})", texts.title);
+        texts.heading = format!("{} ({arch})", texts.heading);
+        texts.caption = format!("{} Arch: {arch}.", texts.caption);
+    }
     let note = texts.note.or_else(|| {
         line.is_empty()
             .then(|| "line of thrust not unique: not drawn".to_string())
@@ -67,6 +73,38 @@ fn voussoir_joints(s: &StateRow) -> Vec<f64> {
             .collect(),
         _ => Vec::new(),
     }
+}
+
+/// The arch and load of a state where they differ from the paper's semicircle under its own
+/// weight: half-angle, voussoir count, shape, joints, load, its position and λ (empty for the
+/// paper's arch).
+pub fn arch_text(s: &StateRow) -> String {
+    let mut parts = Vec::new();
+    if s.shape == "pointed" {
+        parts.push(format!("pointed, e = {}", short(s.eccentricity)));
+    }
+    if (s.half_angle_deg - 90.0).abs() > 1e-9 {
+        parts.push(format!("α = {}°", given(s.half_angle_deg)));
+    }
+    if let Some(n) = s.voussoirs {
+        parts.push(format!("N = {n} voussoirs"));
+    }
+    if s.joint_orientation == "vertical" {
+        parts.push("vertical joints".into());
+    }
+    if s.weight != "annular" {
+        parts.push(format!("{} weight", s.weight));
+    }
+    if s.load != "self_weight" {
+        let at = s
+            .at_deg
+            .map_or(String::new(), |a| format!(" at {}°", given(a)));
+        let lambda = s
+            .load_factor
+            .map_or(String::new(), |l| format!(", λ = {}", short(l)));
+        parts.push(format!("{} load{at}{lambda}", s.load.replace('_', " ")));
+    }
+    parts.join(", ")
 }
 
 /// The words of a state figure, which depend on the kind of state drawn.

@@ -8,6 +8,8 @@ use crate::report::paper::{self, Printed};
 use crate::store::{BoundaryRow, ResultRow};
 use serde::Serialize;
 
+mod load_factor;
+
 /// A row of the key-results table.
 #[derive(Debug, Clone, Serialize, PartialEq)]
 pub struct KeyResult {
@@ -52,8 +54,17 @@ pub fn key_results(data: &RunData) -> (Vec<KeyResult>, String) {
             .enumerate()
             .filter(|(_, b)| b.load_case == lc.name && b.on_collapse_curve)
             .collect();
-        rows.rotational_collapse(&curve, &on);
-        rows.sliding_collapse(&curve, &on);
+        if data.manifest.find_of(&lc.name) == "load_factor" {
+            rows.load_factor_summary(data, &lc.name, &on);
+            rows.load_factor_changes(data, &lc.name, &on);
+            continue;
+        }
+        // The collapse-curve rows do not say which arch they belong to: with a half-angle or
+        // voussoir axis only the bifurcations, which name their arch, are listed.
+        if crate::report::charts::single_model_of(data) {
+            rows.rotational_collapse(&curve, &on);
+            rows.sliding_collapse(&curve, &on);
+        }
         rows.bifurcations(data, &lc.name, &on);
     }
     rows.critical_values(data);
@@ -149,7 +160,13 @@ impl Rows {
             .enumerate()
             .filter(|(_, b)| b.load_case == lc)
         {
+            let arch = data
+                .bifurcation_groups
+                .get(i)
+                .map_or(String::new(), |g| group_text(data, g));
             let name = format!("{}/{}", b.mechanism_a, b.mechanism_b);
+            let on = format!("{arch}{on}");
+            let on = on.as_str();
             let printed = paper::bifurcation(&b.mechanism_a, &b.mechanism_b);
             let src = |c: &str| format!("bifurcations.parquet row {i} {c}");
             self.push(
@@ -258,9 +275,7 @@ impl Rows {
     fn continuum_values(&mut self, data: &RunData, multi: bool) {
         let paper_geometry = data.manifest.is_paper_geometry();
         for (i, r) in data.results.iter().enumerate().filter(|(_, r)| {
-            r.voussoirs.is_none()
-                && &*r.status == "ok"
-                && matches!(&*r.find, "thresholds" | "load_factor")
+            r.voussoirs.is_none() && &*r.status == "ok" && &*r.find == "thresholds"
         }) {
             let on = if multi {
                 format!(" ({})", r.load_case)
@@ -282,6 +297,32 @@ impl Rows {
                 break;
             }
         }
+    }
+}
+
+/// The values of the arch axes and the load position of a bifurcation, as ` (α = 70°, N = 9)`,
+/// for the axes the study has (empty without them).
+fn group_text(data: &RunData, g: &crate::store::BifurcationGroup) -> String {
+    let has = |n: &str| data.manifest.grid.iter().any(|a| a.name == n);
+    let mut parts = Vec::new();
+    if has("half_angle_deg")
+        && let Some(a) = g.half_angle_deg
+    {
+        parts.push(format!("α = {}°", given(a)));
+    }
+    if has("voussoirs") {
+        parts.push(match g.voussoirs.flatten() {
+            Some(n) => format!("N = {n}"),
+            None => "continuum".into(),
+        });
+    }
+    if let Some(a) = g.at_deg {
+        parts.push(format!("load at {}°", given(a)));
+    }
+    if parts.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", parts.join(", "))
     }
 }
 

@@ -1,0 +1,256 @@
+//! Curves of one value against a parameter, one line per value of another parameter, each
+//! point marked in the colour of its collapse mechanism: λ against K for a few μ, λ against
+//! μ for a few K, the influence line λ against the position of a point load.
+
+use super::style::{self, LabelPlacer, LegendItem, Mark, clip_polyline, decimals_for, palette};
+use super::{Figure, PlotContext, XyChart};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+
+/// One point of a line: abscissa, ordinate (NaN breaks the line) and the mechanism there.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinePoint {
+    /// x.
+    pub x: f64,
+    /// y; NaN where there is no value (λ unbounded, no equilibrium).
+    pub y: f64,
+    /// `rotational`, `mixed`, `sliding`, or empty.
+    pub mechanism: String,
+}
+
+/// One line, labelled at its right end.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Line {
+    /// Label, e.g. `μ = 0.4`.
+    pub label: String,
+    /// Its points, by increasing x.
+    pub points: Vec<LinePoint>,
+}
+
+/// One panel.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinePanel {
+    /// Panel title.
+    pub title: String,
+    /// x-axis description.
+    pub x_desc: String,
+    /// y-axis description.
+    pub y_desc: String,
+    /// The lines.
+    pub lines: Vec<Line>,
+    /// A logarithmic y axis (for values spanning more than a decade or two).
+    pub log_y: bool,
+}
+
+impl LinePanel {
+    /// The ordinate as drawn: log10 y on a logarithmic axis (NaN where y ≤ 0).
+    fn y_of(&self, y: f64) -> f64 {
+        if !self.log_y {
+            y
+        } else if y > 0.0 {
+            y.log10()
+        } else {
+            f64::NAN
+        }
+    }
+}
+
+/// What the figure shows.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinesChart {
+    /// Title.
+    pub title: String,
+    /// One or two panels, side by side.
+    pub panels: Vec<LinePanel>,
+}
+
+/// Greys of increasing lightness for the lines, so that the mechanism colours stay the
+/// only colours.
+const LINE_GREYS: [RGBColor; 4] = [
+    RGBColor(30, 30, 30),
+    RGBColor(90, 90, 90),
+    RGBColor(140, 140, 140),
+    RGBColor(180, 180, 180),
+];
+
+fn range(vals: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
+    let (lo, hi) = vals
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        });
+    if lo > hi {
+        None
+    } else if lo == hi {
+        Some((lo - 0.5 * lo.abs().max(1e-3), hi + 0.5 * hi.abs().max(1e-3)))
+    } else {
+        Some((lo, hi))
+    }
+}
+
+fn panel_window(p: &LinePanel) -> Option<((f64, f64), (f64, f64))> {
+    let pts = || p.lines.iter().flat_map(|l| l.points.iter());
+    let (x0, x1) = range(pts().filter(|q| q.y.is_finite()).map(|q| q.x))?;
+    let (y0, y1) = range(pts().map(|q| p.y_of(q.y)))?;
+    let y0 = if !p.log_y && y0 > 0.0 && y0 < 0.3 * y1 {
+        0.0
+    } else {
+        y0
+    };
+    let pad = 0.06 * (y1 - y0);
+    let xpad = 0.02 * (x1 - x0);
+    Some(((x0 - xpad, x1 + xpad), (y0 - pad, y1 + pad)))
+}
+
+fn draw_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    root: &DrawingArea<DB, Shift>,
+    ctx: &PlotContext,
+    p: &LinePanel,
+) -> DrawResult<(), DB> {
+    let Some(((x0, x1), (y0, y1))) = panel_window(p) else {
+        area.draw(&Text::new(
+            "no finite values in this study".to_string(),
+            (ctx.px(30.0), ctx.px(60.0)),
+            ctx.font(14.0),
+        ))?;
+        return Ok(());
+    };
+    let mut chart = ChartBuilder::on(area)
+        .caption(&p.title, ctx.font(15.0))
+        .margin(ctx.px(10.0))
+        .margin_right(ctx.px(70.0))
+        .x_label_area_size(ctx.px(48.0))
+        .y_label_area_size(ctx.px(66.0))
+        .build_cartesian_2d(x0..x1, y0..y1)?;
+    let fx = |v: &f64| format!("{:.*}", decimals_for(x1 - x0), v);
+    let log = p.log_y;
+    let fy = |v: &f64| {
+        if log {
+            let y = 10f64.powf(*v);
+            let d = if y >= 10.0 {
+                0
+            } else if y >= 1.0 {
+                1
+            } else if y >= 0.01 {
+                2
+            } else {
+                3
+            };
+            format!("{y:.d$}")
+        } else {
+            format!("{:.*}", decimals_for(y1 - y0), v)
+        }
+    };
+    chart
+        .configure_mesh()
+        .x_desc(p.x_desc.clone())
+        .y_desc(p.y_desc.clone())
+        .x_label_formatter(&fx)
+        .y_label_formatter(&fy)
+        .x_labels(6)
+        .y_labels(7)
+        .label_style(ctx.font(12.5))
+        .axis_desc_style(ctx.font(13.5))
+        .set_all_tick_mark_size(ctx.px(5.0))
+        .light_line_style(TRANSPARENT)
+        .bold_line_style(BLACK.mix(0.08).stroke_width(1))
+        .draw()?;
+    for (i, l) in p.lines.iter().enumerate() {
+        let grey = LINE_GREYS[i % LINE_GREYS.len()];
+        let pts: Vec<(f64, f64)> = l.points.iter().map(|q| (q.x, p.y_of(q.y))).collect();
+        for piece in clip_polyline(&pts, (x0, x1), (y0, y1)) {
+            chart.draw_series(LineSeries::new(piece, grey.stroke_width(ctx.upx(1.6))))?;
+        }
+    }
+    draw_points(root, &chart, ctx, p)
+}
+
+/// The points, in their mechanism's colour (small when there are many), and each line's
+/// label at its last finite point.
+fn draw_points<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    chart: &XyChart<DB>,
+    ctx: &PlotContext,
+    p: &LinePanel,
+) -> DrawResult<(), DB> {
+    let count: usize = p.lines.iter().map(|l| l.points.len()).sum();
+    let r = if count > 400 { 1.8 } else { 3.2 };
+    for l in &p.lines {
+        for q in l.points.iter().filter(|q| p.y_of(q.y).is_finite()) {
+            let c = chart.backend_coord(&(q.x, p.y_of(q.y)));
+            let color = palette::mechanism(&q.mechanism);
+            root.draw(&Circle::new(c, ctx.upx(r), color.filled()))?;
+        }
+    }
+    let (xr, yr) = chart.plotting_area().get_pixel_range();
+    let mut placer = LabelPlacer::new((xr.start, yr.start, xr.end + ctx.px(68.0), yr.end));
+    let font = ctx.font(11.5);
+    for l in &p.lines {
+        let Some(last) = l.points.iter().rev().find(|q| p.y_of(q.y).is_finite()) else {
+            continue;
+        };
+        let c = chart.backend_coord(&(last.x, p.y_of(last.y)));
+        let (tw, th) = style::text_block_size(&font, std::slice::from_ref(&l.label), 1.0);
+        let g = ctx.px(6.0);
+        let cands = [
+            (c.0 + g, c.1 - th / 2),
+            (c.0 + g, c.1 - th - g),
+            (c.0 + g, c.1 + g),
+            (c.0 - tw - g, c.1 - th - g),
+        ];
+        let at = placer.place(tw, th, &cands);
+        root.draw(&Text::new(
+            l.label.clone(),
+            at,
+            font.color(&palette::INK)
+                .pos(Pos::new(HPos::Left, VPos::Top)),
+        ))?;
+    }
+    Ok(())
+}
+
+impl Figure for LinesChart {
+    fn size(&self) -> (u32, u32) {
+        if self.panels.len() > 1 {
+            (1040, 520)
+        } else {
+            (820, 540)
+        }
+    }
+
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        ctx: &PlotContext,
+    ) -> DrawResult<(), DB> {
+        let legend = self.legend();
+        let upper = style::above_legend(root, ctx, &legend)?;
+        let upper = style::title(&upper, ctx, &self.title)?;
+        let n = self.panels.len().max(1);
+        let areas = upper.split_evenly((1, n));
+        for (a, p) in areas.iter().zip(&self.panels) {
+            draw_panel(a, root, ctx, p)?;
+        }
+        Ok(())
+    }
+}
+
+impl LinesChart {
+    /// The mechanisms present, in a fixed order.
+    fn legend(&self) -> Vec<LegendItem> {
+        let present = |m: &str| {
+            self.panels
+                .iter()
+                .flat_map(|p| &p.lines)
+                .flat_map(|l| &l.points)
+                .any(|q| q.mechanism == m && q.y.is_finite())
+        };
+        ["rotational", "mixed", "sliding"]
+            .into_iter()
+            .filter(|m| present(m))
+            .map(|m| LegendItem::new(format!("{m} collapse"), Mark::Dot(palette::mechanism(m))))
+            .collect()
+    }
+}

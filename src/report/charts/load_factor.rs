@@ -1,0 +1,300 @@
+//! The figures of a load_factor study, from the λ_max and mechanism of every stored case:
+//! λ against K for a few μ and against μ for a few K, and, for a point load at several
+//! positions, the influence line λ against the load's position (angle and x/L).
+
+use super::{Chart, FigureSpec, LoadCaseFigure, mu_text};
+use crate::plot::lines::{Line, LinePanel, LinePoint, LinesChart};
+use crate::report::data::{ArchView, RunData};
+use crate::report::format::given;
+use crate::store::LoadFactorCase;
+
+/// At most this many lines per panel.
+const MAX_LINES: usize = 4;
+
+/// A grid value for a label: as given when short (1.25, 0.4, ∞), else to four decimals
+/// (a range axis of 191 steps gives K = 1.436842105263158).
+pub fn compact(v: f64) -> String {
+    let g = mu_text(v);
+    if g.len() <= 7 {
+        g
+    } else {
+        crate::report::format::short(v)
+    }
+}
+
+/// Distinct finite-or-infinite values, sorted.
+fn distinct(vals: impl Iterator<Item = f64>) -> Vec<f64> {
+    let mut v: Vec<f64> = vals.filter(|x| !x.is_nan()).collect();
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    v
+}
+
+/// Up to `n` values spread over a sorted list, always with its ends.
+pub fn spread(values: &[f64], n: usize) -> Vec<f64> {
+    if values.len() <= n {
+        return values.to_vec();
+    }
+    let mut out: Vec<f64> = (0..n)
+        .map(|i| values[(i * (values.len() - 1)) / (n - 1).max(1)])
+        .collect();
+    out.dedup();
+    out
+}
+
+/// True when the positive values of the lines span more than a factor of 30: drawn on a
+/// logarithmic axis, so that the small values are not flattened against zero.
+fn wide(lines: &[Line]) -> bool {
+    let ys = lines
+        .iter()
+        .flat_map(|l| &l.points)
+        .map(|q| q.y)
+        .filter(|y| y.is_finite() && *y > 0.0);
+    let (lo, hi) = ys.fold((f64::INFINITY, 0.0f64), |(a, b), y| (a.min(y), b.max(y)));
+    hi > 30.0 * lo
+}
+
+/// The point of a case on a line.
+fn point(x: f64, c: &LoadFactorCase) -> LinePoint {
+    LinePoint {
+        x,
+        y: c.load_factor.unwrap_or(f64::NAN),
+        mechanism: c.mechanism.clone().unwrap_or_default(),
+    }
+}
+
+/// The horizontal position of a point load over the span, x/L: x from the left springing of
+/// the extrados to the load's point on the extrados (the extrados end of its joint), L the
+/// distance between the extrados springings. Computed from the arch's form.
+pub fn x_over_l(arch: &ArchView, k: f64, half_angle_deg: f64, at_deg: f64) -> f64 {
+    let e = if arch.shape == "pointed" {
+        arch.eccentricity.unwrap_or(0.0)
+    } else {
+        0.0
+    };
+    let offset = e * 0.5 * (1.0 + k);
+    let reach = if arch.joints == "vertical" { 1.0 } else { k };
+    let spring = k * half_angle_deg.to_radians().sin() - offset;
+    let x = if at_deg == 0.0 {
+        0.0
+    } else {
+        at_deg.signum() * (reach * at_deg.abs().to_radians().sin() - offset)
+    };
+    0.5 * (1.0 + x / spring)
+}
+
+/// The cases of one load case, and the arch group to draw (the first half-angle and voussoir
+/// count of the study: a study with arch axes gets one figure per group).
+struct Cases<'a> {
+    all: Vec<&'a LoadFactorCase>,
+}
+
+impl<'a> Cases<'a> {
+    fn of(data: &'a RunData, lc: &str) -> Self {
+        Cases {
+            all: data
+                .load_factors
+                .iter()
+                .filter(|c| c.load_case == lc)
+                .collect(),
+        }
+    }
+
+    /// The arch groups: (half-angle, voussoirs).
+    fn groups(&self) -> Vec<(f64, Option<u32>)> {
+        let mut g: Vec<(f64, Option<u32>)> = self
+            .all
+            .iter()
+            .map(|c| (c.half_angle_deg, c.voussoirs))
+            .collect();
+        g.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        g.dedup();
+        g
+    }
+
+    fn of_group(&self, g: (f64, Option<u32>)) -> Vec<&'a LoadFactorCase> {
+        self.all
+            .iter()
+            .copied()
+            .filter(|c| (c.half_angle_deg, c.voussoirs) == g)
+            .collect()
+    }
+}
+
+/// The words naming an arch group when the study has more than one.
+fn group_text(g: (f64, Option<u32>), several: bool) -> String {
+    if !several {
+        return String::new();
+    }
+    let n = g.1.map_or("continuum".to_string(), |n| format!("N = {n}"));
+    format!(", α = {}°, {n}", given(g.0))
+}
+
+fn group_stem(g: (f64, Option<u32>), several: bool) -> String {
+    if !several {
+        return String::new();
+    }
+    let n = g.1.map_or("continuum".to_string(), |n| format!("n{n}"));
+    format!("-a{}-{n}", given(g.0))
+}
+
+/// The load-factor figures of a load case.
+pub fn figures(data: &RunData, lc: &LoadCaseFigure) -> Vec<FigureSpec> {
+    if data.manifest.find_of(lc.name) != "load_factor" {
+        return Vec::new();
+    }
+    let cases = Cases::of(data, lc.name);
+    let groups = cases.groups();
+    let several = groups.len() > 1;
+    let mut out = Vec::new();
+    for g in groups {
+        let own = cases.of_group(g);
+        let positions = distinct(own.iter().filter_map(|c| c.at_deg));
+        let on = group_text(g, several);
+        let stem = format!("{}{}", lc.stem_suffix, group_stem(g, several));
+        if positions.len() > 2 {
+            out.extend(influence_line(data, lc, &own, (&on, &stem)));
+        } else {
+            out.extend(lambda_curves(lc, &own, (&on, &stem)));
+        }
+    }
+    out
+}
+
+/// λ against K for a few μ, and against μ for a few K.
+fn lambda_curves(
+    lc: &LoadCaseFigure,
+    own: &[&LoadFactorCase],
+    (on, stem): (&str, &str),
+) -> Option<FigureSpec> {
+    // Lines only for values at which some case has a finite λ (an arch that never stands
+    // at that μ or K would be an empty line with a label).
+    let bounded = || own.iter().filter(|c| c.load_factor.is_some());
+    let ks = distinct(bounded().map(|c| c.k));
+    let mus = distinct(bounded().map(|c| c.mu));
+    let finite_mus: Vec<f64> = mus.iter().copied().filter(|m| m.is_finite()).collect();
+    let mut panels = Vec::new();
+    if ks.len() > 1 {
+        let lines: Vec<Line> = spread(&mus, MAX_LINES)
+            .into_iter()
+            .map(|mu| Line {
+                label: format!("μ = {}", compact(mu)),
+                points: own
+                    .iter()
+                    .filter(|c| c.mu == mu)
+                    .map(|c| point(c.k, c))
+                    .collect(),
+            })
+            .collect();
+        panels.push(LinePanel {
+            title: "λ against K".into(),
+            x_desc: "K = R/r".into(),
+            y_desc: "λ_max (multiples of the weight)".into(),
+            log_y: wide(&lines),
+            lines,
+        });
+    }
+    if finite_mus.len() > 1 {
+        let lines: Vec<Line> = spread(&ks, MAX_LINES)
+            .into_iter()
+            .map(|k| Line {
+                label: format!("K = {}", compact(k)),
+                points: own
+                    .iter()
+                    .filter(|c| c.k == k && c.mu.is_finite())
+                    .map(|c| point(c.mu, c))
+                    .collect(),
+            })
+            .collect();
+        panels.push(LinePanel {
+            title: "λ against μ".into(),
+            x_desc: "friction coefficient μ".into(),
+            y_desc: "λ_max (multiples of the weight)".into(),
+            log_y: wide(&lines),
+            lines,
+        });
+    }
+    if panels.is_empty() {
+        return None;
+    }
+    let at = own
+        .iter()
+        .find_map(|c| c.at_deg)
+        .map_or(String::new(), |a| format!(", load at {}°", given(a)));
+    Some(FigureSpec {
+        stem: format!("load-factor{stem}"),
+        title: format!("Collapse load factor λ{}{on}{at}", lc.title_suffix),
+        caption: format!(
+            "The largest load factor λ of the live load at which the arch still stands (λ_max, from results.parquet), against the thickness K for up to {MAX_LINES} values of μ (left) and against the friction coefficient for up to {MAX_LINES} values of K (right; μ = ∞ is the left panel's line of that name). Each point is one case, coloured by its collapse mechanism at λ_max; a gap is a case where λ is unbounded or the arch does not stand under its own weight."
+        ),
+        chart: Chart::Lines(LinesChart {
+            title: format!("Collapse load factor λ{on}{at}"),
+            panels,
+        }),
+    })
+}
+
+/// The influence line: λ against the position of the point load, for a few (K, μ).
+fn influence_line(
+    data: &RunData,
+    lc: &LoadCaseFigure,
+    own: &[&LoadFactorCase],
+    (on, stem): (&str, &str),
+) -> Option<FigureSpec> {
+    let mut combos: Vec<(f64, f64)> = own
+        .iter()
+        .filter(|c| c.load_factor.is_some())
+        .map(|c| (c.k, c.mu))
+        .collect();
+    combos.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    combos.dedup();
+    let idx: Vec<f64> = (0..combos.len()).map(|i| i as f64).collect();
+    let chosen: Vec<(f64, f64)> = spread(&idx, MAX_LINES)
+        .into_iter()
+        .map(|i| combos[i as usize])
+        .collect();
+    let line = |(k, mu): (f64, f64), as_xl: bool| {
+        let mut pts: Vec<LinePoint> = own
+            .iter()
+            .filter(|c| c.k == k && c.mu == mu)
+            .filter_map(|c| {
+                let at = c.at_deg?;
+                let x = if as_xl {
+                    x_over_l(&data.manifest.arch, c.k, c.half_angle_deg, at)
+                } else {
+                    at
+                };
+                Some(point(x, c))
+            })
+            .collect();
+        pts.sort_by(|a, b| a.x.total_cmp(&b.x));
+        Line {
+            label: format!("K = {}, μ = {}", compact(k), compact(mu)),
+            points: pts,
+        }
+    };
+    let panel = |as_xl: bool| LinePanel {
+        title: if as_xl {
+            "against x/L along the span".into()
+        } else {
+            "against the angle from the crown".into()
+        },
+        x_desc: if as_xl {
+            "x/L of the load (extrados, from the left springing)".into()
+        } else {
+            "load position θ from the crown, degrees".into()
+        },
+        y_desc: "λ_max (multiples of the weight, log scale when it spans decades)".into(),
+        log_y: wide(&chosen.iter().map(|&c| line(c, as_xl)).collect::<Vec<_>>()),
+        lines: chosen.iter().map(|&c| line(c, as_xl)).collect(),
+    };
+    Some(FigureSpec {
+        stem: format!("influence-line{stem}"),
+        title: format!("Influence line of the point load{}{on}", lc.title_suffix),
+        caption: "The collapse load factor λ_max of a point load λ·W_total on the extrados (results.parquet) against its position: left, the angle θ of its joint from the crown (negative to the left); right, the horizontal position x/L of the load's point from the left springing of the extrados over the distance between the extrados springings. One line per (K, μ), for up to four of the study's; each point coloured by the collapse mechanism at λ_max; a gap is a position where λ is unbounded or no state stands.".into(),
+        chart: Chart::Lines(LinesChart {
+            title: format!("Influence line of the point load{on}"),
+            panels: vec![panel(false), panel(true)],
+        }),
+    })
+}

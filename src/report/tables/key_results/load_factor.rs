@@ -1,0 +1,162 @@
+//! The key results of a load_factor load case: the weakest and strongest case, λ_max at a few
+//! (K, μ) (at the weakest position of a moving point load), and a few of the located changes
+//! of mechanism, each naming the values of the other axes. The full tables are
+//! results.parquet and bifurcations.parquet.
+
+use super::{Rows, group_text};
+use crate::report::charts::load_factor::{compact, spread, x_over_l};
+use crate::report::data::RunData;
+use crate::report::format::{given, short};
+use crate::store::LoadFactorCase;
+
+/// At most this many K and μ values in the table of λ.
+const TABLE_SIDE: usize = 3;
+/// At most this many changes of mechanism listed.
+const CHANGES: usize = 6;
+
+/// Where a case sits: K, μ, the load's position (angle and x/L), the arch axes and the
+/// mechanism.
+fn case_text(data: &RunData, c: &LoadFactorCase) -> String {
+    let has = |n: &str| data.manifest.grid.iter().any(|a| a.name == n);
+    let mut parts = vec![
+        format!("K = {}", compact(c.k)),
+        format!("μ = {}", compact(c.mu)),
+    ];
+    if let Some(a) = c.at_deg {
+        let xl = x_over_l(&data.manifest.arch, c.k, c.half_angle_deg, a);
+        parts.push(format!("load at {}° (x/L = {})", given(a), short(xl)));
+    }
+    if has("half_angle_deg") {
+        parts.push(format!("α = {}°", given(c.half_angle_deg)));
+    }
+    if has("voussoirs") {
+        parts.push(
+            c.voussoirs
+                .map_or("continuum".into(), |n| format!("N = {n}")),
+        );
+    }
+    if let Some(m) = &c.mechanism {
+        parts.push(format!("{m} collapse"));
+    }
+    parts.join(", ")
+}
+
+fn distinct(vals: impl Iterator<Item = f64>) -> Vec<f64> {
+    let mut v: Vec<f64> = vals.filter(|x| !x.is_nan()).collect();
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    v
+}
+
+/// The bounded cases of a load case summarised: one arch's (the continuum's when the study
+/// has it, else the first half-angle and voussoir count's).
+fn summary_cases<'a>(data: &'a RunData, lc: &str) -> Vec<&'a LoadFactorCase> {
+    let bounded: Vec<&LoadFactorCase> = data
+        .load_factors
+        .iter()
+        .filter(|c| c.load_case == lc && c.load_factor.is_some())
+        .collect();
+    let group = |c: &LoadFactorCase| (c.half_angle_deg.to_bits(), c.voussoirs);
+    let chosen = bounded
+        .iter()
+        .find(|c| c.voussoirs.is_none())
+        .or(bounded.first())
+        .map(|c| group(c));
+    bounded
+        .into_iter()
+        .filter(|c| Some(group(c)) == chosen)
+        .collect()
+}
+
+impl Rows {
+    fn load_factor_row(&mut self, data: &RunData, label: String, c: &LoadFactorCase) {
+        let Some(v) = c.load_factor else { return };
+        self.push(
+            format!("{label} ({})", case_text(data, c)),
+            v,
+            None,
+            format!("results.parquet row {} load_factor", c.row),
+        );
+    }
+
+    /// The weakest and strongest case, and λ_max at up to 3 × 3 (K, μ) of the grid: at the
+    /// weakest position when a point load moves. With a half-angle or voussoir axis, of the
+    /// continuum when the study has it (the convergence table gives every count), else of
+    /// the first arch. Each case is listed once.
+    pub(super) fn load_factor_summary(&mut self, data: &RunData, lc: &str, on: &str) {
+        let cases = summary_cases(data, lc);
+        let lambda = |c: &&LoadFactorCase| c.load_factor.unwrap_or(f64::NAN);
+        let (Some(lo), Some(hi)) = (
+            cases.iter().min_by(|a, b| lambda(a).total_cmp(&lambda(b))),
+            cases.iter().max_by(|a, b| lambda(a).total_cmp(&lambda(b))),
+        ) else {
+            return;
+        };
+        let mut listed = std::collections::BTreeSet::new();
+        if lo.row != hi.row {
+            self.load_factor_row(data, format!("smallest λ_max of the study{on}"), lo);
+            self.load_factor_row(data, format!("largest λ_max of the study{on}"), hi);
+            listed.extend([lo.row, hi.row]);
+        }
+        let moving = distinct(cases.iter().filter_map(|c| c.at_deg)).len() > 1;
+        let ks = spread(&distinct(cases.iter().map(|c| c.k)), TABLE_SIDE);
+        let mus = spread(&distinct(cases.iter().map(|c| c.mu)), TABLE_SIDE);
+        for &k in &ks {
+            for &mu in &mus {
+                let weakest = cases
+                    .iter()
+                    .filter(|c| c.k == k && c.mu == mu)
+                    .min_by(|a, b| lambda(a).total_cmp(&lambda(b)));
+                let label = if moving {
+                    format!("λ_max at the weakest load position{on}")
+                } else {
+                    format!("λ_max{on}")
+                };
+                if let Some(c) = weakest
+                    && listed.insert(c.row)
+                {
+                    self.load_factor_row(data, label, c);
+                }
+            }
+        }
+    }
+
+    /// A few of the changes of collapse mechanism located over (K, μ), spread over the table.
+    pub(super) fn load_factor_changes(&mut self, data: &RunData, lc: &str, on: &str) {
+        let rows: Vec<usize> = data
+            .bifurcations
+            .iter()
+            .flatten()
+            .enumerate()
+            .filter(|(_, b)| b.load_case == lc)
+            .map(|(i, _)| i)
+            .collect();
+        let idx: Vec<f64> = (0..rows.len()).map(|i| i as f64).collect();
+        let total = rows.len();
+        for j in spread(&idx, CHANGES) {
+            let i = rows[j as usize];
+            let Some(b) = data.bifurcations.as_ref().and_then(|v| v.get(i)) else {
+                continue;
+            };
+            let g = data.bifurcation_groups.get(i);
+            let extra = g.map_or(String::new(), |g| group_text(data, g));
+            let along_mu = g.and_then(|g| g.axis.as_deref()) == Some("mu");
+            let (q, v, col) = if along_mu {
+                (format!("μ at K = {}", compact(b.k)), b.mu, "mu")
+            } else {
+                (format!("K at μ = {}", compact(b.mu)), b.k, "k")
+            };
+            self.push(
+                format!(
+                    "{q} where the collapse changes from {} to {}{extra}{on} ({} of {total} located)",
+                    b.mechanism_a,
+                    b.mechanism_b,
+                    j as usize + 1
+                ),
+                v,
+                None,
+                format!("bifurcations.parquet row {i} {col}"),
+            );
+        }
+    }
+}
