@@ -12,6 +12,7 @@
 //! so this module does not use polars.
 
 pub mod compare;
+mod redraw;
 
 use crate::archive::{self, Provenance, REQUIRED_FILES, SUMS_FILE, check_sums, parse_sums};
 use crate::error::UsageError;
@@ -70,12 +71,27 @@ pub fn verify(opts: &VerifyOptions, out: &mut dyn Write) -> Result<bool> {
         return Ok(false);
     };
     provenance(&prov, out)?;
+    let reports = redraw::reports_match(&dir, &prov, out)?;
+    if !redraw::rows_match_plan(&dir, out)? {
+        writeln!(
+            out,
+            "verdict: DIFFERENT (results.parquet does not hold the manifest's cases); not re-run"
+        )?;
+        return Ok(false);
+    }
     if !opts.rerun {
         writeln!(out, "re-run: skipped (--no-rerun)")?;
-        writeln!(out, "verdict: OK (integrity only)")?;
-        return Ok(true);
+        if reports {
+            writeln!(out, "verdict: OK (integrity only)")?;
+        } else {
+            writeln!(
+                out,
+                "verdict: DIFFERENT (the stored reports are not what the stored tables draw)"
+            )?;
+        }
+        return Ok(reports);
     }
-    rerun_and_compare(&dir, opts.tolerance, out)
+    rerun_and_compare(&dir, opts.tolerance, reports, out)
 }
 
 /// The integrity check; returns run.json's provenance when everything is intact.
@@ -198,7 +214,15 @@ fn provenance(p: &Provenance, out: &mut dyn Write) -> Result<()> {
     Ok(())
 }
 
-fn rerun_and_compare(dir: &Path, tolerance: f64, out: &mut dyn Write) -> Result<bool> {
+/// Re-runs the stored manifest and compares every stored Parquet table with the recomputed
+/// one; the verdict is OK when they agree and `reports_agree` (the stored reports are what
+/// the stored tables draw).
+fn rerun_and_compare(
+    dir: &Path,
+    tolerance: f64,
+    reports_agree: bool,
+    out: &mut dyn Write,
+) -> Result<bool> {
     let temp = tempfile::Builder::new()
         .prefix("archstudy-rerun-")
         .tempdir()
@@ -269,7 +293,14 @@ fn rerun_and_compare(dir: &Path, tolerance: f64, out: &mut dyn Write) -> Result<
             }
         }
     }
-    if differing == 0 {
+    if differing == 0 && !reports_agree {
+        writeln!(
+            out,
+            "verdict: DIFFERENT: all {compared} Parquet files agree with the re-run, but the \
+             stored reports are not what they draw"
+        )?;
+        Ok(false)
+    } else if differing == 0 {
         writeln!(
             out,
             "verdict: OK: all {compared} Parquet files agree with the re-run"

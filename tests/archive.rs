@@ -26,12 +26,10 @@ load_cases:
 find: state
 ";
 
-/// Runs the tiny study under `root/out/tiny` and adds a nested file, as figures would be.
+/// Runs the tiny study under `root/out/tiny` (its figures are nested files, in plots/).
 fn tiny_run(root: &Path) -> PathBuf {
     let dir = run_study(root, "tiny.yaml", TINY);
-    let plots = dir.join("plots");
-    std::fs::create_dir_all(&plots).unwrap();
-    std::fs::write(plots.join("regime_map.svg"), "<svg/>\n").unwrap();
+    assert!(dir.join("plots/regime-map.svg").is_file());
     dir
 }
 
@@ -163,7 +161,7 @@ fn archive_holds_every_file_under_one_named_top_directory() {
         "manifest.yaml",
         "results.parquet",
         "run.json",
-        "plots/regime_map.svg",
+        "plots/regime-map.svg",
     ] {
         assert!(
             expected.contains(&format!("{top}/{required}")),
@@ -188,7 +186,7 @@ fn archive_is_byte_identical_when_made_twice() {
     let b = tmp.path().join("b.tar.gz");
     archive(&run, &a);
     // Touch a file: modification times on disk must not reach the archive.
-    let f = run.join("plots/regime_map.svg");
+    let f = run.join("plots/regime-map.svg");
     std::fs::write(&f, std::fs::read(&f).unwrap()).unwrap();
     archive(&run, &b);
     assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
@@ -236,14 +234,14 @@ fn a_damaged_member_in_an_unpacked_archive_is_named() {
     archive(&run, &file);
     let unpacked = archstudy::archive::unpack(&file).unwrap();
     let dir = unpacked.dir();
-    std::fs::write(dir.join("plots/regime_map.svg"), "<svg />\n").unwrap();
+    std::fs::write(dir.join("plots/regime-map.svg"), "<svg />\n").unwrap();
     std::fs::remove_file(dir.join("run.json")).unwrap();
     std::fs::write(dir.join("notes.txt"), "added later\n").unwrap();
     let o = archstudy(&["verify", "--no-rerun", dir.to_str().unwrap()], tmp.path());
     assert_eq!(o.code, Some(1), "{}", o.stdout);
     assert!(
         o.stdout
-            .contains("corrupt member (checksum differs): plots/regime_map.svg")
+            .contains("corrupt member (checksum differs): plots/regime-map.svg")
     );
     assert!(
         o.stdout
@@ -316,6 +314,9 @@ fn a_difference_within_the_tolerance_is_reported_as_such() {
     let results = run.join("results.parquet");
     let (row, value) = finite_row(&results, "k");
     store::rewrite_f64_value(&results, "k", row, Some(value * (1.0 + 1e-12))).unwrap();
+    // As on another machine: the reports are drawn from the tables as stored.
+    let o = archstudy(&["report", run.to_str().unwrap()], tmp.path());
+    assert_eq!(o.code, Some(0), "{}", o.stderr);
     let o = archstudy(&["verify", run.to_str().unwrap()], tmp.path());
     assert_eq!(o.code, Some(0), "{}", o.stdout);
     assert!(
@@ -407,4 +408,53 @@ fn bad_usage_exits_2() {
         o.stderr
             .contains("manifest.yaml, run.json, results.parquet missing")
     );
+}
+
+#[test]
+fn a_rewritten_report_or_a_short_table_fails_even_with_recomputed_checksums() {
+    let tmp = tempfile::tempdir().unwrap();
+    let run = tiny_run(tmp.path());
+    // A report edited by hand, archived with fresh checksums: integrity passes, the report
+    // is not what the stored tables draw.
+    let md = run.join("report.md");
+    let text = std::fs::read_to_string(&md).unwrap();
+    std::fs::write(&md, text.replacen("stable", "STABLE", 1)).unwrap();
+    let file = tmp.path().join("forged.tar.gz");
+    archive(&run, &file);
+    let o = archstudy(
+        &["verify", "--no-rerun", file.to_str().unwrap()],
+        tmp.path(),
+    );
+    assert_eq!(o.code, Some(1), "{}", o.stdout);
+    assert!(o.stdout.contains("integrity: all"), "{}", o.stdout);
+    assert!(
+        o.stdout
+            .contains("reports: DIFFERENT: report.md is not what the stored tables draw"),
+        "{}",
+        o.stdout
+    );
+    // Drawn again, the run is consistent and passes.
+    let o = archstudy(&["report", run.to_str().unwrap()], tmp.path());
+    assert_eq!(o.code, Some(0), "{}", o.stderr);
+    let o = archstudy(&["verify", "--no-rerun", run.to_str().unwrap()], tmp.path());
+    assert_eq!(o.code, Some(0), "{}", o.stdout);
+    assert!(
+        o.stdout
+            .contains("drawn again from the stored tables are identical")
+    );
+
+    // A results table cut to fewer rows than the manifest's plan.
+    let results = run.join("results.parquet");
+    let df = store::read_parquet(&results).unwrap();
+    let mut short = df.slice(0, df.height() - 3);
+    store::write_parquet(&mut short, &results).unwrap();
+    let o = archstudy(&["verify", run.to_str().unwrap()], tmp.path());
+    assert_eq!(o.code, Some(1), "{}", o.stdout);
+    assert!(
+        o.stdout
+            .contains("rows: DIFFERENT: results.parquet has 15 rows, the manifest's plan 18 cases"),
+        "{}",
+        o.stdout
+    );
+    assert!(!o.stdout.contains("re-run:"), "{}", o.stdout);
 }

@@ -192,6 +192,14 @@ pub fn read_parquet(path: &Path) -> Result<DataFrame> {
         .with_context(|| format!("cannot read {} as Parquet", path.display()))
 }
 
+/// The number of rows of a Parquet file, from its metadata (no column is decoded).
+pub fn parquet_rows(path: &Path) -> Result<usize> {
+    let file = File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
+    ParquetReader::new(file)
+        .num_rows()
+        .with_context(|| format!("cannot read {} as Parquet", path.display()))
+}
+
 /// Reads those of the named columns that a Parquet file has (the others are not decoded; a
 /// study's results hold only the columns its finds fill).
 pub fn read_parquet_columns(path: &Path, columns: &[&str]) -> Result<DataFrame> {
