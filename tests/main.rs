@@ -6,6 +6,7 @@ mod archive;
 mod boundaries;
 mod citation;
 mod common;
+mod damaged;
 mod hardening;
 mod loads;
 mod report;

@@ -21,6 +21,8 @@ pub fn exit_code(err: &anyhow::Error) -> u8 {
             || c.is::<crate::manifest::ManifestError>()
             || c.is::<crate::plan::PlanTooLarge>()
             || c.is::<crate::report::data::RunDirError>()
+            || c.is::<crate::report::checks::TableError>()
+            || c.is::<crate::store::ColumnTypeError>()
     }) {
         2
     } else {

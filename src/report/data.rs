@@ -227,7 +227,7 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
     } else {
         Vec::new()
     };
-    Ok(RunData {
+    let data = RunData {
         info,
         manifest,
         results,
@@ -240,7 +240,9 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
         load_factors,
         bifurcation_groups: optional(&layout.bifurcations(), store::read_bifurcation_groups)?
             .unwrap_or_default(),
-    })
+    };
+    super::checks::check_tables(&layout.dir, &data)?;
+    Ok(data)
 }
 
 impl RunData {

@@ -4,6 +4,7 @@
 //! embedded and rendered in strict mode; the view model holds formatted text only.
 
 pub mod charts;
+pub mod checks;
 pub mod convergence;
 pub mod data;
 pub mod format;

@@ -192,6 +192,16 @@ pub fn read_parquet(path: &Path) -> Result<DataFrame> {
         .with_context(|| format!("cannot read {} as Parquet", path.display()))
 }
 
+/// A stored column whose type is not the one archstudy writes (a damaged or edited table).
+#[derive(Debug, thiserror::Error)]
+#[error("column `{column}` holds {found} values, not numbers")]
+pub struct ColumnTypeError {
+    /// The column.
+    pub column: String,
+    /// The type found.
+    pub found: String,
+}
+
 /// The number of rows of a Parquet file, from its metadata (no column is decoded).
 pub fn parquet_rows(path: &Path) -> Result<usize> {
     let file = File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
@@ -242,6 +252,13 @@ pub fn f64_column(df: &DataFrame, name: &str) -> Result<Vec<Option<f64>>> {
     let c = df
         .column(name)
         .with_context(|| format!("column `{name}` is missing"))?;
+    if !(c.dtype().is_primitive_numeric() || c.dtype().is_null()) {
+        return Err(ColumnTypeError {
+            column: name.to_string(),
+            found: c.dtype().to_string(),
+        }
+        .into());
+    }
     let s = c.as_materialized_series().cast(&DataType::Float64)?;
     Ok(s.f64()?.iter().collect())
 }

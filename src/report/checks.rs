@@ -1,0 +1,215 @@
+//! What a report may be drawn from: every stored table is checked against run.json and the
+//! value domains of its columns before anything is drawn, so a damaged or edited run
+//! directory is refused with the file, column and row at fault instead of giving blank,
+//! garbled or silently missing figures.
+
+use super::data::RunData;
+use crate::analysis::{MechanismKind, Regime};
+use crate::scene::{Find, Outcome};
+use std::path::{Path, PathBuf};
+
+/// A stored table that the report refuses.
+#[derive(Debug, thiserror::Error)]
+#[error("{}: column `{column}`{}: {problem}; draw the report from the files `archstudy run` wrote, or run the study again", file.display(), row.map(|r| format!(", row {r}")).unwrap_or_default())]
+pub struct TableError {
+    /// The table.
+    pub file: PathBuf,
+    /// The column at fault.
+    pub column: String,
+    /// The first row at fault (from 0), when one row is.
+    pub row: Option<usize>,
+    /// What is wrong.
+    pub problem: String,
+}
+
+/// The checks of one table, naming its file.
+struct Table<'a> {
+    file: &'a Path,
+}
+
+impl Table<'_> {
+    fn err(&self, column: &str, row: Option<usize>, problem: impl Into<String>) -> TableError {
+        TableError {
+            file: self.file.to_path_buf(),
+            column: column.into(),
+            row,
+            problem: problem.into(),
+        }
+    }
+
+    /// Every present value satisfies `ok`, described by `domain`.
+    fn values(
+        &self,
+        column: &str,
+        values: impl Iterator<Item = Option<f64>>,
+        ok: impl Fn(f64) -> bool,
+        domain: &str,
+    ) -> Result<(), TableError> {
+        for (i, v) in values.enumerate() {
+            if let Some(v) = v
+                && !ok(v)
+            {
+                return Err(self.err(column, Some(i), format!("value {v} is not {domain}")));
+            }
+        }
+        Ok(())
+    }
+
+    /// Every present name is one that `known` accepts.
+    fn names<'s>(
+        &self,
+        column: &str,
+        names: impl Iterator<Item = Option<&'s str>>,
+        known: impl Fn(&str) -> bool,
+    ) -> Result<(), TableError> {
+        for (i, n) in names.enumerate() {
+            if let Some(n) = n
+                && !known(n)
+            {
+                return Err(self.err(
+                    column,
+                    Some(i),
+                    format!("{n:?} is not a value archstudy writes"),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+fn is_regime(s: &str) -> bool {
+    Regime::ALL.iter().any(|r| r.as_str() == s)
+}
+
+fn is_mechanism(s: &str) -> bool {
+    [
+        MechanismKind::Rotational,
+        MechanismKind::Mixed,
+        MechanismKind::Sliding,
+    ]
+    .iter()
+    .any(|m| m.as_str() == s)
+}
+
+/// Checks every table a report draws from; `data` was read from `dir`.
+pub fn check_tables(dir: &Path, data: &RunData) -> Result<(), TableError> {
+    check_results(&dir.join("results.parquet"), data)?;
+    check_boundaries(&dir.join("boundaries.parquet"), data)?;
+    check_mechanisms(&dir.join("mechanisms.parquet"), data)
+}
+
+fn check_results(file: &Path, data: &RunData) -> Result<(), TableError> {
+    let t = Table { file };
+    let rows = &data.results;
+    let total = data.info.cases.total;
+    if rows.len() as u64 != total {
+        return Err(t.err(
+            "case_id",
+            None,
+            format!(
+                "the table has {} rows, run.json records {total} cases",
+                rows.len()
+            ),
+        ));
+    }
+    if let Some(i) = rows
+        .iter()
+        .enumerate()
+        .position(|(i, r)| r.case_id != i as u64)
+    {
+        return Err(t.err("case_id", Some(i), "case ids are not 0, 1, 2, … in order"));
+    }
+    t.values(
+        "k",
+        rows.iter().map(|r| r.k),
+        |k| k.is_finite() && k > 1.0,
+        "a finite K > 1",
+    )?;
+    t.values(
+        "t_over_r",
+        rows.iter().map(|r| r.t_over_r),
+        |x| x.is_finite() && x > 0.0 && x < 2.0,
+        "a t/R_c in (0, 2)",
+    )?;
+    t.values(
+        "mu",
+        rows.iter().map(|r| r.mu),
+        |m| m >= 0.0,
+        "μ ≥ 0 or inf",
+    )?;
+    let finite = |x: f64| x.is_finite();
+    for (column, get) in [
+        (
+            "k_crit",
+            (|r: &crate::store::ResultRow| r.k_crit) as fn(&_) -> _,
+        ),
+        ("mu_crit", |r| r.mu_crit),
+        ("thrust_r_min", |r| r.thrust_r_min),
+        ("load_factor", |r| r.load_factor),
+    ] {
+        t.values(column, rows.iter().map(get), finite, "a finite number")?;
+    }
+    t.names("find", rows.iter().map(|r| Some(&*r.find)), |s| {
+        Find::parse(s).is_some()
+    })?;
+    t.names(
+        "regime",
+        rows.iter().map(|r| r.regime.as_deref()),
+        is_regime,
+    )?;
+    t.names("outcome", rows.iter().map(|r| r.outcome.as_deref()), |s| {
+        Outcome::parse(s).is_some()
+    })?;
+    t.names("status", rows.iter().map(|r| Some(&*r.status)), |s| {
+        s == "ok" || s == "error"
+    })
+}
+
+fn check_boundaries(file: &Path, data: &RunData) -> Result<(), TableError> {
+    let Some(rows) = &data.boundaries else {
+        return Ok(());
+    };
+    let t = Table { file };
+    t.values(
+        "k",
+        rows.iter().map(|r| Some(r.k)),
+        |k| k.is_finite() && k > 1.0,
+        "a finite K > 1",
+    )?;
+    t.values(
+        "mu",
+        rows.iter().map(|r| Some(r.mu)),
+        |m| m >= 0.0,
+        "μ ≥ 0 or inf",
+    )?;
+    t.names(
+        "regime_low",
+        rows.iter().map(|r| Some(r.regime_low.as_str())),
+        is_regime,
+    )?;
+    t.names(
+        "regime_high",
+        rows.iter().map(|r| Some(r.regime_high.as_str())),
+        is_regime,
+    )?;
+    t.names(
+        "mechanism",
+        rows.iter().map(|r| r.mechanism.as_deref()),
+        is_mechanism,
+    )
+}
+
+fn check_mechanisms(file: &Path, data: &RunData) -> Result<(), TableError> {
+    let t = Table { file };
+    for (i, m) in data.mechanisms.iter().enumerate() {
+        if serde_json::from_str::<serde_json::Value>(&m.drawing_json).is_err() {
+            return Err(t.err("drawing_json", Some(i), "the drawing is not valid JSON"));
+        }
+    }
+    t.values(
+        "k",
+        data.mechanisms.iter().map(|m| Some(m.k)),
+        |k| k.is_finite() && k > 1.0,
+        "a finite K > 1",
+    )
+}

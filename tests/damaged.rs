@@ -1,0 +1,98 @@
+//! `archstudy report` on damaged tables: each is refused with exit status 2, naming the file,
+//! the column and the row, and the report already there is left as it was.
+
+use crate::common::{archstudy, assert_usage_error, run_study, scratch};
+use archstudy::store;
+use polars::prelude::{Column, DataType, NamedFrom, Series};
+use std::path::{Path, PathBuf};
+
+/// An 11 × 11 grid over the paper's range: both bifurcations, so mechanisms are drawn.
+const STUDY: &str = "name: damaged
+grid:
+  k: {from: 1.05, to: 1.5, steps: 11}
+  mu: {from: 0.2, to: 0.8, steps: 11}
+";
+
+fn fresh_run(name: &str) -> PathBuf {
+    let dir = scratch(name);
+    run_study(&dir, "damaged.yaml", STUDY)
+}
+
+fn report_refuses(run: &Path, names: &[&str]) {
+    let before = std::fs::read(run.join("report.html")).unwrap();
+    let o = archstudy(&["report", run.to_str().unwrap()]);
+    assert_usage_error(&o, names);
+    assert_eq!(std::fs::read(run.join("report.html")).unwrap(), before);
+}
+
+#[test]
+fn a_column_of_the_wrong_type_is_refused() {
+    let run = fresh_run("damaged-type");
+    let path = run.join("results.parquet");
+    let mut df = store::read_parquet(&path).unwrap();
+    let k = df.column("k").unwrap().cast(&DataType::String).unwrap();
+    df.with_column(k).unwrap();
+    store::write_parquet(&mut df, &path).unwrap();
+    report_refuses(&run, &["results.parquet", "`k`", "not numbers"]);
+}
+
+#[test]
+fn nan_and_infinite_values_are_refused_with_their_row() {
+    for (name, value) in [("damaged-nan", f64::NAN), ("damaged-inf", f64::INFINITY)] {
+        let run = fresh_run(name);
+        let path = run.join("results.parquet");
+        store::rewrite_f64_value(&path, "k", 7, Some(value)).unwrap();
+        report_refuses(
+            &run,
+            &["results.parquet", "column `k`, row 7", "finite K > 1"],
+        );
+    }
+}
+
+#[test]
+fn missing_rows_are_refused() {
+    let run = fresh_run("damaged-rows");
+    let path = run.join("results.parquet");
+    let df = store::read_parquet(&path).unwrap();
+    let mut short = df.slice(0, 100);
+    store::write_parquet(&mut short, &path).unwrap();
+    report_refuses(&run, &["results.parquet", "100 rows", "121 cases"]);
+}
+
+#[test]
+fn a_drawing_that_is_not_json_is_refused() {
+    let run = fresh_run("damaged-drawing");
+    let path = run.join("mechanisms.parquet");
+    let mut df = store::read_parquet(&path).unwrap();
+    assert!(df.height() > 0, "the study has mechanisms to draw");
+    let bad = vec!["{not json"; df.height()];
+    df.with_column(Column::from(Series::new("drawing_json".into(), bad)))
+        .unwrap();
+    store::write_parquet(&mut df, &path).unwrap();
+    report_refuses(
+        &run,
+        &[
+            "mechanisms.parquet",
+            "`drawing_json`, row 0",
+            "not valid JSON",
+        ],
+    );
+}
+
+#[test]
+fn an_unknown_regime_name_is_refused() {
+    let run = fresh_run("damaged-regime");
+    let path = run.join("results.parquet");
+    let mut df = store::read_parquet(&path).unwrap();
+    let n = df.height();
+    let names: Vec<&str> = (0..n)
+        .map(|i| if i == 3 { "wobbly" } else { "stable" })
+        .collect();
+    df.with_column(Column::from(Series::new("regime".into(), names)))
+        .unwrap();
+    store::write_parquet(&mut df, &path).unwrap();
+    report_refuses(
+        &run,
+        &["results.parquet", "column `regime`, row 3", "\"wobbly\""],
+    );
+}
