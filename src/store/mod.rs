@@ -2,6 +2,7 @@
 //! atomically (a temporary file renamed into place) and read back.
 
 mod boundaries;
+mod cases;
 mod figures;
 mod results;
 mod rows;
@@ -9,6 +10,7 @@ mod schema;
 mod table;
 
 pub use boundaries::{bifurcations_frame, boundaries_frame};
+pub use cases::read_case_results;
 pub use figures::{
     BifurcationGroup, CurvePoint, LoadFactorCase, MechanismRow, ReferenceRow, StateRow,
     curves_frame, mechanisms_frame, read_bifurcation_groups, read_curves, read_load_factor_cases,
