@@ -184,13 +184,16 @@ fn answer_f64<'s>(s: &'s mut Solution, column: &str) -> Option<&'s mut Option<f6
     })
 }
 
+/// A list column of angles and its list column of faces or senses.
+type AnglesAndNames = (Vec<Vec<f64>>, Vec<Vec<String>>);
+
 /// Every column of a results table, read once into typed vectors.
 struct Stored {
     ids: Vec<u64>,
     floats: Vec<(&'static str, Vec<Option<f64>>)>,
     strs: std::collections::HashMap<&'static str, Vec<Option<String>>>,
     num: std::collections::HashMap<&'static str, Vec<Option<f64>>>,
-    lists: std::collections::HashMap<&'static str, (Vec<Vec<f64>>, Vec<Vec<String>>)>,
+    lists: std::collections::HashMap<&'static str, AnglesAndNames>,
     unbounded: Vec<Option<bool>>,
 }
 
