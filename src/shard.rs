@@ -1,0 +1,250 @@
+//! Sharded runs: `archstudy run STUDY --shard I/N` analyses shard I of N, a contiguous slice
+//! of the plan in case-id order (sizes differ by at most one case; a shard may be empty when
+//! N exceeds the number of cases), into its own directory `OUT/<name>.shard-I-of-N/`:
+//! manifest.yaml, results.parquet (the slice's rows, schema of a whole run's) and run.json
+//! with the manifest's SHA-256 and a `shard` entry. No boundaries, figures or reports: those
+//! come from `archstudy merge` over the N directories (src/merge.rs). A shard directory is
+//! staged and renamed like a run: an interrupted shard leaves nothing behind.
+
+use crate::engine::{self, CaseResult, Status};
+use crate::error::UsageError;
+use crate::output::{StagedRun, write_atomic};
+use crate::plan::{self, MAX_CASES};
+use crate::provenance::{
+    CaseCounts, RunInfo, StageTimings, git_commit, now_rfc3339, rustc_version, sha256_hex, version,
+};
+use crate::runner::{self, RunOptions, RunSummary, ms, worker_pool};
+use crate::store;
+use anyhow::{Context, Result};
+use serde::{Deserialize, Serialize};
+use std::time::Instant;
+
+/// Shard `index` (1-based) of `count`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shard {
+    /// Which shard, from 1 to `count`.
+    pub index: u64,
+    /// How many shards the plan is split into.
+    pub count: u64,
+}
+
+/// Largest number of shards a plan may be split into.
+pub const MAX_SHARDS: u64 = 1_000_000;
+
+impl Shard {
+    /// Parses `I/N` (1 ≤ I ≤ N ≤ [`MAX_SHARDS`]); `option` names the flag in the error.
+    pub fn parse(option: &'static str, text: &str) -> Result<Shard, UsageError> {
+        let bad = || {
+            UsageError::new(
+                option,
+                text,
+                format!(
+                    "a shard is I/N with whole numbers 1 ≤ I ≤ N ≤ {MAX_SHARDS}, e.g. 3/8 for \
+                     the third of eight shards (a Slurm array task runs \
+                     --shard $((SLURM_ARRAY_TASK_ID+1))/N)"
+                ),
+            )
+        };
+        let (i, n) = text.trim().split_once('/').ok_or_else(bad)?;
+        let index: u64 = i.trim().parse().map_err(|_| bad())?;
+        let count: u64 = n.trim().parse().map_err(|_| bad())?;
+        if index == 0 || index > count || count > MAX_SHARDS {
+            return Err(bad());
+        }
+        Ok(Shard { index, count })
+    }
+
+    /// The shard directory's name for a study, e.g. `seed.shard-03-of-16`: the index is
+    /// padded to the width of the count, so the directories sort in shard order.
+    pub fn dir_name(&self, study: &str) -> String {
+        let width = self.count.to_string().len();
+        format!(
+            "{study}.shard-{:0width$}-of-{}",
+            self.index,
+            self.count,
+            width = width
+        )
+    }
+}
+
+/// The `shard` entry of a shard's run.json.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ShardInfo {
+    /// Which shard, from 1 to `count`.
+    pub index: u64,
+    /// How many shards the plan is split into.
+    pub count: u64,
+    /// Cases in the whole plan.
+    pub plan_cases: u64,
+    /// Id of the shard's first case.
+    pub first_case: u64,
+    /// Cases in the shard (ids `first_case ..< first_case + cases`).
+    pub cases: u64,
+}
+
+/// A shard's run.json: a run's provenance and the `shard` entry.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct ShardRunInfo {
+    /// Provenance, as in a run's run.json (`cases` counts the shard's cases).
+    #[serde(flatten)]
+    pub info: RunInfo,
+    /// Which slice of the plan.
+    pub shard: ShardInfo,
+}
+
+/// The number of cases of a manifest's plan, refused when it does not fit in 64 bits.
+fn plan_cases(m: &crate::manifest::Manifest) -> Result<u64, UsageError> {
+    let n = plan::case_count(m);
+    u64::try_from(n).map_err(|_| {
+        UsageError::new(
+            "STUDY",
+            &m.name,
+            format!("the plan has {n} cases, more than any run can hold: reduce the grid"),
+        )
+    })
+}
+
+/// Refuses a shard whose slice is larger than one run may hold, naming a count that fits.
+fn check_slice(shard: Shard, total: u64, cases: u64) -> Result<()> {
+    let needed = total.div_ceil(MAX_CASES).max(1);
+    if cases > MAX_CASES {
+        return Err(UsageError::new(
+            "--shard",
+            format!("{}/{}", shard.index, shard.count),
+            format!(
+                "a shard of this plan holds {cases} cases, more than the {MAX_CASES} one run \
+                 holds in memory: split the plan's {total} cases into N ≥ {needed} shards"
+            ),
+        )
+        .into());
+    }
+    runner::check_memory(u128::from(cases), runner::available_memory()).map_err(|message| {
+        UsageError::new(
+            "--shard",
+            format!("{}/{}", shard.index, shard.count),
+            format!("this shard does not fit in memory: {message}"),
+        )
+        .into()
+    })
+}
+
+/// Runs one shard of a study into `OUT/<name>.shard-I-of-N/` (staged, then renamed).
+pub fn run_shard(opts: &RunOptions, shard: Shard) -> Result<RunSummary> {
+    let t0 = Instant::now();
+    let started_at = now_rfc3339();
+    let progress = opts.progress.as_ref();
+    let (m, bytes) = runner::load_manifest(&opts.study)?;
+    let total = plan_cases(&m)?;
+    let ids = plan::shard_ids(total, shard.index, shard.count);
+    check_slice(shard, total, ids.end - ids.start)?;
+    let plan = plan::build_slice(m, ids.clone());
+    let mut stages = StageTimings {
+        plan_ms: ms(t0),
+        ..Default::default()
+    };
+    let (pool, threads) = worker_pool(opts.jobs)?;
+    let staged = StagedRun::create(&opts.out, &shard.dir_name(&plan.manifest.name))?;
+    let layout = staged.layout.clone();
+    // A shard has no figures.
+    std::fs::remove_dir(layout.plots()).context("cannot clear the staged plots directory")?;
+    write_atomic(&layout.manifest(), &bytes)?;
+    let t = Instant::now();
+    let results: Vec<CaseResult> = pool.install(|| engine::run(&plan, progress));
+    stages.engine_ms = ms(t);
+    ((), stages.store_ms) = runner::stage(progress, crate::progress::Stage::Store, || {
+        let mut df = pool.install(|| store::results_frame(&plan, &results))?;
+        store::write_parquet(&mut df, &layout.results())
+    })?;
+    let ok = results.iter().filter(|r| r.status == Status::Ok).count() as u64;
+    let count = results.len() as u64;
+    let info = RunInfo {
+        name: plan.manifest.name.clone(),
+        manifest: serde_json::to_value(&plan.manifest)?,
+        manifest_sha256: sha256_hex(&bytes),
+        manifest_path: opts.study.display().to_string(),
+        archstudy_version: version().to_string(),
+        git_commit: git_commit(),
+        rustc_version: rustc_version().to_string(),
+        command_line: opts.command_line.clone(),
+        threads,
+        started_at,
+        finished_at: now_rfc3339(),
+        cases: CaseCounts {
+            total: count,
+            ok,
+            error: count - ok,
+        },
+        separable: plan.is_separable_state_grid(),
+        stages,
+        boundary_refinement_analyses: 0,
+    };
+    let record = ShardRunInfo {
+        info: info.clone(),
+        shard: ShardInfo {
+            index: shard.index,
+            count: shard.count,
+            plan_cases: total,
+            first_case: ids.start,
+            cases: ids.end - ids.start,
+        },
+    };
+    write_atomic(
+        &layout.run_json(),
+        serde_json::to_string_pretty(&record)?.as_bytes(),
+    )?;
+    let dir = staged.commit()?;
+    Ok(RunSummary {
+        dir,
+        info,
+        wall_s: t0.elapsed().as_secs_f64(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_shard_is_i_of_n_with_one_based_index() {
+        assert_eq!(
+            Shard::parse("--shard", "3/8").unwrap(),
+            Shard { index: 3, count: 8 }
+        );
+        assert_eq!(
+            Shard::parse("--shard", " 1 / 1 ").unwrap(),
+            Shard { index: 1, count: 1 }
+        );
+        for bad in [
+            "0/4",
+            "5/4",
+            "4",
+            "a/4",
+            "1/0",
+            "-1/4",
+            "1/2000000",
+            "1/2/3",
+            "",
+        ] {
+            let e = Shard::parse("--shard", bad).unwrap_err().to_string();
+            assert!(e.contains("--shard") && e.contains("I/N"), "{bad}: {e}");
+        }
+    }
+
+    #[test]
+    fn shard_directories_sort_in_shard_order() {
+        let names: Vec<String> = (1..=12)
+            .map(|i| {
+                Shard {
+                    index: i,
+                    count: 12,
+                }
+                .dir_name("seed")
+            })
+            .collect();
+        assert_eq!(names[0], "seed.shard-01-of-12");
+        assert_eq!(names[11], "seed.shard-12-of-12");
+        let mut sorted = names.clone();
+        sorted.sort();
+        assert_eq!(sorted, names);
+    }
+}
