@@ -9,7 +9,7 @@
 use crate::engine::{self, CaseResult, Status};
 use crate::error::UsageError;
 use crate::output::{StagedRun, write_atomic};
-use crate::plan::{self, MAX_CASES};
+use crate::plan;
 use crate::provenance::{
     CaseCounts, RunInfo, StageTimings, git_commit, now_rfc3339, rustc_version, sha256_hex, version,
 };
@@ -80,6 +80,9 @@ pub struct ShardInfo {
     pub first_case: u64,
     /// Cases in the shard (ids `first_case ..< first_case + cases`).
     pub cases: u64,
+    /// Peak resident memory of the shard's process, in bytes, when known.
+    #[serde(default)]
+    pub peak_rss_bytes: Option<u64>,
 }
 
 /// A shard's run.json: a run's provenance and the `shard` entry.
@@ -104,21 +107,16 @@ fn plan_cases(m: &crate::manifest::Manifest) -> Result<u64, UsageError> {
     })
 }
 
-/// Refuses a shard whose slice is larger than one run may hold, naming a count that fits.
-fn check_slice(shard: Shard, total: u64, cases: u64) -> Result<()> {
-    let needed = total.div_ceil(MAX_CASES).max(1);
-    if cases > MAX_CASES {
-        return Err(UsageError::new(
-            "--shard",
-            format!("{}/{}", shard.index, shard.count),
-            format!(
-                "a shard of this plan holds {cases} cases, more than the {MAX_CASES} one run \
-                 holds in memory: split the plan's {total} cases into N ≥ {needed} shards"
-            ),
-        )
-        .into());
-    }
-    runner::check_memory(u128::from(cases), runner::available_memory()).map_err(|message| {
+/// Cases a shard analyses and stores at a time: the engine's rows of one chunk are appended
+/// to results.parquet as row groups and dropped, so a shard's memory does not grow with its
+/// size (the rows are the same as those of one pass: the engine's answer for a case does not
+/// depend on the other cases it runs with).
+pub const CHUNK_CASES: u64 = 1 << 18;
+
+/// Refuses a shard when even one chunk of it would not fit in memory.
+fn check_chunk(shard: Shard, cases: u64) -> Result<()> {
+    let chunk = u128::from(cases.min(CHUNK_CASES));
+    runner::check_memory(chunk, runner::available_memory()).map_err(|message| {
         UsageError::new(
             "--shard",
             format!("{}/{}", shard.index, shard.count),
@@ -126,6 +124,69 @@ fn check_slice(shard: Shard, total: u64, cases: u64) -> Result<()> {
         )
         .into()
     })
+}
+
+/// The peak resident memory of this process so far, in bytes (VmHWM of /proc/self/status),
+/// when known.
+pub fn peak_rss_bytes() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = text.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: u64 = line["VmHWM:".len()..]
+        .split_whitespace()
+        .next()?
+        .parse()
+        .ok()?;
+    Some(kb.saturating_mul(1024))
+}
+
+/// What analysing a shard in chunks produced.
+struct Chunked {
+    ok: u64,
+    total: u64,
+    engine_ms: f64,
+    store_ms: f64,
+}
+
+/// Analyses the cases `ids` of a manifest's plan chunk by chunk ([`CHUNK_CASES`]), appending
+/// each chunk's rows to `results` in plan order.
+fn analyse_in_chunks(
+    m: &crate::manifest::Manifest,
+    ids: std::ops::Range<u64>,
+    pool: &rayon::ThreadPool,
+    progress: &dyn crate::progress::Progress,
+    (results, chunk): (&std::path::Path, u64),
+) -> Result<Chunked> {
+    let mut starts: Vec<u64> = ids.clone().step_by(chunk.max(1) as usize).collect();
+    if starts.is_empty() {
+        // An empty shard still writes its (empty) table.
+        starts.push(ids.start);
+    }
+    let mut out = Chunked {
+        ok: 0,
+        total: 0,
+        engine_ms: 0.0,
+        store_ms: 0.0,
+    };
+    let mut appender: Option<store::ParquetAppender> = None;
+    for start in starts {
+        let plan = plan::build_slice(m.clone(), start..(start + chunk).min(ids.end));
+        let t = Instant::now();
+        let rows: Vec<CaseResult> = pool.install(|| engine::run(&plan, progress));
+        out.engine_ms += ms(t);
+        let t = Instant::now();
+        let mut df = pool.install(|| store::results_frame(&plan, &rows))?;
+        match appender.as_mut() {
+            Some(a) => a.append(&mut df)?,
+            None => appender = Some(store::ParquetAppender::create(results, &mut df)?),
+        }
+        out.store_ms += ms(t);
+        out.ok += rows.iter().filter(|r| r.status == Status::Ok).count() as u64;
+        out.total += rows.len() as u64;
+    }
+    if let Some(a) = appender {
+        a.finish()?;
+    }
+    Ok(out)
 }
 
 /// Runs one shard of a study into `OUT/<name>.shard-I-of-N/` (staged, then renamed).
@@ -136,30 +197,30 @@ pub fn run_shard(opts: &RunOptions, shard: Shard) -> Result<RunSummary> {
     let (m, bytes) = runner::load_manifest(&opts.study)?;
     let total = plan_cases(&m)?;
     let ids = plan::shard_ids(total, shard.index, shard.count);
-    check_slice(shard, total, ids.end - ids.start)?;
-    let plan = plan::build_slice(m, ids.clone());
+    check_chunk(shard, ids.end - ids.start)?;
+    let separable = plan::build_slice(m.clone(), 0..0).is_separable_state_grid();
     let mut stages = StageTimings {
         plan_ms: ms(t0),
         ..Default::default()
     };
     let (pool, threads) = worker_pool(opts.jobs)?;
-    let staged = StagedRun::create(&opts.out, &shard.dir_name(&plan.manifest.name))?;
+    let staged = StagedRun::create(&opts.out, &shard.dir_name(&m.name))?;
     let layout = staged.layout.clone();
     // A shard has no figures.
     std::fs::remove_dir(layout.plots()).context("cannot clear the staged plots directory")?;
     write_atomic(&layout.manifest(), &bytes)?;
-    let t = Instant::now();
-    let results: Vec<CaseResult> = pool.install(|| engine::run(&plan, progress));
-    stages.engine_ms = ms(t);
-    ((), stages.store_ms) = runner::stage(progress, crate::progress::Stage::Store, || {
-        let mut df = pool.install(|| store::results_frame(&plan, &results))?;
-        store::write_parquet(&mut df, &layout.results())
-    })?;
-    let ok = results.iter().filter(|r| r.status == Status::Ok).count() as u64;
-    let count = results.len() as u64;
+    let done = analyse_in_chunks(
+        &m,
+        ids.clone(),
+        &pool,
+        progress,
+        (&layout.results(), CHUNK_CASES),
+    )?;
+    (stages.engine_ms, stages.store_ms) = (done.engine_ms, done.store_ms);
+    let (ok, count) = (done.ok, done.total);
     let info = RunInfo {
-        name: plan.manifest.name.clone(),
-        manifest: serde_json::to_value(&plan.manifest)?,
+        name: m.name.clone(),
+        manifest: serde_json::to_value(&m)?,
         manifest_sha256: sha256_hex(&bytes),
         manifest_path: opts.study.display().to_string(),
         archstudy_version: version().to_string(),
@@ -174,7 +235,7 @@ pub fn run_shard(opts: &RunOptions, shard: Shard) -> Result<RunSummary> {
             ok,
             error: count - ok,
         },
-        separable: plan.is_separable_state_grid(),
+        separable,
         stages,
         boundary_refinement_analyses: 0,
     };
@@ -186,6 +247,7 @@ pub fn run_shard(opts: &RunOptions, shard: Shard) -> Result<RunSummary> {
             plan_cases: total,
             first_case: ids.start,
             cases: ids.end - ids.start,
+            peak_rss_bytes: peak_rss_bytes(),
         },
     };
     write_atomic(
@@ -246,5 +308,48 @@ mod tests {
         let mut sorted = names.clone();
         sorted.sort();
         assert_eq!(sorted, names);
+    }
+
+    #[test]
+    fn rows_stored_in_chunks_are_those_of_one_pass() {
+        // 13 × 11 cases of a state map, a slice of 100 of them in chunks of 7 (the last one
+        // short), against the same slice analysed and stored at once.
+        let m = crate::manifest::parse(
+            "name: a\ngrid:\n  k: {from: 1.05, to: 1.4, steps: 13}\n  mu: {from: 0.2, to: 0.7, steps: 11}\n",
+            std::path::Path::new("a.yaml"),
+        )
+        .unwrap();
+        let dir = std::env::temp_dir().join(format!("archstudy-chunks-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        let silent = crate::progress::Silent;
+        let (chunked, whole) = (dir.join("chunked.parquet"), dir.join("whole.parquet"));
+        let done = analyse_in_chunks(&m, 20..120, &pool, &silent, (&chunked, 7)).unwrap();
+        assert_eq!((done.total, done.ok), (100, 100));
+        analyse_in_chunks(&m, 20..120, &pool, &silent, (&whole, 1000)).unwrap();
+        let read = |p: &std::path::Path| {
+            let mut t = store::read_table(p).unwrap();
+            t.columns.retain(|c| c.name != "solve_time_us");
+            t
+        };
+        assert_eq!(read(&chunked).rows, 100);
+        assert_eq!(read(&chunked), read(&whole));
+        let plan = plan::build(m.clone()).unwrap();
+        let ids: Vec<u64> = store::read_case_results(&plan, &chunked)
+            .unwrap()
+            .iter()
+            .map(|r| r.case_id)
+            .collect();
+        assert_eq!(ids, (20..120).collect::<Vec<u64>>());
+        // An empty slice writes an empty table with the columns of the study.
+        let empty = dir.join("empty.parquet");
+        analyse_in_chunks(&m, 5..5, &pool, &silent, (&empty, 7)).unwrap();
+        let t = store::read_table(&empty).unwrap();
+        assert_eq!(t.rows, 0);
+        assert_eq!(t.columns.len(), read(&whole).columns.len() + 1);
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }

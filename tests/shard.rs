@@ -124,9 +124,12 @@ fn a_shard_records_its_slice_and_the_manifest() {
     assert_eq!(d, dir.join("out/state.shard-2-of-4"));
     let info: serde_json::Value =
         serde_json::from_slice(&std::fs::read(d.join("run.json")).unwrap()).unwrap();
+    let mut shard = info["shard"].clone();
+    let rss = shard["peak_rss_bytes"].take();
+    assert!(rss.as_u64().is_some_and(|b| b > 1 << 20), "{rss}");
     assert_eq!(
-        info["shard"],
-        serde_json::json!({"index": 2, "count": 4, "plan_cases": 247, "first_case": 61, "cases": 62})
+        shard,
+        serde_json::json!({"index": 2, "count": 4, "plan_cases": 247, "first_case": 61, "cases": 62, "peak_rss_bytes": null})
     );
     assert_eq!(
         info["manifest_sha256"],

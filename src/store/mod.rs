@@ -186,6 +186,69 @@ pub fn write_parquet(df: &mut DataFrame, path: &Path) -> Result<()> {
     result
 }
 
+/// A Parquet file written in row groups as its chunks arrive, in order: the rows of a
+/// large slice of a plan need not be in memory at once. Written to a temporary sibling and
+/// renamed into place by [`ParquetAppender::finish`]; dropped unfinished, it leaves nothing.
+pub struct ParquetAppender {
+    writer: polars::prelude::BatchedWriter<File>,
+    tmp: std::path::PathBuf,
+    path: std::path::PathBuf,
+    finished: bool,
+}
+
+impl ParquetAppender {
+    /// Starts `path` with the schema (and the stored column units and meanings) of `first`,
+    /// and writes `first`.
+    pub fn create(path: &Path, first: &mut DataFrame) -> Result<Self> {
+        let tmp = crate::output::temp_sibling(path);
+        crate::output::register_pending(&tmp);
+        let file = File::create(&tmp).with_context(|| format!("cannot create {}", tmp.display()));
+        let mut appender = ParquetAppender {
+            writer: ParquetWriter::new(file?)
+                .with_compression(ParquetCompression::Lz4Raw)
+                .with_key_value_metadata(Some(KeyValueMetadata::Static(vec![
+                    schema::stored_schema(first),
+                ])))
+                .batched(first.schema())
+                .with_context(|| format!("cannot write {}", tmp.display()))?,
+            tmp,
+            path: path.to_path_buf(),
+            finished: false,
+        };
+        appender.append(first)?;
+        Ok(appender)
+    }
+
+    /// Appends the rows of `df` (the columns of the first chunk) as row groups.
+    pub fn append(&mut self, df: &mut DataFrame) -> Result<()> {
+        let chunked = polars::frame::chunk_df_for_writing(df, 512 * 512)?;
+        self.writer
+            .write_batch(&chunked)
+            .with_context(|| format!("cannot write {}", self.tmp.display()))
+    }
+
+    /// Writes the footer and moves the file into place.
+    pub fn finish(mut self) -> Result<()> {
+        self.writer
+            .finish()
+            .with_context(|| format!("cannot write {}", self.tmp.display()))?;
+        std::fs::rename(&self.tmp, &self.path)
+            .with_context(|| format!("cannot move {} into place", self.path.display()))?;
+        self.finished = true;
+        crate::output::unregister_pending(&self.tmp);
+        Ok(())
+    }
+}
+
+impl Drop for ParquetAppender {
+    fn drop(&mut self) {
+        if !self.finished {
+            let _ = std::fs::remove_file(&self.tmp);
+            crate::output::unregister_pending(&self.tmp);
+        }
+    }
+}
+
 /// Reads a Parquet file.
 pub fn read_parquet(path: &Path) -> Result<DataFrame> {
     let file = File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
