@@ -348,8 +348,19 @@ impl Stored {
 /// form must be that case's.
 pub fn read_case_results(plan: &Plan, path: &Path) -> Result<Vec<CaseResult>> {
     let df = read_parquet(path)?;
-    read_frame(plan, &df).with_context(|| format!("in {}", path.display()))
+    let mut out = Vec::with_capacity(df.height());
+    // Blocks of rows: the typed columns of one block are dropped before the next is read.
+    for offset in (0..df.height()).step_by(READ_BLOCK_ROWS) {
+        let block = df.slice(offset as i64, READ_BLOCK_ROWS);
+        let rows = read_frame(plan, &block)
+            .with_context(|| format!("in {} (rows from {offset})", path.display()))?;
+        out.extend(rows);
+    }
+    Ok(out)
 }
+
+/// Rows of results.parquet typed at a time by [`read_case_results`].
+const READ_BLOCK_ROWS: usize = 1 << 16;
 
 fn read_frame(plan: &Plan, df: &DataFrame) -> Result<Vec<CaseResult>> {
     let stored = Stored::read(df)?;
