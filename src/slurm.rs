@@ -7,7 +7,7 @@
 
 use crate::error::UsageError;
 use crate::runner::{self, BASE_BYTES, BYTES_PER_CASE};
-use crate::shard::MAX_SHARDS;
+use crate::shard::{CHUNK_CASES, MAX_SHARDS};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 
@@ -22,7 +22,8 @@ pub struct SlurmOptions {
     pub partition: Option<String>,
     /// `--time` of each job (Slurm's `[D-]HH:MM:SS` or minutes), when given.
     pub time: Option<String>,
-    /// `--mem` of each array task; default: the run's memory estimate for one shard.
+    /// `--mem` of each array task; default: the run's memory estimate for one chunk of a
+    /// shard (a shard's memory does not grow with its size).
     pub mem: Option<String>,
     /// Directory of the shard directories, the merged run and the scripts.
     pub out: PathBuf,
@@ -119,7 +120,7 @@ pub fn write_scripts(o: &SlurmOptions) -> Result<SlurmScripts> {
     let shard_mem = o
         .mem
         .clone()
-        .unwrap_or_else(|| mem_for(largest.end - largest.start + 1));
+        .unwrap_or_else(|| mem_for((largest.end - largest.start + 1).min(CHUNK_CASES)));
     let (study, out, binary) = (absolute(&o.study)?, absolute(&o.out)?, absolute(&o.binary)?);
     let dir = out.join(format!("{}.slurm", m.name));
     std::fs::create_dir_all(dir.join("logs"))
