@@ -365,20 +365,18 @@ fn slurm_writes_an_array_and_a_merge_that_run_as_the_scheduler_would() {
     );
     // Run the scripts as Slurm would: each task with its SLURM_ARRAY_TASK_ID, then the merge.
     for task in 0..4 {
-        let s = Command::new("bash")
+        let o = Command::new("bash")
             .arg(scripts.join("array.sh"))
             .env("SLURM_ARRAY_TASK_ID", task.to_string())
-            .status()
+            .output()
             .unwrap();
-        assert!(s.success());
+        assert!(o.status.success(), "task {task}: {}", stderr(&o));
     }
-    assert!(
-        Command::new("bash")
-            .arg(scripts.join("merge.sh"))
-            .status()
-            .unwrap()
-            .success()
-    );
+    let o = Command::new("bash")
+        .arg(scripts.join("merge.sh"))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "merge: {}", stderr(&o));
     let whole = run_study(&opts(&study, dir.join("whole"))).unwrap().dir;
     assert_same_run(&whole, &out.join("state"));
     // Values that would not survive a #SBATCH line are refused.
