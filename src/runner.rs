@@ -112,7 +112,11 @@ pub fn load_plan(path: &Path) -> Result<(Plan, Vec<u8>)> {
         path: path.to_path_buf(),
         position: None,
         key: Some("grid".into()),
-        message: e.to_string(),
+        message: format!(
+            "{e} (its run would need about {} of memory at {} kB a case)",
+            gib(needed_bytes(u64::try_from(e.requested).unwrap_or(u64::MAX))),
+            BYTES_PER_CASE / 1000
+        ),
     })?;
     Ok((plan, bytes))
 }
@@ -153,6 +157,13 @@ fn gib(bytes: u64) -> String {
     format!("{:.1} GiB", bytes as f64 / f64::from(1u32 << 30))
 }
 
+/// The memory estimate of a run of `cases` cases, in bytes.
+pub fn needed_bytes(cases: u64) -> u64 {
+    cases
+        .saturating_mul(BYTES_PER_CASE)
+        .saturating_add(BASE_BYTES)
+}
+
 /// Refuses a plan of `cases` cases whose run would need more memory than `available`
 /// (see [`BYTES_PER_CASE`]), naming both, before anything is allocated.
 pub fn check_memory(cases: u128, available: Option<u64>) -> Result<(), String> {
@@ -160,9 +171,7 @@ pub fn check_memory(cases: u128, available: Option<u64>) -> Result<(), String> {
         return Ok(());
     };
     let cases = u64::try_from(cases).unwrap_or(u64::MAX);
-    let needed = cases
-        .saturating_mul(BYTES_PER_CASE)
-        .saturating_add(BASE_BYTES);
+    let needed = needed_bytes(cases);
     if needed <= available {
         return Ok(());
     }
@@ -434,4 +443,28 @@ pub(crate) fn finish_run(
         info,
         wall_s: t0.elapsed().as_secs_f64(),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_plan_too_large_for_the_memory_is_refused_naming_shards_and_the_memory() {
+        let gib16 = 16u64 << 30;
+        assert!(check_memory(1_000_000, Some(gib16)).is_ok());
+        assert!(check_memory(100_000_000, None).is_ok());
+        let e = check_memory(100_000_000, Some(gib16)).unwrap_err();
+        // 10⁸ cases at 2 kB need 186.5 GiB; 16 GiB less 200 MiB holds 8,485,076 cases, so 12 shards.
+        for part in [
+            "100000000 cases",
+            "186.5 GiB",
+            "16.0 GiB is available",
+            "shards of at most 8485076 cases",
+            "--shard I/N` with N ≥ 12",
+            "archstudy merge",
+        ] {
+            assert!(e.contains(part), "{part}: {e}");
+        }
+    }
 }

@@ -6,7 +6,7 @@
 //! Submitting is left to the user (the commands are returned) unless asked.
 
 use crate::error::UsageError;
-use crate::runner::{self, BASE_BYTES, BYTES_PER_CASE};
+use crate::runner;
 use crate::shard::{CHUNK_CASES, MAX_SHARDS};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
@@ -70,10 +70,7 @@ fn check_value(option: &'static str, v: &Option<String>, allowed: &str) -> Resul
 
 /// The memory estimate of a run of `cases` cases, as a Slurm `--mem` value in megabytes.
 fn mem_for(cases: u64) -> String {
-    let bytes = cases
-        .saturating_mul(BYTES_PER_CASE)
-        .saturating_add(BASE_BYTES);
-    format!("{}M", bytes.div_ceil(1 << 20))
+    format!("{}M", runner::needed_bytes(cases).div_ceil(1 << 20))
 }
 
 fn absolute(p: &Path) -> Result<PathBuf> {
