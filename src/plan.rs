@@ -33,7 +33,8 @@ pub struct Plan {
 /// A plan too large to run.
 #[derive(Debug, thiserror::Error)]
 #[error(
-    "the study asks for {requested} cases, more than the {MAX_CASES} allowed: reduce the steps of the grid axes"
+    "the study asks for {requested} cases, more than the {MAX_CASES} one run holds in memory: run it in shards, `archstudy run STUDY --shard I/N` with N ≥ {}, then `archstudy merge`, or reduce the steps of the grid axes",
+    requested.div_ceil(u128::from(MAX_CASES))
 )]
 pub struct PlanTooLarge {
     /// Number of cases asked for.
@@ -60,43 +61,69 @@ pub fn build(manifest: Manifest) -> Result<Plan, PlanTooLarge> {
     if requested > u128::from(MAX_CASES) {
         return Err(PlanTooLarge { requested });
     }
-    let mut cases = Vec::with_capacity(requested as usize);
-    let mut id = 0u64;
+    Ok(build_slice(manifest, 0..requested as u64))
+}
+
+/// The cases of a plan whose ids lie in `ids` (clamped to the plan), in id order, without
+/// expanding the others: each load case's first case in the slice is found from its id by
+/// mixed-radix decomposition, so a slice of a plan of 10⁸ cases costs only its own cases.
+/// The case ids are those of the whole plan.
+pub fn build_slice(manifest: Manifest, ids: std::ops::Range<u64>) -> Plan {
+    let total = u64::try_from(case_count(&manifest)).unwrap_or(u64::MAX);
+    let (start, end) = (ids.start.min(total), ids.end.min(total));
+    let mut cases = Vec::with_capacity(usize::try_from(end.saturating_sub(start)).unwrap_or(0));
+    let mut first = 0u64;
     for (lc, load_case) in manifest.load_cases.iter().enumerate() {
         // An axis this load case does not span has a single position (never read: the
         // scene finds that parameter itself).
-        let dims: Vec<usize> = manifest
+        let dims: Vec<u64> = manifest
             .grid
             .iter()
             .map(|a| {
                 if load_case.spans(a.name) {
-                    a.values.len()
+                    a.values.len() as u64
                 } else {
                     1
                 }
             })
             .collect();
-        let per_lc: usize = dims.iter().product();
-        let mut idx = vec![0usize; dims.len()];
-        for _ in 0..per_lc {
-            let scene = scene_at(&manifest, lc, &idx);
-            cases.push(Case {
-                id,
-                load_case: lc,
-                scene,
-            });
-            id += 1;
-            // Odometer increment, last axis fastest.
+        let per_lc: u64 = dims.iter().product();
+        let (lo, hi) = (start.max(first), end.min(first + per_lc));
+        if lo < hi {
+            // The odometer position of case `lo`, last axis fastest.
+            let mut rest = lo - first;
+            let mut idx = vec![0usize; dims.len()];
             for d in (0..dims.len()).rev() {
-                idx[d] += 1;
-                if idx[d] < dims[d] {
-                    break;
+                idx[d] = (rest % dims[d]) as usize;
+                rest /= dims[d];
+            }
+            for id in lo..hi {
+                cases.push(Case {
+                    id,
+                    load_case: lc,
+                    scene: scene_at(&manifest, lc, &idx),
+                });
+                // Odometer increment, last axis fastest.
+                for d in (0..dims.len()).rev() {
+                    idx[d] += 1;
+                    if (idx[d] as u64) < dims[d] {
+                        break;
+                    }
+                    idx[d] = 0;
                 }
-                idx[d] = 0;
             }
         }
+        first += per_lc;
     }
-    Ok(Plan { manifest, cases })
+    Plan { manifest, cases }
+}
+
+/// The ids of shard `index` (1-based) of `count` of a plan of `total` cases: contiguous
+/// slices in plan order whose sizes differ by at most one case (empty when `count > total`).
+pub fn shard_ids(total: u64, index: u64, count: u64) -> std::ops::Range<u64> {
+    let count = u128::from(count.max(1));
+    let at = |i: u64| (u128::from(total) * u128::from(i) / count) as u64;
+    at(index.saturating_sub(1))..at(index)
 }
 
 fn scene_at(m: &Manifest, lc: usize, idx: &[usize]) -> Scene {
@@ -270,6 +297,79 @@ find: thresholds
         assert!(
             plan.describe()
                 .contains("wind (horizontal, find load_factor)")
+        );
+    }
+
+    fn manifest(text: &str) -> Manifest {
+        crate::manifest::parse(text, Path::new("a.yaml")).unwrap()
+    }
+
+    #[test]
+    fn a_slice_holds_the_cases_of_the_whole_plan_with_their_ids() {
+        let m = manifest(
+            "name: a
+grid:
+  voussoirs: {values: [8, continuum]}
+  k: {values: [1.1, 1.2, 1.3]}
+  mu: {values: [0.4, 0.5]}
+load_cases:
+  - {name: gravity, kind: self_weight}
+  - {name: wind, kind: horizontal, find: load_factor}
+",
+        );
+        let whole = build(m.clone()).unwrap();
+        assert_eq!(whole.cases.len(), 24);
+        for (a, b) in [
+            (0, 24),
+            (0, 0),
+            (5, 17),
+            (11, 13),
+            (12, 24),
+            (23, 99),
+            (30, 40),
+        ] {
+            let slice = build_slice(m.clone(), a..b);
+            let want: Vec<&Case> = whole
+                .cases
+                .iter()
+                .filter(|c| c.id >= a && c.id < b)
+                .collect();
+            assert_eq!(slice.cases.iter().collect::<Vec<_>>(), want, "{a}..{b}");
+        }
+    }
+
+    #[test]
+    fn shards_cover_the_plan_once_in_order_with_sizes_within_one() {
+        for (total, count) in [(10, 3), (7, 7), (3, 5), (0, 2), (271_051, 16)] {
+            let ranges: Vec<_> = (1..=count).map(|i| shard_ids(total, i, count)).collect();
+            assert_eq!(ranges[0].start, 0);
+            assert_eq!(ranges[ranges.len() - 1].end, total);
+            for w in ranges.windows(2) {
+                assert_eq!(w[0].end, w[1].start);
+            }
+            let sizes: Vec<u64> = ranges.iter().map(|r| r.end - r.start).collect();
+            let (lo, hi) = (sizes.iter().min().unwrap(), sizes.iter().max().unwrap());
+            assert!(hi - lo <= 1, "{total}/{count}: {sizes:?}");
+        }
+        assert_eq!(shard_ids(3, 5, 5), 2..3);
+        assert_eq!(shard_ids(3, 1, 5), 0..0);
+    }
+
+    #[test]
+    fn a_shard_of_a_plan_of_a_hundred_million_cases_expands_only_its_own_cases() {
+        let m = manifest(
+            "name: big\ngrid:\n  k: {from: 1.05, to: 1.5, steps: 10000}\n  mu: {from: 0.2, to: 0.8, steps: 10000}\n",
+        );
+        assert_eq!(case_count(&m), 100_000_000);
+        assert!(build(m.clone()).is_err());
+        let ids = shard_ids(100_000_000, 1000, 1000);
+        let slice = build_slice(m, ids.clone());
+        assert_eq!(slice.cases.len(), 100_000);
+        assert_eq!(slice.cases[0].id, ids.start);
+        let last = slice.cases.last().unwrap();
+        assert_eq!(
+            (last.id, last.scene.arch.k, last.scene.friction.mu()),
+            (99_999_999, 1.5, 0.8)
         );
     }
 }

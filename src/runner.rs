@@ -84,8 +84,8 @@ fn read_manifest(path: &Path) -> Result<Vec<u8>, manifest::ManifestError> {
     Ok(bytes)
 }
 
-/// Reads, validates and expands a manifest (every error here is bad input: exit 2).
-pub fn load_plan(path: &Path) -> Result<(Plan, Vec<u8>)> {
+/// Reads and validates a manifest without expanding it: the manifest and the file's bytes.
+pub fn load_manifest(path: &Path) -> Result<(Manifest, Vec<u8>)> {
     let bytes = read_manifest(path)?;
     let text = String::from_utf8(bytes.clone()).map_err(|_| manifest::ManifestError {
         path: path.to_path_buf(),
@@ -93,7 +93,13 @@ pub fn load_plan(path: &Path) -> Result<(Plan, Vec<u8>)> {
         key: None,
         message: "the manifest is not valid UTF-8 text".into(),
     })?;
-    let m: Manifest = manifest::parse(&text, path)?;
+    Ok((manifest::parse(&text, path)?, bytes))
+}
+
+/// Reads, validates and expands a manifest (every error here is bad input: exit 2). A plan
+/// whose run would not fit in memory is refused before it is expanded, naming `--shard`.
+pub fn load_plan(path: &Path) -> Result<(Plan, Vec<u8>)> {
+    let (m, bytes) = load_manifest(path)?;
     check_memory(plan::case_count(&m), available_memory()).map_err(|message| {
         manifest::ManifestError {
             path: path.to_path_buf(),
@@ -106,7 +112,11 @@ pub fn load_plan(path: &Path) -> Result<(Plan, Vec<u8>)> {
         path: path.to_path_buf(),
         position: None,
         key: Some("grid".into()),
-        message: e.to_string(),
+        message: format!(
+            "{e} (its run would need about {} of memory at {} kB a case)",
+            gib(needed_bytes(u64::try_from(e.requested).unwrap_or(u64::MAX))),
+            BYTES_PER_CASE / 1000
+        ),
     })?;
     Ok((plan, bytes))
 }
@@ -147,6 +157,13 @@ fn gib(bytes: u64) -> String {
     format!("{:.1} GiB", bytes as f64 / f64::from(1u32 << 30))
 }
 
+/// The memory estimate of a run of `cases` cases, in bytes.
+pub fn needed_bytes(cases: u64) -> u64 {
+    cases
+        .saturating_mul(BYTES_PER_CASE)
+        .saturating_add(BASE_BYTES)
+}
+
 /// Refuses a plan of `cases` cases whose run would need more memory than `available`
 /// (see [`BYTES_PER_CASE`]), naming both, before anything is allocated.
 pub fn check_memory(cases: u128, available: Option<u64>) -> Result<(), String> {
@@ -154,18 +171,19 @@ pub fn check_memory(cases: u128, available: Option<u64>) -> Result<(), String> {
         return Ok(());
     };
     let cases = u64::try_from(cases).unwrap_or(u64::MAX);
-    let needed = cases
-        .saturating_mul(BYTES_PER_CASE)
-        .saturating_add(BASE_BYTES);
+    let needed = needed_bytes(cases);
     if needed <= available {
         return Ok(());
     }
-    let fits = available.saturating_sub(BASE_BYTES) / BYTES_PER_CASE;
+    let fits = (available.saturating_sub(BASE_BYTES) / BYTES_PER_CASE).max(1);
+    let shards = cases.div_ceil(fits);
     Err(format!(
         "the study has {cases} cases, whose run needs about {} of memory ({} kB per case and {} \
-         besides), but {} is available (the smaller of the free memory and `ulimit -v`): \
-         reduce the steps of the grid axes to at most {fits} cases, or run it on a larger \
-         machine",
+         besides), but {} is available (the smaller of the free memory and `ulimit -v`): run \
+         it in shards of at most {fits} cases, `archstudy run STUDY --shard I/N` with N ≥ \
+         {shards} (one process or cluster task per shard, then `archstudy merge` on a machine \
+         with that memory; `archstudy slurm STUDY --shards N` writes the job array), or \
+         reduce the steps of the grid axes",
         gib(needed),
         BYTES_PER_CASE / 1000,
         gib(BASE_BYTES),
@@ -241,7 +259,7 @@ pub struct RunSummary {
     pub wall_s: f64,
 }
 
-fn ms(t: Instant) -> f64 {
+pub(crate) fn ms(t: Instant) -> f64 {
     t.elapsed().as_secs_f64() * 1e3
 }
 
@@ -253,7 +271,7 @@ fn write_run_json(layout: &RunLayout, info: &RunInfo) -> Result<()> {
 }
 
 /// Runs `work` as one stage of the run, reported to `progress` and timed in milliseconds.
-fn stage<T>(
+pub(crate) fn stage<T>(
     progress: &dyn Progress,
     stage: Stage,
     work: impl FnOnce() -> Result<T>,
@@ -293,7 +311,7 @@ fn publish(
 }
 
 /// The worker pool of a run: `jobs` threads, or one per core.
-fn worker_pool(jobs: Option<usize>) -> Result<(rayon::ThreadPool, usize)> {
+pub(crate) fn worker_pool(jobs: Option<usize>) -> Result<(rayon::ThreadPool, usize)> {
     let threads = match jobs {
         Some(0) => anyhow::bail!("a run needs at least one worker thread"),
         Some(n) => n,
@@ -304,6 +322,23 @@ fn worker_pool(jobs: Option<usize>) -> Result<(rayon::ThreadPool, usize)> {
         .build()
         .context("cannot start the worker threads")?;
     Ok((pool, threads))
+}
+
+/// What the stages after the engine start from: the plan, its manifest and every case's row
+/// in plan order (from the engine, or read back from the shards of a sharded run).
+pub(crate) struct Analysed {
+    /// The whole plan.
+    pub plan: Plan,
+    /// The manifest file's bytes.
+    pub bytes: Vec<u8>,
+    /// The manifest's path as given, recorded in run.json.
+    pub manifest_path: String,
+    /// One row per case, in plan order.
+    pub results: Vec<CaseResult>,
+    /// Timings so far (plan, engine).
+    pub stages: StageTimings,
+    /// When the run started (RFC 3339).
+    pub started_at: String,
 }
 
 /// Runs a study end to end and moves the complete run directory into place.
@@ -319,13 +354,42 @@ pub fn run_study(opts: &RunOptions) -> Result<RunSummary> {
     let (pool, threads) = worker_pool(opts.jobs)?;
     // Output is staged first: a bad output path fails before any work.
     let staged = StagedRun::create(&opts.out, &plan.manifest.name)?;
-    let layout = staged.layout.clone();
-    write_atomic(&layout.manifest(), &bytes)?;
 
     let t = Instant::now();
     let results: Vec<CaseResult> = pool.install(|| engine::run(&plan, progress));
     stages.engine_ms = ms(t);
+    let analysed = Analysed {
+        plan,
+        bytes,
+        manifest_path: opts.study.display().to_string(),
+        results,
+        stages,
+        started_at,
+    };
+    finish_run(analysed, staged, (&pool, threads), opts, t0)
+}
 
+/// The stages after the engine, shared by `archstudy run` and `archstudy merge`: results,
+/// boundaries and bifurcations stored, run.json, figure data, figures and reports; then the
+/// staged run directory is moved into place.
+pub(crate) fn finish_run(
+    a: Analysed,
+    staged: StagedRun,
+    (pool, threads): (&rayon::ThreadPool, usize),
+    opts: &RunOptions,
+    t0: Instant,
+) -> Result<RunSummary> {
+    let progress = opts.progress.as_ref();
+    let Analysed {
+        plan,
+        bytes,
+        manifest_path,
+        results,
+        mut stages,
+        started_at,
+    } = a;
+    let layout = staged.layout.clone();
+    write_atomic(&layout.manifest(), &bytes)?;
     ((), stages.store_ms) = stage(progress, Stage::Store, || {
         let mut df = pool.install(|| store::results_frame(&plan, &results))?;
         store::write_parquet(&mut df, &layout.results())
@@ -354,7 +418,7 @@ pub fn run_study(opts: &RunOptions) -> Result<RunSummary> {
         name: plan.manifest.name.clone(),
         manifest: serde_json::to_value(&plan.manifest)?,
         manifest_sha256: sha256_hex(&bytes),
-        manifest_path: opts.study.display().to_string(),
+        manifest_path,
         archstudy_version: version().to_string(),
         git_commit: git_commit(),
         rustc_version: rustc_version().to_string(),
@@ -379,4 +443,28 @@ pub fn run_study(opts: &RunOptions) -> Result<RunSummary> {
         info,
         wall_s: t0.elapsed().as_secs_f64(),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_plan_too_large_for_the_memory_is_refused_naming_shards_and_the_memory() {
+        let gib16 = 16u64 << 30;
+        assert!(check_memory(1_000_000, Some(gib16)).is_ok());
+        assert!(check_memory(100_000_000, None).is_ok());
+        let e = check_memory(100_000_000, Some(gib16)).unwrap_err();
+        // 10⁸ cases at 2 kB need 186.5 GiB; 16 GiB less 200 MiB holds 8,485,076 cases, so 12 shards.
+        for part in [
+            "100000000 cases",
+            "186.5 GiB",
+            "16.0 GiB is available",
+            "shards of at most 8485076 cases",
+            "--shard I/N` with N ≥ 12",
+            "archstudy merge",
+        ] {
+            assert!(e.contains(part), "{part}: {e}");
+        }
+    }
 }

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 /// The top-level modules of the library, lowest first. A module may use the modules before
 /// it, never one after it (docs/architecture.md says what each owns).
-const LAYERS: [&str; 22] = [
+const LAYERS: [&str; 25] = [
     "error",
     "progress",
     "provenance",
@@ -25,6 +25,9 @@ const LAYERS: [&str; 22] = [
     "plot",
     "report",
     "runner",
+    "shard",
+    "merge",
+    "slurm",
     "archive",
     "verify",
     "app",

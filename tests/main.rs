@@ -12,4 +12,5 @@ mod loads;
 mod report;
 mod report_arches;
 mod run;
+mod shard;
 mod solve;

@@ -36,6 +36,52 @@ pub enum Command {
     Archive(ArchiveArgs),
     /// Check an archive or run directory: checksums, then re-run and compare every result.
     Verify(VerifyArgs),
+    /// Join the shard directories of a sharded run (`run --shard I/N`) into one run directory.
+    Merge(MergeArgs),
+    /// Write Slurm batch scripts for a sharded run: a job array and a merge job after it.
+    Slurm(SlurmArgs),
+}
+
+/// `archstudy merge`.
+#[derive(Debug, Args)]
+pub struct MergeArgs {
+    /// The shard directories `OUT/<name>.shard-I-of-N` of one manifest, every shard once.
+    #[arg(value_name = "SHARD_DIR", required = true)]
+    pub shards: Vec<PathBuf>,
+    /// Directory under which the run directory `<name>/` is written.
+    #[arg(long, default_value = "output")]
+    pub out: PathBuf,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub jobs: Option<usize>,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// `archstudy slurm`.
+#[derive(Debug, Args)]
+pub struct SlurmArgs {
+    /// The study manifest (YAML).
+    pub study: PathBuf,
+    /// Number of shards: one array task each.
+    #[arg(long, value_name = "N")]
+    pub shards: u64,
+    /// Slurm partition of both jobs.
+    #[arg(long, value_name = "P")]
+    pub partition: Option<String>,
+    /// Time limit of each job, e.g. 02:00:00.
+    #[arg(long, value_name = "T")]
+    pub time: Option<String>,
+    /// Memory of each array task, e.g. 4G (default: the run's estimate for one shard).
+    #[arg(long, value_name = "M")]
+    pub mem: Option<String>,
+    /// Directory of the shards, the merged run and the scripts (`<name>.slurm/`).
+    #[arg(long, default_value = "output")]
+    pub out: PathBuf,
+    /// Submit both jobs with sbatch (default: only print the commands).
+    #[arg(long)]
+    pub submit: bool,
 }
 
 /// `archstudy report`.
@@ -60,6 +106,10 @@ pub struct RunArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Run only shard I of N (1 ≤ I ≤ N), a contiguous slice of the plan, into
+    /// `<out>/<name>.shard-I-of-N/`; join the shards with `archstudy merge`.
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<String>,
 }
 
 /// `archstudy check`.

@@ -2,6 +2,7 @@
 //! library's options, shows progress, and writes what each command returns.
 
 pub mod args;
+mod cluster;
 mod progress;
 
 pub use args::{Cli, Command};
@@ -40,6 +41,8 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Report(args) => render(&args),
         Command::Archive(args) => pack(&args),
         Command::Verify(args) => check_archive(&args),
+        Command::Merge(args) => cluster::merge(&args),
+        Command::Slurm(args) => cluster::slurm(&args),
     }
 }
 
@@ -65,14 +68,27 @@ fn solve(args: &SolveArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-fn run_study(args: &RunArgs) -> Result<ExitCode> {
-    let shown: Arc<dyn crate::progress::Progress> = if args.quiet {
+/// Where a command shows its progress: nowhere with --quiet, else a bar on standard error.
+fn shown(quiet: bool) -> Arc<dyn crate::progress::Progress> {
+    if quiet {
         Arc::new(crate::progress::Silent)
     } else {
         Arc::new(progress::Shown::on_stderr())
+    }
+}
+
+fn run_study(args: &RunArgs) -> Result<ExitCode> {
+    let opts = args.options(shown(args.quiet))?;
+    let summary = match &args.shard {
+        Some(s) => crate::shard::run_shard(&opts, crate::shard::Shard::parse("--shard", s)?)?,
+        None => runner::run_study(&opts)?,
     };
-    let opts = args.options(shown)?;
-    let summary = runner::run_study(&opts)?;
+    report_run(&summary);
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The closing lines of a run, a shard or a merge.
+fn report_run(summary: &runner::RunSummary) {
     eprintln!(
         "{} cases ({} ok, {} failed) in {:.2} s; written to {}",
         summary.info.cases.total,
@@ -87,7 +103,6 @@ fn run_study(args: &RunArgs) -> Result<ExitCode> {
             summary.info.cases.error
         );
     }
-    Ok(ExitCode::SUCCESS)
 }
 
 fn check(args: &CheckArgs) -> Result<ExitCode> {

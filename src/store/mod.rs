@@ -2,6 +2,7 @@
 //! atomically (a temporary file renamed into place) and read back.
 
 mod boundaries;
+mod cases;
 mod figures;
 mod results;
 mod rows;
@@ -9,6 +10,7 @@ mod schema;
 mod table;
 
 pub use boundaries::{bifurcations_frame, boundaries_frame};
+pub use cases::read_case_results;
 pub use figures::{
     BifurcationGroup, CurvePoint, LoadFactorCase, MechanismRow, ReferenceRow, StateRow,
     curves_frame, mechanisms_frame, read_bifurcation_groups, read_curves, read_load_factor_cases,
@@ -182,6 +184,69 @@ pub fn write_parquet(df: &mut DataFrame, path: &Path) -> Result<()> {
     }
     crate::output::unregister_pending(&tmp);
     result
+}
+
+/// A Parquet file written in row groups as its chunks arrive, in order: the rows of a
+/// large slice of a plan need not be in memory at once. Written to a temporary sibling and
+/// renamed into place by [`ParquetAppender::finish`]; dropped unfinished, it leaves nothing.
+pub struct ParquetAppender {
+    writer: polars::prelude::BatchedWriter<File>,
+    tmp: std::path::PathBuf,
+    path: std::path::PathBuf,
+    finished: bool,
+}
+
+impl ParquetAppender {
+    /// Starts `path` with the schema (and the stored column units and meanings) of `first`,
+    /// and writes `first`.
+    pub fn create(path: &Path, first: &mut DataFrame) -> Result<Self> {
+        let tmp = crate::output::temp_sibling(path);
+        crate::output::register_pending(&tmp);
+        let file = File::create(&tmp).with_context(|| format!("cannot create {}", tmp.display()));
+        let mut appender = ParquetAppender {
+            writer: ParquetWriter::new(file?)
+                .with_compression(ParquetCompression::Lz4Raw)
+                .with_key_value_metadata(Some(KeyValueMetadata::Static(vec![
+                    schema::stored_schema(first),
+                ])))
+                .batched(first.schema())
+                .with_context(|| format!("cannot write {}", tmp.display()))?,
+            tmp,
+            path: path.to_path_buf(),
+            finished: false,
+        };
+        appender.append(first)?;
+        Ok(appender)
+    }
+
+    /// Appends the rows of `df` (the columns of the first chunk) as row groups.
+    pub fn append(&mut self, df: &mut DataFrame) -> Result<()> {
+        let chunked = polars::frame::chunk_df_for_writing(df, 512 * 512)?;
+        self.writer
+            .write_batch(&chunked)
+            .with_context(|| format!("cannot write {}", self.tmp.display()))
+    }
+
+    /// Writes the footer and moves the file into place.
+    pub fn finish(mut self) -> Result<()> {
+        self.writer
+            .finish()
+            .with_context(|| format!("cannot write {}", self.tmp.display()))?;
+        std::fs::rename(&self.tmp, &self.path)
+            .with_context(|| format!("cannot move {} into place", self.path.display()))?;
+        self.finished = true;
+        crate::output::unregister_pending(&self.tmp);
+        Ok(())
+    }
+}
+
+impl Drop for ParquetAppender {
+    fn drop(&mut self) {
+        if !self.finished {
+            let _ = std::fs::remove_file(&self.tmp);
+            crate::output::unregister_pending(&self.tmp);
+        }
+    }
 }
 
 /// Reads a Parquet file.

@@ -1,0 +1,230 @@
+//! `archstudy slurm STUDY --shards N`: two Slurm batch scripts for a sharded run, written to
+//! `OUT/<name>.slurm/`: `array.sh`, a job array of N tasks where task T (0-based, as Slurm
+//! numbers them) runs `archstudy run STUDY --shard $((T+1))/N`, and `merge.sh`, which merges
+//! the N shard directories into `OUT/<name>/`. The merge job is submitted with
+//! `--dependency=afterok:<array job>`, so it starts only when every task succeeded.
+//! Submitting is left to the user (the commands are returned) unless asked.
+
+use crate::error::UsageError;
+use crate::runner;
+use crate::shard::{CHUNK_CASES, MAX_SHARDS};
+use anyhow::{Context, Result};
+use std::path::{Path, PathBuf};
+
+/// Options of `archstudy slurm`, as domain values.
+#[derive(Debug, Clone)]
+pub struct SlurmOptions {
+    /// The study manifest.
+    pub study: PathBuf,
+    /// Number of shards (array tasks).
+    pub shards: u64,
+    /// `--partition` of both jobs, when given.
+    pub partition: Option<String>,
+    /// `--time` of each job (Slurm's `[D-]HH:MM:SS` or minutes), when given.
+    pub time: Option<String>,
+    /// `--mem` of each array task; default: the run's memory estimate for one chunk of a
+    /// shard (a shard's memory does not grow with its size).
+    pub mem: Option<String>,
+    /// Directory of the shard directories, the merged run and the scripts.
+    pub out: PathBuf,
+    /// The archstudy binary the jobs run.
+    pub binary: PathBuf,
+}
+
+/// The scripts written, and how to submit them.
+#[derive(Debug, Clone)]
+pub struct SlurmScripts {
+    /// The job array script.
+    pub array: PathBuf,
+    /// The merge job script.
+    pub merge: PathBuf,
+    /// The shell commands that submit both, the merge after the array (`afterok`).
+    pub commands: String,
+    /// The directory the merged run will be.
+    pub run_dir: PathBuf,
+}
+
+/// Quotes a word for a POSIX shell.
+fn quote(s: &str) -> String {
+    format!("'{}'", s.replace('\'', "'\\''"))
+}
+
+fn quote_path(p: &Path) -> String {
+    quote(&p.display().to_string())
+}
+
+/// Refuses a Slurm option value that could not be written into a `#SBATCH` line as is.
+fn check_value(option: &'static str, v: &Option<String>, allowed: &str) -> Result<(), UsageError> {
+    match v {
+        Some(v)
+            if v.is_empty()
+                || !v
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || ":-_.,".contains(c)) =>
+        {
+            Err(UsageError::new(option, v, allowed))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// The memory estimate of a run of `cases` cases, as a Slurm `--mem` value in megabytes.
+fn mem_for(cases: u64) -> String {
+    format!("{}M", runner::needed_bytes(cases).div_ceil(1 << 20))
+}
+
+fn absolute(p: &Path) -> Result<PathBuf> {
+    std::path::absolute(p).with_context(|| format!("cannot resolve {}", p.display()))
+}
+
+/// The `#SBATCH` lines shared by both jobs.
+fn common_lines(o: &SlurmOptions, mem: &str) -> String {
+    let mut s = String::new();
+    if let Some(p) = &o.partition {
+        s.push_str(&format!("#SBATCH --partition={p}\n"));
+    }
+    if let Some(t) = &o.time {
+        s.push_str(&format!("#SBATCH --time={t}\n"));
+    }
+    s.push_str(&format!("#SBATCH --mem={mem}\n"));
+    s
+}
+
+/// Writes `OUT/<name>.slurm/array.sh` and `merge.sh` for a study split into `shards` shards.
+pub fn write_scripts(o: &SlurmOptions) -> Result<SlurmScripts> {
+    if o.shards == 0 || o.shards > MAX_SHARDS {
+        return Err(UsageError::new(
+            "--shards",
+            o.shards,
+            format!("the number of shards N must be a whole number in [1, {MAX_SHARDS}]"),
+        )
+        .into());
+    }
+    check_value(
+        "--partition",
+        &o.partition,
+        "a Slurm partition name (letters, digits, - _ .)",
+    )?;
+    check_value(
+        "--time",
+        &o.time,
+        "a Slurm time limit such as 30, 02:00:00 or 1-12:00:00",
+    )?;
+    check_value("--mem", &o.mem, "a Slurm memory size such as 4G or 800M")?;
+    let (m, _) = runner::load_manifest(&o.study)?;
+    let total = u64::try_from(crate::plan::case_count(&m)).unwrap_or(u64::MAX);
+    let largest = crate::plan::shard_ids(total, 1, o.shards);
+    let shard_mem = o
+        .mem
+        .clone()
+        .unwrap_or_else(|| mem_for((largest.end - largest.start + 1).min(CHUNK_CASES)));
+    let (study, out, binary) = (absolute(&o.study)?, absolute(&o.out)?, absolute(&o.binary)?);
+    let dir = out.join(format!("{}.slurm", m.name));
+    std::fs::create_dir_all(dir.join("logs"))
+        .with_context(|| format!("cannot create {}", dir.display()))?;
+    let n = o.shards;
+    let array = format!(
+        "#!/bin/bash\n\
+         # Shard $((SLURM_ARRAY_TASK_ID+1)) of {n} of the study {name}: tasks are numbered from 0\n\
+         # by Slurm, shards from 1 by archstudy.\n\
+         #SBATCH --job-name={name}-shards\n\
+         #SBATCH --array=0-{last}\n\
+         #SBATCH --output={logs}/shard-%a.out\n\
+         {common}\
+         set -euo pipefail\n\
+         exec {bin} run {study} --shard \"$((SLURM_ARRAY_TASK_ID + 1))/{n}\" --out {out} --quiet\n",
+        name = m.name,
+        last = n - 1,
+        logs = dir.join("logs").display(),
+        common = common_lines(o, &shard_mem),
+        bin = quote_path(&binary),
+        study = quote_path(&study),
+        out = quote_path(&out),
+    );
+    let glob = format!("{}.shard-*-of-{n}", m.name);
+    let merge = format!(
+        "#!/bin/bash\n\
+         # Merges the {n} shards of the study {name} into {run}; submitted with\n\
+         # --dependency=afterok on the array, so it runs only when every shard succeeded.\n\
+         #SBATCH --job-name={name}-merge\n\
+         #SBATCH --output={logs}/merge.out\n\
+         {common}\
+         set -euo pipefail\n\
+         cd {out}\n\
+         exec {bin} merge {glob} --out {out} --quiet\n",
+        name = m.name,
+        run = out.join(&m.name).display(),
+        logs = dir.join("logs").display(),
+        common = common_lines(o, &mem_for(total)),
+        bin = quote_path(&binary),
+        out = quote_path(&out),
+    );
+    let (array_path, merge_path) = (dir.join("array.sh"), dir.join("merge.sh"));
+    crate::output::write_atomic(&array_path, array.as_bytes())?;
+    crate::output::write_atomic(&merge_path, merge.as_bytes())?;
+    let commands = format!(
+        "array=$(sbatch --parsable {})\nsbatch --dependency=afterok:${{array%%;*}} {}\n",
+        quote_path(&array_path),
+        quote_path(&merge_path)
+    );
+    Ok(SlurmScripts {
+        array: array_path,
+        merge: merge_path,
+        commands,
+        run_dir: out.join(&m.name),
+    })
+}
+
+/// Runs `sbatch --parsable` with `args` and returns the job id it prints.
+fn sbatch(args: &[&str]) -> Result<String> {
+    let o = std::process::Command::new("sbatch")
+        .arg("--parsable")
+        .args(args)
+        .output()
+        .context("cannot run sbatch (is Slurm's client installed and on PATH?)")?;
+    if !o.status.success() {
+        anyhow::bail!(
+            "sbatch {} failed: {}",
+            args.join(" "),
+            String::from_utf8_lossy(&o.stderr).trim()
+        );
+    }
+    let out = String::from_utf8_lossy(&o.stdout);
+    // `--parsable` prints `id` or `id;cluster`.
+    let id = out.trim().split(';').next().unwrap_or("").to_string();
+    if id.is_empty() || !id.chars().all(|c| c.is_ascii_digit()) {
+        anyhow::bail!("sbatch printed `{}`, not a job id", out.trim());
+    }
+    Ok(id)
+}
+
+/// Submits the scripts: the array, then the merge depending on it (`afterok`). Returns the
+/// two job ids.
+pub fn submit(s: &SlurmScripts) -> Result<(String, String)> {
+    let array = sbatch(&[&s.array.display().to_string()])?;
+    let merge = sbatch(&[
+        &format!("--dependency=afterok:{array}"),
+        &s.merge.display().to_string(),
+    ])?;
+    Ok((array, merge))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quoted_words_survive_the_shell() {
+        assert_eq!(quote("a b"), "'a b'");
+        assert_eq!(quote("it's"), "'it'\\''s'");
+    }
+
+    #[test]
+    fn the_memory_estimate_is_the_runners() {
+        assert_eq!(mem_for(0), "200M");
+        assert_eq!(
+            mem_for(1_000_000),
+            format!("{}M", (2_000_000_000u64 + (200 << 20)).div_ceil(1 << 20))
+        );
+    }
+}
