@@ -6,6 +6,7 @@ mod archive;
 mod boundaries;
 mod common;
 mod loads;
+mod mechanisms;
 mod report;
 mod run;
 mod solve;

@@ -3,15 +3,16 @@
 //! joints, and every `load_factor` question (docs/mechanics.md §1).
 
 use super::{Find, Outcome as Answered, Scene, Solution, finite};
-use crate::analysis::Mechanism;
 use crate::analysis::forms::ArchModel;
 use crate::analysis::general::{
-    self, Critical, CrownState, LoadFactor, Outcome, RegimeReport, Settings,
+    self, ActiveRow, Critical, CrownState, LoadFactor, Outcome, RegimeReport, Settings,
+    pattern_of_rows,
 };
 use crate::analysis::kinematics::{
-    FlowRule, LimitState, mechanism_modes, pattern_of, work_equation,
+    FlowRule, LimitState, ModeStatus, VelocityField, mechanism_modes, work_equation,
 };
-use crate::model::{JointOrientation, Load, Shape};
+use crate::analysis::{Mechanism, MechanismKind};
+use crate::model::{Load, Shape};
 
 /// The largest K at which the scene's form exists and a point load still sits at a joint
 /// (a pointed arch's first joint ψ₁ = asin(e(1 + K)/2) moves away from the crown as K grows).
@@ -46,41 +47,45 @@ fn set_state(out: &mut Solution, crown: &CrownState, mechanism: Option<&Mechanis
 }
 
 /// The collapse mechanism of a limit state and its work equation (paper eqs. 9 and 11), as on
-/// the closed-form route: `mechanism_dof` and the `work_*` columns. Only for radial joints,
-/// whose reported angles are the joint parameters the kinematics works with.
-fn set_work(
-    out: &mut Solution,
-    model: &ArchModel,
-    crown: &CrownState,
-    lambda: f64,
-    mu: f64,
-    mechanism: &Mechanism,
-) {
-    if model.form().joints != JointOrientation::Radial {
-        return;
-    }
-    let joints = pattern_of(mechanism);
+/// the closed-form route: `mechanism_dof` and the `work_*` columns. The pattern is that of the
+/// active rows at their exact joint parameters (the two sides of a point load apart), on every
+/// form. When the pattern leaves more than one admissible mechanism (a continuum mechanism
+/// that is not unique: `mechanism_dof` > 1 or several extreme rays), the one reported is the
+/// mechanism of the state's kind that satisfies the work equation best.
+fn set_work(out: &mut Solution, model: &ArchModel, at: &StateAt, active: &[ActiveRow]) {
+    let joints = pattern_of_rows(active);
     let Ok(modes) = mechanism_modes(model, &joints, FlowRule::NonAssociative, true) else {
         return;
     };
     out.mechanism_dof = Some(modes.dof);
-    let field = modes
-        .fields
-        .iter()
-        .find(|f| f.kind() == Some(mechanism.kind))
-        .or(modes.fields.first());
-    if let Some(field) = field {
-        let state = LimitState {
-            crown_force: [crown.thrust_over_half_weight, crown.shear_over_half_weight],
-            crown_moment_origin: crown.moment_about_centre,
-            load_factor: lambda,
-            mu,
-        };
-        let w = work_equation(model, &state, field);
+    let state = LimitState {
+        crown_force: [
+            at.crown.thrust_over_half_weight,
+            at.crown.shear_over_half_weight,
+        ],
+        crown_moment_origin: at.crown.moment_about_centre,
+        load_factor: at.lambda,
+        mu: at.mu,
+    };
+    let rank = |f: &VelocityField| (f.kind() != Some(at.kind), work_equation(model, &state, f));
+    let best = modes.fields.iter().map(rank).min_by(|a, b| {
+        a.0.cmp(&b.0)
+            .then(a.1.work_residual.total_cmp(&b.1.work_residual))
+    });
+    if let Some((_, w)) = best {
+        out.mechanism_admissible = Some(modes.status == ModeStatus::Admissible);
         out.work_loads = finite(w.work_loads);
         out.work_friction = finite(w.work_friction);
         out.work_residual = finite(w.work_residual);
     }
+}
+
+/// A limit state as the work equation needs it.
+struct StateAt<'a> {
+    crown: &'a CrownState,
+    lambda: f64,
+    mu: f64,
+    kind: MechanismKind,
 }
 
 fn outcome_of(o: Outcome) -> Answered {
@@ -143,7 +148,13 @@ pub(super) fn solve(scene: &Scene, out: &mut Solution) {
                 &s.mechanism,
                 ArchModel::new(scene.arch.with_k(k), scene.form, scene.load),
             ) {
-                set_work(out, &model, &s.state.crown, scene.lambda, s.mu, m);
+                let at = StateAt {
+                    crown: &s.state.crown,
+                    lambda: scene.lambda,
+                    mu: s.mu,
+                    kind: m.kind,
+                };
+                set_work(out, &model, &at, &s.state.active);
             }
         }
         return;
@@ -161,7 +172,13 @@ pub(super) fn solve(scene: &Scene, out: &mut Solution) {
             if let Some(s) = set_critical(out, &c) {
                 out.mu_crit = Some(s.mu);
                 if let Some(m) = &s.mechanism {
-                    set_work(out, &model, &s.state.crown, scene.lambda, s.mu, m);
+                    let at = StateAt {
+                        crown: &s.state.crown,
+                        lambda: scene.lambda,
+                        mu: s.mu,
+                        kind: m.kind,
+                    };
+                    set_work(out, &model, &at, &s.state.active);
                 }
             }
         }
@@ -173,7 +190,13 @@ pub(super) fn solve(scene: &Scene, out: &mut Solution) {
                     out.load_factor = finite(lf.lambda);
                     set_state(out, &lf.crown, lf.mechanism.as_ref());
                     if let Some(m) = &lf.mechanism {
-                        set_work(out, &model, &lf.crown, lf.lambda, scene.friction.mu(), m);
+                        let at = StateAt {
+                            crown: &lf.crown,
+                            lambda: lf.lambda,
+                            mu: scene.friction.mu(),
+                            kind: m.kind,
+                        };
+                        set_work(out, &model, &at, &lf.active);
                     }
                 }
                 Outcome::Unbounded => out.load_factor_unbounded = true,
