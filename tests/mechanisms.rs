@@ -177,3 +177,66 @@ fn point_load_la_hire_mechanism_satisfies_the_work_equation() {
         v.work_residual
     );
 }
+
+fn pointed_voussoirs(k: f64, n: u32, mu: f64, find: Find) -> Scene {
+    let arch = Arch::new(k, 90.0, WeightModel::Annular, Discretisation::Voussoirs(n)).unwrap();
+    let mut s = Scene::new(arch, Friction::new(mu).unwrap(), find);
+    s.form = form(1, 0.2, false);
+    s
+}
+
+/// Three voussoirs of a pointed arch (e = 0.2, μ = ∞): the keystone spans the apex, and a
+/// thrust line through the four joint points stands at zero thickness, so the arch stands at
+/// every thickness: `always_stands`, not a critical K a hair above 1. Checked two ways: the
+/// state find says `stable` from K = 1.0001 to K = 2.
+#[test]
+fn three_voussoir_pointed_arch_stands_at_every_thickness() {
+    for mu in [f64::INFINITY, 0.6] {
+        let s = scene::solve(&pointed_voussoirs(1.5, 3, mu, Find::Thickness));
+        assert_eq!(s.outcome, Some(Outcome::AlwaysStands), "μ {mu}: {s:?}");
+        assert_eq!(s.k_crit, None);
+        for k in [1.0001, 1.01, 1.2, 2.0] {
+            let st = scene::solve(&pointed_voussoirs(k, 3, mu, Find::State));
+            assert_eq!(
+                st.regime,
+                Some(archstudy::analysis::Regime::Stable),
+                "K {k}, μ {mu}"
+            );
+        }
+    }
+    // Five voussoirs have a genuine collapse thickness (K ≈ 1.0700), with its mechanism.
+    let s = scene::solve(&pointed_voussoirs(1.5, 5, f64::INFINITY, Find::Thickness));
+    assert_eq!(s.outcome, Some(Outcome::Found));
+    approx::assert_abs_diff_eq!(s.k_crit.unwrap(), 1.0699647, epsilon = 1e-6);
+    let below = scene::solve(&pointed_voussoirs(1.069, 5, f64::INFINITY, Find::State));
+    assert_eq!(below.regime, Some(archstudy::analysis::Regime::Rotational));
+}
+
+/// A very thick semicircle (K = 10⁶): μ_c is μ_min, and its four-joint sliding mechanism is
+/// the one of K = 1.5 (sliding rows over W_half do not depend on K): the same dof and the same
+/// work of the loads, with the work equation satisfied. The rank test of the compatibility
+/// system is scale-free, so lengths of 10⁶ r do not drop constraints.
+#[test]
+fn very_thick_arch_reports_an_exact_sliding_mechanism() {
+    let at = |k: f64| {
+        let arch = Arch::new(k, 90.0, WeightModel::Annular, Discretisation::Continuum).unwrap();
+        scene::solve(&Scene::new(
+            arch,
+            Friction::new(0.4).unwrap(),
+            Find::Friction,
+        ))
+    };
+    let (thick, thin) = (at(1e6), at(1.5));
+    approx::assert_relative_eq!(
+        thick.mu_crit.unwrap(),
+        crate::common::reference::MU_MIN,
+        max_relative = 1e-9
+    );
+    assert_eq!(thick.mechanism_dof, thin.mechanism_dof);
+    assert!(thick.work_residual.unwrap() <= TOL_WORK, "{thick:?}");
+    approx::assert_relative_eq!(
+        thick.work_loads.unwrap(),
+        thin.work_loads.unwrap(),
+        max_relative = 1e-9
+    );
+}

@@ -11,6 +11,12 @@ use nalgebra::DMatrix;
 
 /// An orthonormal basis (as columns) of the null space of `a`, by SVD with the relative
 /// tolerance `tol_rank`; `None` when an entry is not finite.
+///
+/// The system is equilibrated first (rows and columns scaled to unit length; the null space
+/// is mapped back through the column scaling and orthonormalised): the rotation columns of a
+/// compatibility system carry lengths over r, so on a very thick arch (K = 10⁶) they dwarf
+/// the translation columns and a tolerance relative to the largest singular value would
+/// drop genuine constraints.
 pub fn null_space(a: &DMatrix<f64>, settings: &KinematicsSettings) -> Option<DMatrix<f64>> {
     let (m, n) = a.shape();
     if n == 0 {
@@ -19,9 +25,22 @@ pub fn null_space(a: &DMatrix<f64>, settings: &KinematicsSettings) -> Option<DMa
     if a.iter().any(|v| !v.is_finite()) {
         return None;
     }
+    let scale: Vec<f64> = (0..n)
+        .map(|j| {
+            let c = a.column(j).norm();
+            if c > 0.0 { 1.0 / c } else { 1.0 }
+        })
+        .collect();
     // Pad to at least n rows so that the SVD returns the full V.
     let mut padded = DMatrix::zeros(m.max(n), n);
-    padded.view_mut((0, 0), (m, n)).copy_from(a);
+    for i in 0..m {
+        let r = (0..n).map(|j| a[(i, j)] * scale[j]).collect::<Vec<f64>>();
+        let norm = r.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let k = if norm > 0.0 { 1.0 / norm } else { 1.0 };
+        for (j, v) in r.iter().enumerate() {
+            padded[(i, j)] = v * k;
+        }
+    }
     let svd = nalgebra::SVD::try_new(
         padded,
         false,
@@ -33,7 +52,11 @@ pub fn null_space(a: &DMatrix<f64>, settings: &KinematicsSettings) -> Option<DMa
     let top = svd.singular_values.iter().fold(0.0_f64, |x, &s| x.max(s));
     let tol = settings.tol_rank * top.max(1.0);
     let cols: Vec<usize> = (0..n).filter(|&i| svd.singular_values[i] <= tol).collect();
-    Some(DMatrix::from_fn(n, cols.len(), |r, c| v_t[(cols[c], r)]))
+    let basis = DMatrix::from_fn(n, cols.len(), |r, c| scale[r] * v_t[(cols[c], r)]);
+    if cols.is_empty() {
+        return Some(basis);
+    }
+    Some(basis.qr().q())
 }
 
 /// Outcome of the search for a mechanism of a pattern.
