@@ -1,6 +1,7 @@
 //! End-to-end tests of the `archstudy` binary and the library's study pipeline, in one test
 //! binary.
 
+mod apex;
 mod architecture;
 mod archive;
 mod boundaries;

@@ -58,6 +58,8 @@ fn set_work(out: &mut Solution, model: &ArchModel, at: &StateAt, active: &[Activ
         return;
     };
     out.mechanism_dof = Some(modes.dof);
+    // A rigid pattern (too few active joints to move) has no mode to check.
+    out.mechanism_admissible = Some(false);
     let state = LimitState {
         crown_force: [
             at.crown.thrust_over_half_weight,
@@ -125,8 +127,50 @@ pub(crate) fn load_factor(model: &ArchModel, scene: &Scene) -> LoadFactor {
     general::load_factor(model, scene.friction.angle(), &Settings::default())
 }
 
+/// The critical value of the scene's find with its apex load shared freely between the
+/// halves ([`ArchModel::with_shared_apex`]); `None` when the scene has no apex load or the
+/// find has no critical value.
+fn shared_apex_value(scene: &Scene, settings: &Settings) -> Option<f64> {
+    let make = |k: f64| {
+        ArchModel::new(scene.arch.with_k(k), scene.form, scene.load)
+            .ok()
+            .map(ArchModel::with_shared_apex)
+    };
+    if !make(scene.arch.k).is_some_and(|m| m.has_apex_load()) {
+        return None;
+    }
+    let model = make(scene.arch.k)?;
+    match scene.find {
+        Find::Thickness => {
+            let c = general::thickness_with(make, k_max(scene), None, scene.friction, settings);
+            c.found()?.k
+        }
+        Find::Friction => Some(general::friction(&model, settings).found()?.mu),
+        Find::LoadFactor => {
+            let lf = general::load_factor(&model, scene.friction.angle(), &Settings::default());
+            (lf.outcome == Outcome::Solved).then_some(lf.lambda)
+        }
+        _ => None,
+    }
+}
+
 /// Fills `out` for a scene of the general route.
 pub(super) fn solve(scene: &Scene, out: &mut Solution) {
+    solve_one(scene, out);
+    if matches!(
+        scene.find,
+        Find::Thickness | Find::Friction | Find::LoadFactor
+    ) {
+        let settings = Settings {
+            lambda: scene.lambda,
+            ..Settings::default()
+        };
+        out.critical_apex_shared = shared_apex_value(scene, &settings).and_then(finite);
+    }
+}
+
+/// Fills `out` for a scene of the general route, its apex load (if any) on the right half.
+fn solve_one(scene: &Scene, out: &mut Solution) {
     let settings = Settings {
         lambda: scene.lambda,
         ..Settings::default()
