@@ -1,6 +1,7 @@
 //! End-to-end tests of the `archstudy` binary and the library's study pipeline, in one test
 //! binary.
 
+mod apex;
 mod architecture;
 mod archive;
 mod boundaries;
@@ -9,6 +10,7 @@ mod common;
 mod damaged;
 mod hardening;
 mod loads;
+mod mechanisms;
 mod report;
 mod report_arches;
 mod run;

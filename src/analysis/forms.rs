@@ -41,7 +41,7 @@
 //!   side) and the joint at the adjacent float on the far side.
 
 use super::settings::GeometrySettings;
-use super::statics::{ArchGeometry, Joint, Point, Resultant};
+use super::statics::{ArchGeometry, Condition, Joint, Point, Resultant};
 use crate::model::{Arch, ArchForm, Discretisation, JointOrientation, Load, WeightModel};
 use std::f64::consts::FRAC_PI_2;
 
@@ -133,6 +133,9 @@ pub struct ArchModel {
     crown_seg: Moments,
     /// The point load's parameter a (radians) and position X.
     point: Option<(f64, Point)>,
+    /// True when a point load at the apex of a pointed arch with radial joints is shared
+    /// freely between the halves ([`ArchModel::with_shared_apex`]).
+    shared_apex: bool,
 }
 
 /// Antiderivatives (∫x dy, ∫x²/2 dy, −∫y²/2 dx) along the arc of radius ρ about (−d, 0) at
@@ -213,6 +216,7 @@ impl ArchModel {
             crown_ext: arc_primitive(k, d, psi_e0),
             crown_seg: segment(crown_e, crown_i),
             point: None,
+            shared_apex: false,
         };
         m.w_half = match arch.weight {
             WeightModel::Annular => m.region(&m.support()).0[0],
@@ -237,6 +241,35 @@ impl ArchModel {
             m.point = Some((a, x));
         }
         Ok(m)
+    }
+
+    /// True when the scene has a point load at the apex of a pointed arch with radial
+    /// joints and a crown joint (the continuum, an even voussoir count): the load sits on the
+    /// crown joint between the two halves, and how it is shared between them is statically
+    /// indeterminate.
+    pub fn has_apex_load(&self) -> bool {
+        // An odd voussoir count has a keystone over the apex: the load lies on one block.
+        let crown_joint = match self.arch.joints {
+            Discretisation::Voussoirs(n) => n % 2 == 0,
+            Discretisation::Continuum => true,
+        };
+        crown_joint
+            && self.psi_1 > 0.0
+            && self.form.joints == JointOrientation::Radial
+            && self.point.is_some_and(|(a, _)| a == 0.0)
+    }
+
+    /// The same scene with the apex load shared freely between the halves (the most
+    /// favourable split, a bound of the critical values; docs/loads-and-geometries.md). The
+    /// load P at the extrados apex X lies on the crown joint x = 0: moving a part of it across
+    /// the joint changes only the joint's shear (a vertical force at X has no normal component
+    /// and no moment about a point of x = 0). A free split therefore asks only that some
+    /// shear between T(0⁺) = T(0) − P and T(0) lie within ±μN: T(0⁺) ≤ μN and T(0) ≥ −μN.
+    /// The crown joint gets a twin 0⁺ carrying the load; 0 keeps its no-tension rows and the
+    /// inward Coulomb row, 0⁺ the outward one. Unchanged when the scene has no apex load.
+    pub fn with_shared_apex(mut self) -> Self {
+        self.shared_apex = self.has_apex_load();
+        self
     }
 
     /// The arch.
@@ -406,6 +439,9 @@ impl ArchModel {
         let mut iso = Vec::new();
         if self.psi_1 > 0.0 && self.form.joints == JointOrientation::Radial {
             iso.push(0.0);
+            if self.shared_apex {
+                iso.push(0.0f64.next_up());
+            }
         }
         if self.form.joints == JointOrientation::Vertical {
             iso.push(self.support_param(-1.0));
@@ -492,27 +528,43 @@ impl ArchGeometry for ArchModel {
         }
     }
 
+    fn relaxed(&self, theta: f64, condition: Condition) -> bool {
+        if !self.shared_apex {
+            return false;
+        }
+        if theta == 0.0 {
+            condition == Condition::SlideOutward
+        } else if theta == 0.0f64.next_up() {
+            condition != Condition::SlideOutward
+        } else {
+            false
+        }
+    }
+
     fn discrete_joints(&self) -> Option<Vec<f64>> {
         let Discretisation::Voussoirs(n) = self.arch.joints else {
             return None;
         };
         let a = self.arch.half_angle;
-        Some(
-            (0..=n)
-                .map(|j| {
-                    if j == 0 {
-                        self.support_param(-1.0)
-                    } else if j == n {
-                        self.support_param(1.0)
-                    } else if self.psi_1 == 0.0 {
-                        -a + 2.0 * a * f64::from(j) / f64::from(n)
-                    } else {
-                        let s = -1.0 + 2.0 * f64::from(j) / f64::from(n);
-                        self.at_fraction(s.abs()).copysign(s)
-                    }
-                })
-                .collect(),
-        )
+        let mut joints: Vec<f64> = (0..=n)
+            .map(|j| {
+                if j == 0 {
+                    self.support_param(-1.0)
+                } else if j == n {
+                    self.support_param(1.0)
+                } else if self.psi_1 == 0.0 {
+                    -a + 2.0 * a * f64::from(j) / f64::from(n)
+                } else {
+                    let s = -1.0 + 2.0 * f64::from(j) / f64::from(n);
+                    self.at_fraction(s.abs()).copysign(s)
+                }
+            })
+            .collect();
+        if self.shared_apex && joints.contains(&0.0) {
+            joints.push(0.0f64.next_up());
+            joints.sort_by(f64::total_cmp);
+        }
+        Some(joints)
     }
 
     fn families(&self) -> Vec<[f64; 2]> {

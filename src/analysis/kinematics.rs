@@ -152,8 +152,10 @@ pub fn pattern_of(m: &Mechanism) -> Vec<ActiveJoint> {
 }
 
 /// Checks a pattern against the arch: finite, inside [−α, α] (joints within
-/// `tol_springing_deg` of a springing are put on it), sorted, coincident joints (within
-/// `tol_same_joint`) merged (a hinge and a slide become La Hire).
+/// `tol_springing_deg` of a springing are put on it, except the support parameters ±α⁺ of
+/// forms with vertical joints), sorted, coincident joints (within
+/// `tol_same_joint`) and joints that are one segment ([`same_segment`]) merged (a hinge and a
+/// slide become La Hire).
 pub fn normalise_pattern<G: ArchGeometry + ?Sized>(
     geom: &G,
     joints: &[ActiveJoint],
@@ -172,20 +174,39 @@ pub fn normalise_pattern<G: ArchGeometry + ?Sized>(
             });
         }
         let mut j = *j;
-        j.theta = j.theta.clamp(-alpha, alpha);
+        // The float just beyond α is a support joint of its own on forms whose joints are
+        // not radial (vertical joints end at radial supports, `forms.rs`): it stays.
+        let edge = alpha.next_up();
+        if j.theta.abs() != edge {
+            j.theta = j.theta.clamp(-alpha, alpha);
+        }
         out.push(j);
     }
     out.sort_by(|a, b| a.theta.total_cmp(&b.theta));
     let mut merged: Vec<ActiveJoint> = Vec::with_capacity(out.len());
     for j in out {
         match merged.last_mut() {
-            Some(last) if (last.theta - j.theta).abs() <= settings.tol_same_joint => {
+            // Two sliding joints on the two sides of a point load stay apart: the sliver
+            // between them carries the load and slides on its own (a load at the crown
+            // punching down between the halves).
+            Some(last)
+                if same_segment(geom, last.theta, j.theta, settings)
+                    && !(last.slides && j.slides && last.theta != j.theta) =>
+            {
                 match (last.hinge, j.hinge) {
                     (Some(a), Some(b)) if a != b => {
                         return Err(KinematicsError::BothFaces(j.angle_deg()));
                     }
                     (None, h) => last.hinge = h,
                     _ => {}
+                }
+                // A hinge and a sliding joint on the two sides of a point load act as one
+                // La Hire joint whose sliding side decides where the load goes: the load sits
+                // at the hinge point, so it moves with the hinged block, and the friction force
+                // is that of the joint that slides. The merged joint takes the sliding joint's
+                // parameter.
+                if j.slides && !last.slides {
+                    last.theta = j.theta;
                 }
                 last.slides |= j.slides;
                 last.sense = last.sense.or(j.sense);
@@ -194,6 +215,22 @@ pub fn normalise_pattern<G: ArchGeometry + ?Sized>(
         }
     }
     Ok(merged)
+}
+
+/// True when the joints at parameters `a` and `b` are one segment (both ends within
+/// `tol_same_joint`): the two sides of a point load are, and so are the vertical joints at ±ψ₁
+/// of a pointed arch (both the crown joint); a vertical joint at α and the radial support just
+/// beyond it are not (a wedge lies between them).
+fn same_segment<G: ArchGeometry + ?Sized>(
+    geom: &G,
+    a: f64,
+    b: f64,
+    settings: &KinematicsSettings,
+) -> bool {
+    let (p, q) = (geom.joint(a), geom.joint(b));
+    let d = |u: Point, v: Point| (u[0] - v[0]).hypot(u[1] - v[1]);
+    d(p.intrados, q.intrados) <= settings.tol_same_joint
+        && d(p.extrados, q.extrados) <= settings.tol_same_joint
 }
 
 /// The flow rule at sliding joints.

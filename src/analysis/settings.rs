@@ -240,6 +240,11 @@ pub struct KinematicsSettings {
     pub small_rotation: f64,
     /// Largest number of SVD iterations of a null-space computation (default 500).
     pub max_svd_iterations: usize,
+    /// A mechanism satisfies the work equation (eq. 11) when its relative residual
+    /// |dL^(a) + dL^(r,t)| / scale is at most this (default 1e-6): the states come from
+    /// linear programmes solved to about 1e-9 of their scale, so an exact mechanism of an
+    /// exact state leaves a residual of that order, and a wrong one of order 1.
+    pub tol_work: f64,
 }
 
 impl KinematicsSettings {
@@ -254,6 +259,7 @@ impl KinematicsSettings {
         tol_same_ray: 1e-6,
         small_rotation: 1e-8,
         max_svd_iterations: 500,
+        tol_work: 1e-6,
     };
 }
 

@@ -114,6 +114,13 @@ pub trait ArchGeometry {
     fn angle_deg(&self, theta: f64) -> f64 {
         theta.to_degrees()
     }
+
+    /// True when the row of `condition` at `theta` is left out (always satisfied): the two
+    /// sides of a load whose split between two parts is free keep one Coulomb row each
+    /// ([`crate::analysis::forms::ArchModel::with_shared_apex`]).
+    fn relaxed(&self, _theta: f64, _condition: Condition) -> bool {
+        false
+    }
 }
 
 /// Which condition a linear row expresses.
@@ -208,10 +215,19 @@ pub fn joint_rows<G: ArchGeometry + ?Sized>(geom: &G, theta: f64, phi: f64) -> [
             b: -(g[0] * d.fx + g[1] * d.fy),
         }
     };
-    [
+    let mut rows = [
         intrados,
         extrados,
         sliding(1.0, Condition::SlideOutward),
         sliding(-1.0, Condition::SlideInward),
-    ]
+    ];
+    for r in &mut rows {
+        if geom.relaxed(theta, r.condition) {
+            // 0 ≤ 1: never violated, never active.
+            r.a = [0.0; 3];
+            r.a_lambda = 0.0;
+            r.b = 1.0;
+        }
+    }
+    rows
 }

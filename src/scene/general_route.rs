@@ -3,15 +3,16 @@
 //! joints, and every `load_factor` question (docs/mechanics.md §1).
 
 use super::{Find, Outcome as Answered, Scene, Solution, finite};
-use crate::analysis::Mechanism;
 use crate::analysis::forms::ArchModel;
 use crate::analysis::general::{
-    self, Critical, CrownState, LoadFactor, Outcome, RegimeReport, Settings,
+    self, ActiveRow, Critical, CrownState, LoadFactor, Outcome, RegimeReport, Settings,
+    pattern_of_rows,
 };
 use crate::analysis::kinematics::{
-    FlowRule, LimitState, mechanism_modes, pattern_of, work_equation,
+    FlowRule, LimitState, ModeStatus, VelocityField, mechanism_modes, work_equation,
 };
-use crate::model::{JointOrientation, Load, Shape};
+use crate::analysis::{Mechanism, MechanismKind};
+use crate::model::{Load, Shape};
 
 /// The largest K at which the scene's form exists and a point load still sits at a joint
 /// (a pointed arch's first joint ψ₁ = asin(e(1 + K)/2) moves away from the crown as K grows).
@@ -46,41 +47,47 @@ fn set_state(out: &mut Solution, crown: &CrownState, mechanism: Option<&Mechanis
 }
 
 /// The collapse mechanism of a limit state and its work equation (paper eqs. 9 and 11), as on
-/// the closed-form route: `mechanism_dof` and the `work_*` columns. Only for radial joints,
-/// whose reported angles are the joint parameters the kinematics works with.
-fn set_work(
-    out: &mut Solution,
-    model: &ArchModel,
-    crown: &CrownState,
-    lambda: f64,
-    mu: f64,
-    mechanism: &Mechanism,
-) {
-    if model.form().joints != JointOrientation::Radial {
-        return;
-    }
-    let joints = pattern_of(mechanism);
+/// the closed-form route: `mechanism_dof` and the `work_*` columns. The pattern is that of the
+/// active rows at their exact joint parameters (the two sides of a point load apart), on every
+/// form. When the pattern leaves more than one admissible mechanism (a continuum mechanism
+/// that is not unique: `mechanism_dof` > 1 or several extreme rays), the one reported is the
+/// mechanism of the state's kind that satisfies the work equation best.
+fn set_work(out: &mut Solution, model: &ArchModel, at: &StateAt, active: &[ActiveRow]) {
+    let joints = pattern_of_rows(active);
     let Ok(modes) = mechanism_modes(model, &joints, FlowRule::NonAssociative, true) else {
         return;
     };
     out.mechanism_dof = Some(modes.dof);
-    let field = modes
-        .fields
-        .iter()
-        .find(|f| f.kind() == Some(mechanism.kind))
-        .or(modes.fields.first());
-    if let Some(field) = field {
-        let state = LimitState {
-            crown_force: [crown.thrust_over_half_weight, crown.shear_over_half_weight],
-            crown_moment_origin: crown.moment_about_centre,
-            load_factor: lambda,
-            mu,
-        };
-        let w = work_equation(model, &state, field);
+    // A rigid pattern (too few active joints to move) has no mode to check.
+    out.mechanism_admissible = Some(false);
+    let state = LimitState {
+        crown_force: [
+            at.crown.thrust_over_half_weight,
+            at.crown.shear_over_half_weight,
+        ],
+        crown_moment_origin: at.crown.moment_about_centre,
+        load_factor: at.lambda,
+        mu: at.mu,
+    };
+    let rank = |f: &VelocityField| (f.kind() != Some(at.kind), work_equation(model, &state, f));
+    let best = modes.fields.iter().map(rank).min_by(|a, b| {
+        a.0.cmp(&b.0)
+            .then(a.1.work_residual.total_cmp(&b.1.work_residual))
+    });
+    if let Some((_, w)) = best {
+        out.mechanism_admissible = Some(modes.status == ModeStatus::Admissible);
         out.work_loads = finite(w.work_loads);
         out.work_friction = finite(w.work_friction);
         out.work_residual = finite(w.work_residual);
     }
+}
+
+/// A limit state as the work equation needs it.
+struct StateAt<'a> {
+    crown: &'a CrownState,
+    lambda: f64,
+    mu: f64,
+    kind: MechanismKind,
 }
 
 fn outcome_of(o: Outcome) -> Answered {
@@ -120,8 +127,50 @@ pub(crate) fn load_factor(model: &ArchModel, scene: &Scene) -> LoadFactor {
     general::load_factor(model, scene.friction.angle(), &Settings::default())
 }
 
+/// The critical value of the scene's find with its apex load shared freely between the
+/// halves ([`ArchModel::with_shared_apex`]); `None` when the scene has no apex load or the
+/// find has no critical value.
+fn shared_apex_value(scene: &Scene, settings: &Settings) -> Option<f64> {
+    let make = |k: f64| {
+        ArchModel::new(scene.arch.with_k(k), scene.form, scene.load)
+            .ok()
+            .map(ArchModel::with_shared_apex)
+    };
+    if !make(scene.arch.k).is_some_and(|m| m.has_apex_load()) {
+        return None;
+    }
+    let model = make(scene.arch.k)?;
+    match scene.find {
+        Find::Thickness => {
+            let c = general::thickness_with(make, k_max(scene), None, scene.friction, settings);
+            c.found()?.k
+        }
+        Find::Friction => Some(general::friction(&model, settings).found()?.mu),
+        Find::LoadFactor => {
+            let lf = general::load_factor(&model, scene.friction.angle(), &Settings::default());
+            (lf.outcome == Outcome::Solved).then_some(lf.lambda)
+        }
+        _ => None,
+    }
+}
+
 /// Fills `out` for a scene of the general route.
 pub(super) fn solve(scene: &Scene, out: &mut Solution) {
+    solve_one(scene, out);
+    if matches!(
+        scene.find,
+        Find::Thickness | Find::Friction | Find::LoadFactor
+    ) {
+        let settings = Settings {
+            lambda: scene.lambda,
+            ..Settings::default()
+        };
+        out.critical_apex_shared = shared_apex_value(scene, &settings).and_then(finite);
+    }
+}
+
+/// Fills `out` for a scene of the general route, its apex load (if any) on the right half.
+fn solve_one(scene: &Scene, out: &mut Solution) {
     let settings = Settings {
         lambda: scene.lambda,
         ..Settings::default()
@@ -143,7 +192,13 @@ pub(super) fn solve(scene: &Scene, out: &mut Solution) {
                 &s.mechanism,
                 ArchModel::new(scene.arch.with_k(k), scene.form, scene.load),
             ) {
-                set_work(out, &model, &s.state.crown, scene.lambda, s.mu, m);
+                let at = StateAt {
+                    crown: &s.state.crown,
+                    lambda: scene.lambda,
+                    mu: s.mu,
+                    kind: m.kind,
+                };
+                set_work(out, &model, &at, &s.state.active);
             }
         }
         return;
@@ -161,7 +216,13 @@ pub(super) fn solve(scene: &Scene, out: &mut Solution) {
             if let Some(s) = set_critical(out, &c) {
                 out.mu_crit = Some(s.mu);
                 if let Some(m) = &s.mechanism {
-                    set_work(out, &model, &s.state.crown, scene.lambda, s.mu, m);
+                    let at = StateAt {
+                        crown: &s.state.crown,
+                        lambda: scene.lambda,
+                        mu: s.mu,
+                        kind: m.kind,
+                    };
+                    set_work(out, &model, &at, &s.state.active);
                 }
             }
         }
@@ -173,7 +234,13 @@ pub(super) fn solve(scene: &Scene, out: &mut Solution) {
                     out.load_factor = finite(lf.lambda);
                     set_state(out, &lf.crown, lf.mechanism.as_ref());
                     if let Some(m) = &lf.mechanism {
-                        set_work(out, &model, &lf.crown, lf.lambda, scene.friction.mu(), m);
+                        let at = StateAt {
+                            crown: &lf.crown,
+                            lambda: lf.lambda,
+                            mu: scene.friction.mu(),
+                            kind: m.kind,
+                        };
+                        set_work(out, &model, &at, &lf.active);
                     }
                 }
                 Outcome::Unbounded => out.load_factor_unbounded = true,

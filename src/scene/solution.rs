@@ -3,7 +3,7 @@
 //! enums; they become strings only where they are written (JSON, Parquet).
 
 use super::{Find, Scene};
-use crate::analysis::kinematics::collapse_mechanism;
+use crate::analysis::kinematics::{ModeStatus, collapse_mechanism};
 use crate::analysis::symmetric::{Critical, CriticalState};
 use crate::analysis::{Hinge, MechanismKind, Regime, SlidingJoint};
 use crate::model::{Arch, WeightModel};
@@ -162,6 +162,22 @@ pub struct Solution {
     /// Degrees of freedom of the blocks between the active joints of the critical state (2 for
     /// a symmetric five-joint state: the collapse mechanism is its symmetric mode).
     pub mechanism_dof: Option<u32>,
+    /// True when the reported mechanism obeys every flow rule at the state: normality at each
+    /// hinge (eq. 5) and slip in the sense of the friction force at each sliding joint (eq.
+    /// 10), so that its work equation is a check of the state (`work_residual` ≤
+    /// `KinematicsSettings::tol_work`). False when no mode of the state's pattern does (a
+    /// rigid pattern has none, and no work equation: the `work_*` keys are then null): the
+    /// state bounds the collapse of the static problem, but the pattern has no
+    /// non-associative mechanism (docs/mechanics.md §1); the mode reported then slides in the
+    /// right senses when one does, so that the work equation still holds.
+    pub mechanism_admissible: Option<bool>,
+    /// A point load at the apex of a pointed arch with radial joints sits on the crown joint
+    /// between the halves, and its split between them is statically indeterminate: the
+    /// critical value of the find (μ_c, K_c or λ_max) when the split is free (the most
+    /// favourable one). The find's own value puts the whole load on the right half, the least
+    /// favourable split; the two bound every split (docs/loads-and-geometries.md). Null for
+    /// every other scene.
+    pub critical_apex_shared: Option<f64>,
     /// Collapse thickness at μ = ∞ (thresholds find).
     pub k_c_rotational: Option<f64>,
     /// μ of the rotational/mixed bifurcation: the critical friction at K_c (thresholds find).
@@ -245,6 +261,8 @@ impl Solution {
             work_friction: None,
             work_residual: None,
             mechanism_dof: None,
+            mechanism_admissible: None,
+            critical_apex_shared: None,
             k_c_rotational: None,
             mu_rotational_mixed: None,
             mu_min: None,
@@ -275,6 +293,10 @@ impl Solution {
     pub(super) fn set_mechanism(&mut self, arch: &Arch, s: &CriticalState) {
         let m = collapse_mechanism(arch, s);
         self.mechanism_dof = Some(m.mechanism_dof);
+        self.mechanism_admissible = m
+            .field
+            .is_some()
+            .then_some(m.status == ModeStatus::Admissible);
         if let Some(w) = m.work {
             self.work_loads = finite(w.work_loads);
             self.work_friction = finite(w.work_friction);

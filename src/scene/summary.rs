@@ -207,6 +207,21 @@ fn mechanism_lines(o: &mut String, s: &Solution) {
              (mechanism dof {dof})"
         );
     }
+    if let Some(v) = s.critical_apex_shared {
+        let _ = writeln!(
+            o,
+            "apex load: the value above puts it on the right half (least favourable split); \
+             shared freely between the halves (most favourable split): {v:.12}"
+        );
+    }
+    if s.mechanism_admissible == Some(false) {
+        let _ = writeln!(
+            o,
+            "no mechanism of this pattern obeys every flow rule (normality at the hinges, \
+             slip in the sense of friction): the state is a limit of the static problem \
+             without a non-associative collapse mechanism"
+        );
+    }
 }
 
 /// The minimum and maximum thrust states.

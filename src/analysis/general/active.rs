@@ -4,6 +4,7 @@
 use super::problem::{Problem, Solved};
 use super::rows::{Objective, lp_row, norm3};
 use super::{ActiveRow, Settings};
+use crate::analysis::kinematics::ActiveJoint;
 use crate::analysis::lp;
 use crate::analysis::statics::{ArchGeometry, Condition};
 use crate::analysis::types::{Face, Hinge, Mechanism, Sense, SlidingJoint};
@@ -78,6 +79,40 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
     }
 }
 
+/// The sense of sliding of the crown-side part at a joint whose sliding row `condition` is
+/// active. The rows are written for the part right of the joint; on the left half that part
+/// is the crown side only when θ > 0, so the sense flips for θ < 0.
+fn sense_of(condition: Condition, right_half: bool) -> Sense {
+    if (condition == Condition::SlideOutward) == right_half {
+        Sense::Outward
+    } else {
+        Sense::Inward
+    }
+}
+
+/// The active joints of a set of active rows at their exact parameters θ, for the kinematics
+/// (docs/mechanics.md §1): each row is a hinge or a sliding joint with its sense; a row
+/// repeated at the same parameter is one joint. The two sides of a point load stay two
+/// parameters one float apart, so that [`normalise_pattern`](crate::analysis::kinematics::normalise_pattern)
+/// can tell on which side of the load a joint slides.
+pub fn pattern_of_rows(active: &[ActiveRow]) -> Vec<ActiveJoint> {
+    let mut joints: Vec<ActiveJoint> = Vec::with_capacity(active.len());
+    for r in active {
+        let j = match r.condition {
+            Condition::Intrados => ActiveJoint::hinge(r.theta, Face::Intrados),
+            Condition::Extrados => ActiveJoint::hinge(r.theta, Face::Extrados),
+            Condition::SlideOutward | Condition::SlideInward => {
+                ActiveJoint::sliding(r.theta, Some(sense_of(r.condition, r.theta >= 0.0)))
+            }
+        };
+        if !joints.contains(&j) {
+            joints.push(j);
+        }
+    }
+    joints.sort_by(|a, b| a.theta.total_cmp(&b.theta));
+    joints
+}
+
 /// The mechanism named by a set of active rows; joints within `settings.tol_same_joint` are
 /// one joint.
 pub fn mechanism_of(active: &[ActiveRow], settings: &Settings) -> Option<Mechanism> {
@@ -94,17 +129,9 @@ pub fn mechanism_of(active: &[ActiveRow], settings: &Settings) -> Option<Mechani
                 face: Face::Extrados,
             }),
             Condition::SlideOutward | Condition::SlideInward => {
-                // The rows are written for the part right of the joint; on the left half
-                // that part is the crown side only when θ > 0, so the sense flips for θ < 0.
-                let outward_row = r.condition == Condition::SlideOutward;
-                let sense = if outward_row == (r.angle_deg >= 0.0) {
-                    Sense::Outward
-                } else {
-                    Sense::Inward
-                };
                 sliding.push(SlidingJoint {
                     angle_deg: r.angle_deg,
-                    sense,
+                    sense: sense_of(r.condition, r.angle_deg >= 0.0),
                 });
             }
         }

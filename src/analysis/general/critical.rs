@@ -242,11 +242,33 @@ pub fn thickness_with<G: ArchGeometry, F: Fn(f64) -> Option<G>>(
         return Critical::NeverStands;
     };
     let state = margin(&g, phi, RowSet::All, settings);
+    let mechanism = state.mechanism_with(settings);
+    if mechanism
+        .as_ref()
+        .is_some_and(|m| hinges_on_both_faces(m, settings))
+    {
+        // The thrust touches both faces of one joint: the joint has shrunk to a point, so the
+        // root is K → 1, where the arch stands with a thrust line through its joint points
+        // (a three-voussoir pointed arch at μ = ∞): it stands at every thickness.
+        return Critical::AlwaysStands;
+    }
     Critical::Found(LimitState {
         k: Some(k),
         mu: friction.mu(),
-        mechanism: state.mechanism_with(settings),
+        mechanism,
         state,
+    })
+}
+
+/// True when a mechanism has hinges on both faces of one joint (within
+/// `settings.tol_same_joint`): possible only where the joint has no length.
+fn hinges_on_both_faces(m: &Mechanism, settings: &Settings) -> bool {
+    m.hinges.iter().any(|a| {
+        m.hinges.iter().any(|b| {
+            a.face != b.face
+                && (a.angle_deg - b.angle_deg).abs()
+                    <= settings.tol_same_joint * (1.0 + a.angle_deg.abs())
+        })
     })
 }
 

@@ -214,6 +214,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
                     (
                         ActiveRow {
                             angle_deg: self.geom.angle_deg(c.theta),
+                            theta: c.theta,
                             condition: c.condition,
                             slack: (vmax.max(0.0) - c.violation).max(0.0),
                         },

@@ -29,7 +29,7 @@ mod rows;
 #[cfg(test)]
 mod tests;
 
-pub use active::mechanism_of;
+pub use active::{mechanism_of, pattern_of_rows};
 pub use critical::{Critical, LimitState, friction, sliding_threshold, thickness, thickness_with};
 pub use load_factor::{LoadFactor, load_factor};
 pub use margin::{MarginSolution, RegimeReport, margin, regime};
@@ -83,6 +83,9 @@ pub enum Outcome {
 pub struct ActiveRow {
     /// Joint angle from the crown, degrees, positive to the right.
     pub angle_deg: f64,
+    /// The joint parameter θ in radians, exactly as the statics used it: the two sides of a
+    /// point load are distinct parameters one float apart (`forms.rs`), which degrees lose.
+    pub theta: f64,
     /// The condition at the limit there.
     pub condition: Condition,
     /// Distance of x to the row plane minus the margin (≥ 0, ≤ `tol_active`·scale).

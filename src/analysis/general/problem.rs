@@ -136,6 +136,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
             if outcome == Outcome::Solved && v >= -tol {
                 active.push(ActiveRow {
                     angle_deg: self.geom.angle_deg(j.theta),
+                    theta: j.theta,
                     condition: j.condition,
                     slack: (-v).max(0.0),
                 });

@@ -305,7 +305,9 @@ impl Compatibility {
 
     /// The admissibility functionals of the pattern, as rows acting on x: each is ≥ 0 for a
     /// field obeying normality at a hinge or dissipation at a sliding joint with a sense.
-    pub(super) fn admissibility_rows(&self) -> Vec<Vec<f64>> {
+    /// The admissibility rows g·x ≥ 0 of the pattern, each with `true` when it is a
+    /// dissipation row (the sense of a sliding joint) and `false` for normality at a hinge.
+    pub(super) fn admissibility_rows(&self) -> Vec<(Vec<f64>, bool)> {
         let cols = self.columns();
         let n = self.joints.len();
         let mut out = Vec::new();
@@ -319,7 +321,7 @@ impl Compatibility {
                 };
                 r.add_rotation(j, face_sign(face));
                 r.add_rotation(j + 1, -face_sign(face));
-                out.push(r.coeffs);
+                out.push((r.coeffs, false));
             }
             if let (true, Some(sense)) = (joint.slides, joint.sense) {
                 let f = self.frames[j];
@@ -329,7 +331,7 @@ impl Compatibility {
                     coeffs: vec![0.0; cols],
                 };
                 r.relative(j, -joint.crown_side() * sense_sign(sense), p, f.along);
-                out.push(r.coeffs);
+                out.push((r.coeffs, true));
             }
         }
         out

@@ -11,6 +11,12 @@ use nalgebra::DMatrix;
 
 /// An orthonormal basis (as columns) of the null space of `a`, by SVD with the relative
 /// tolerance `tol_rank`; `None` when an entry is not finite.
+///
+/// The system is equilibrated first (rows and columns scaled to unit length; the null space
+/// is mapped back through the column scaling and orthonormalised): the rotation columns of a
+/// compatibility system carry lengths over r, so on a very thick arch (K = 10⁶) they dwarf
+/// the translation columns and a tolerance relative to the largest singular value would
+/// drop genuine constraints.
 pub fn null_space(a: &DMatrix<f64>, settings: &KinematicsSettings) -> Option<DMatrix<f64>> {
     let (m, n) = a.shape();
     if n == 0 {
@@ -19,9 +25,22 @@ pub fn null_space(a: &DMatrix<f64>, settings: &KinematicsSettings) -> Option<DMa
     if a.iter().any(|v| !v.is_finite()) {
         return None;
     }
+    let scale: Vec<f64> = (0..n)
+        .map(|j| {
+            let c = a.column(j).norm();
+            if c > 0.0 { 1.0 / c } else { 1.0 }
+        })
+        .collect();
     // Pad to at least n rows so that the SVD returns the full V.
     let mut padded = DMatrix::zeros(m.max(n), n);
-    padded.view_mut((0, 0), (m, n)).copy_from(a);
+    for i in 0..m {
+        let r = (0..n).map(|j| a[(i, j)] * scale[j]).collect::<Vec<f64>>();
+        let norm = r.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let k = if norm > 0.0 { 1.0 / norm } else { 1.0 };
+        for (j, v) in r.iter().enumerate() {
+            padded[(i, j)] = v * k;
+        }
+    }
     let svd = nalgebra::SVD::try_new(
         padded,
         false,
@@ -33,7 +52,11 @@ pub fn null_space(a: &DMatrix<f64>, settings: &KinematicsSettings) -> Option<DMa
     let top = svd.singular_values.iter().fold(0.0_f64, |x, &s| x.max(s));
     let tol = settings.tol_rank * top.max(1.0);
     let cols: Vec<usize> = (0..n).filter(|&i| svd.singular_values[i] <= tol).collect();
-    Some(DMatrix::from_fn(n, cols.len(), |r, c| v_t[(cols[c], r)]))
+    let basis = DMatrix::from_fn(n, cols.len(), |r, c| scale[r] * v_t[(cols[c], r)]);
+    if cols.is_empty() {
+        return Some(basis);
+    }
+    Some(basis.qr().q())
 }
 
 /// Outcome of the search for a mechanism of a pattern.
@@ -146,12 +169,12 @@ pub fn mechanism_modes_with<G: ArchGeometry + ?Sized>(
             fields: Vec::new(),
         });
     }
-    let g = admissibility_in_basis(&sys, &basis);
+    let (g, dissipation) = admissibility_in_basis(&sys, &basis);
     let rays = extreme_rays(&g, basis.ncols(), settings);
     let (status, coeffs) = if rays.is_empty() {
         (
             ModeStatus::Inadmissible,
-            vec![least_violating(&g, basis.ncols())],
+            vec![least_violating(&g, &dissipation, basis.ncols(), settings)],
         )
     } else {
         (ModeStatus::Admissible, rays)
@@ -172,16 +195,18 @@ pub fn mechanism_modes_with<G: ArchGeometry + ?Sized>(
 }
 
 /// The admissibility rows expressed on the basis coefficients, each scaled to unit length
-/// (rows that vanish on the basis are dropped: those joints cannot move).
-fn admissibility_in_basis(sys: &Compatibility, basis: &DMatrix<f64>) -> Vec<Vec<f64>> {
+/// (rows that vanish on the basis are dropped: those joints cannot move), and which of them
+/// are dissipation rows.
+fn admissibility_in_basis(sys: &Compatibility, basis: &DMatrix<f64>) -> (Vec<Vec<f64>>, Vec<bool>) {
     sys.admissibility_rows()
         .into_iter()
-        .filter_map(|r| {
+        .filter_map(|(r, dissipation)| {
             let row = nalgebra::RowDVector::from_row_slice(&r) * basis;
             let norm = row.norm();
-            (norm > sys.settings.tol_rank).then(|| row.iter().map(|v| v / norm).collect())
+            (norm > sys.settings.tol_rank)
+                .then(|| (row.iter().map(|v| v / norm).collect(), dissipation))
         })
-        .collect()
+        .unzip()
 }
 
 /// The extreme rays of the cone {c : g c ≥ 0} in R^d (d ≤ 4), unit vectors in a stable
@@ -234,8 +259,44 @@ fn combinations(n: usize, k: usize) -> Vec<Vec<usize>> {
     out
 }
 
-/// The basis direction (±e_i) whose worst admissibility value is largest.
-fn least_violating(g: &[Vec<f64>], d: usize) -> Vec<f64> {
+/// The mode kept when none obeys every flow rule. Friction must dissipate: among the extreme
+/// rays of the cone of the dissipation rows alone (every sliding joint slips in the sense of
+/// its state), the one whose worst normality value is largest; such a mode satisfies the work
+/// equation (eq. 11), since a hinge's normal row makes its reactive work vanish whatever the
+/// sign of its rotation. When no mode slides in the required senses, the basis direction
+/// (±e_i) whose worst admissibility value is largest.
+fn least_violating(
+    g: &[Vec<f64>],
+    dissipation: &[bool],
+    d: usize,
+    settings: &KinematicsSettings,
+) -> Vec<f64> {
+    let worst = |c: &[f64], rows: &mut dyn Iterator<Item = &Vec<f64>>| {
+        rows.map(|r| r.iter().zip(c).map(|(a, b)| a * b).sum::<f64>())
+            .fold(f64::INFINITY, f64::min)
+    };
+    let sliding: Vec<Vec<f64>> = g
+        .iter()
+        .zip(dissipation)
+        .filter(|(_, s)| **s)
+        .map(|(r, _)| r.clone())
+        .collect();
+    if !sliding.is_empty() {
+        let best = extreme_rays(&sliding, d, settings)
+            .into_iter()
+            .map(|c| {
+                let mut hinges = g
+                    .iter()
+                    .zip(dissipation)
+                    .filter(|(_, s)| !**s)
+                    .map(|(r, _)| r);
+                (worst(&c, &mut hinges), c)
+            })
+            .max_by(|a, b| a.0.total_cmp(&b.0));
+        if let Some((_, c)) = best {
+            return c;
+        }
+    }
     let mut best = (f64::NEG_INFINITY, vec![0.0; d]);
     for i in 0..d {
         for sign in [1.0, -1.0] {
