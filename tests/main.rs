@@ -10,5 +10,6 @@ mod hardening;
 mod loads;
 mod report;
 mod report_arches;
+mod report_regime_map;
 mod run;
 mod solve;

@@ -2,13 +2,18 @@
 //! boundaries and the bifurcations.
 
 use super::{Chart, FigureSpec, LoadCaseFigure, single_model};
-use crate::plot::regime_map::{BifurcationMark, CollapseSegment, Crossing, RegimeMap};
+use crate::plot::regime_map::{
+    BifurcationMark, CollapseSegment, Crossing, InfiniteStrip, RegimeMap,
+};
 use crate::report::data::RunData;
 use crate::report::format::short;
-use crate::store::BoundaryRow;
+use crate::store::{BoundaryRow, ResultRow};
 use std::collections::{BTreeMap, HashMap};
+use std::sync::Arc;
 
 const REGIME_CAPTION: &str = "Regimes over the friction coefficient μ (horizontal) and the thickness ratio K = R/r (left axis; t/R_c on the right axis). Stable: an admissible state exists (Hʳ ∩ Hˢ ≠ ∅). Rotational: no line of thrust fits in the arch whatever the friction (Hʳ = ∅). Sliding: no thrust satisfies Coulomb's law at every joint whatever the thickness (Hˢ = ∅). Mixed: both domains exist but are disjoint. The thick line is the collapse curve through the located boundary points, coloured and labelled by the collapse mechanism (hinges only, hinges and sliding joints, sliding joints only); dots mark the bifurcations where two mechanisms coexist, with their values. Dashed lines are the other regime boundaries.";
+
+const REGIONS_NOTE: &str = " Between grid points the regions are bounded by straight lines between the located boundary points.";
 
 fn sorted_distinct(v: impl Iterator<Item = f64>) -> Vec<f64> {
     let mut v: Vec<f64> = v.filter(|x| x.is_finite()).collect();
@@ -22,10 +27,15 @@ fn sorted_distinct(v: impl Iterator<Item = f64>) -> Vec<f64> {
 pub fn figure(data: &RunData, lc: &LoadCaseFigure) -> Option<FigureSpec> {
     let on = &lc.title_suffix;
     let map = regime_map(data, lc.name, on)?;
+    let mut caption = REGIME_CAPTION.to_string();
+    if map.infinite.is_some() {
+        caption.push_str(" The strip at the right, apart from the μ axis, is μ = ∞.");
+    }
+    caption.push_str(REGIONS_NOTE);
     Some(FigureSpec {
         stem: format!("regime-map{}", lc.stem_suffix),
         title: format!("Regime map{on}"),
-        caption: REGIME_CAPTION.into(),
+        caption,
         chart: Chart::RegimeMap(map),
     })
 }
@@ -62,7 +72,12 @@ fn regime_map(data: &RunData, lc: &str, on: &str) -> Option<RegimeMap> {
             regimes[j * mu.len() + i] = r.regime.clone();
         }
     }
-    let bounds = data.boundaries_of(lc);
+    let all_bounds = data.boundaries_of(lc);
+    let infinite = infinite_strip(&rows, &k, &all_bounds);
+    let bounds: Vec<&BoundaryRow> = all_bounds
+        .into_iter()
+        .filter(|b| b.mu.is_finite() && b.k.is_finite())
+        .collect();
     let bifs = data.bifurcations_of(lc);
     let span = ((mu[0], mu[mu.len() - 1]), (k[0], k[k.len() - 1]));
     let collapse = collapse_segments(
@@ -113,6 +128,48 @@ fn regime_map(data: &RunData, lc: &str, on: &str) -> Option<RegimeMap> {
         collapse,
         other_boundaries: other,
         bifurcations,
+        infinite,
+    })
+}
+
+/// The μ = ∞ column of the grid, when it has one: its regimes at the grid K values, the
+/// located changes along K there and its collapse points.
+fn infinite_strip(
+    rows: &[&ResultRow],
+    k: &[f64],
+    bounds: &[&BoundaryRow],
+) -> Option<InfiniteStrip> {
+    let at_inf: Vec<_> = rows
+        .iter()
+        .filter(|r| r.mu.is_some_and(f64::is_infinite))
+        .collect();
+    if at_inf.is_empty() {
+        return None;
+    }
+    let mut regimes: Vec<Option<Arc<str>>> = vec![None; k.len()];
+    for r in at_inf {
+        if let Some(j) = r.k.and_then(|kk| k.iter().position(|&g| g == kk)) {
+            regimes[j] = r.regime.clone();
+        }
+    }
+    let inf = bounds
+        .iter()
+        .filter(|b| b.mu.is_infinite() && b.axis == "k");
+    Some(InfiniteStrip {
+        regimes,
+        crossings: inf
+            .clone()
+            .map(|b| Crossing {
+                fixed: b.mu,
+                at: b.k,
+                low: b.regime_low.clone(),
+                high: b.regime_high.clone(),
+            })
+            .collect(),
+        collapse: inf
+            .filter(|b| b.on_collapse_curve)
+            .map(|b| (b.k, b.mechanism.clone().unwrap_or_default()))
+            .collect(),
     })
 }
 
