@@ -205,3 +205,78 @@ fn readme_regime_map_agrees_with_its_located_boundaries() {
     stable_only_on_stable_side(&m);
     infinite_strip_is_drawn(&m);
 }
+
+const HALF_ANGLE_STUDY: &str = "\
+name: segmental
+grid:
+  half_angle_deg: {values: [80, 90]}
+  k: {from: 1.02, to: 1.4, steps: 9}
+  mu: {from: 0.15, to: 0.8, steps: 8}
+load_cases:
+  - {name: gravity, kind: self_weight}
+find: state
+";
+
+#[test]
+fn half_angle_study_gets_one_regime_map_per_arch_and_its_collapse_curves() {
+    let dir = scratch("regime-map-half-angle");
+    let run = run_study(&dir, "segmental.yaml", HALF_ANGLE_STUDY);
+    let data = data::load(&RunLayout::at(&run)).expect("the run loads");
+    let figures = charts::build(&data);
+    let maps = figures
+        .iter()
+        .find_map(|f| match &f.chart {
+            charts::Chart::RegimeMapPanels(p) => Some(p.maps.clone()),
+            _ => None,
+        })
+        .expect("regime maps by half-angle");
+    let titles: Vec<&str> = maps.iter().map(|m| m.title.as_str()).collect();
+    assert_eq!(titles, ["α = 80°", "α = 90°"]);
+    // Each panel carries the bifurcations of its own arch only.
+    let mut bifs: Vec<(f64, f64, f64)> = data
+        .bifurcations
+        .iter()
+        .flatten()
+        .zip(&data.bifurcation_groups)
+        .map(|(b, g)| (g.half_angle_deg.expect("α"), b.mu, b.k))
+        .collect();
+    bifs.sort_by(|a, b| a.partial_cmp(b).expect("finite"));
+    let mut drawn: Vec<(f64, f64, f64)> = maps
+        .iter()
+        .zip([80.0, 90.0])
+        .flat_map(|(m, a)| m.bifurcations.iter().map(move |b| (a, b.mu, b.k)))
+        .collect();
+    drawn.sort_by(|a, b| a.partial_cmp(b).expect("finite"));
+    assert_eq!(drawn, bifs);
+    // The semicircle's panel has the reference bifurcations.
+    let semi = &maps[1];
+    assert!(
+        semi.bifurcations
+            .iter()
+            .any(|b| (b.mu - 0.395265252140).abs() < 1e-6 && (b.k - 1.113581813339).abs() < 1e-6)
+    );
+    // The α = 80° map never draws a region against an independent solve of its own arch.
+    let m80 = &maps[0];
+    for (mu, k) in [(0.5, 1.3), (0.5, 1.03), (0.17, 1.3), (0.17, 1.03)] {
+        let arch =
+            Arch::new(k, 80.0, WeightModel::Annular, Discretisation::Continuum).expect("arch");
+        let s = scene::solve(&Scene::new(
+            arch,
+            Friction::new(mu).expect("μ"),
+            Find::State,
+        ));
+        let solved = s.regime().expect("regime").as_str().to_string();
+        assert_eq!(
+            m80.regime_at(mu, k),
+            Some(solved.as_str()),
+            "μ = {mu}, K = {k}"
+        );
+    }
+    let stems: Vec<&str> = figures.iter().map(|f| f.stem.as_str()).collect();
+    assert!(stems.contains(&"collapse-curves"), "{stems:?}");
+    assert!(stems.contains(&"bifurcations-by-arch"), "{stems:?}");
+    assert!(
+        !stems.contains(&"regime-map"),
+        "no single map of mixed arches"
+    );
+}

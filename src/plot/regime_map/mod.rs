@@ -117,8 +117,72 @@ impl Figure for RegimeMap {
         root: &DrawingArea<DB, Shift>,
         ctx: &PlotContext,
     ) -> DrawResult<(), DB> {
-        let legend = self.legend();
+        self.draw_in(root, root, ctx, true)
+    }
+}
+
+/// Regime maps of the values of an arch axis side by side (small multiples): the same grid,
+/// axes and colours in every panel.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RegimeMapPanels {
+    /// The maps, one per value, each titled by its value.
+    pub maps: Vec<RegimeMap>,
+}
+
+impl RegimeMapPanels {
+    fn columns(&self) -> usize {
+        match self.maps.len() {
+            0 | 1 => 1,
+            2 | 4 => 2,
+            _ => 3,
+        }
+    }
+}
+
+impl Figure for RegimeMapPanels {
+    fn size(&self) -> (u32, u32) {
+        let cols = self.columns();
+        let rows = self.maps.len().div_ceil(cols).max(1);
+        (680 * cols as u32, 560 * rows as u32)
+    }
+
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        ctx: &PlotContext,
+    ) -> DrawResult<(), DB> {
+        let cols = self.columns();
+        let rows = self.maps.len().div_ceil(cols).max(1);
+        // One legend for all panels, in the order of the first map that has each item.
+        let mut legend: Vec<LegendItem> = Vec::new();
+        for item in self.maps.iter().flat_map(RegimeMap::legend) {
+            if !legend.iter().any(|l| l.label == item.label) {
+                legend.push(item);
+            }
+        }
         let upper = style::above_legend(root, ctx, &legend)?;
+        for (area, map) in upper.split_evenly((rows, cols)).iter().zip(&self.maps) {
+            map.draw_in(root, area, ctx, false)?;
+        }
+        Ok(())
+    }
+}
+
+impl RegimeMap {
+    /// Draws the map in `area`, a part of `root` (the whole canvas, on which the pieces
+    /// placed in absolute pixels are drawn), with its legend below it when `with_legend`.
+    fn draw_in<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        area: &DrawingArea<DB, Shift>,
+        ctx: &PlotContext,
+        with_legend: bool,
+    ) -> DrawResult<(), DB> {
+        let upper = if with_legend {
+            style::above_legend(area, ctx, &self.legend())?
+        } else {
+            area.clone()
+        };
         if self.mu.len() < 2 || self.k.len() < 2 {
             upper.draw(&Text::new(
                 "The regime map needs at least two values of μ and of K.".to_string(),

@@ -44,41 +44,105 @@ fn regime_map(data: &RunData, lc: &str, on: &str) -> Option<RegimeMap> {
     if data.manifest.find_of(lc) != "state" || !single_model(data) {
         return None;
     }
-    let rows: Vec<_> = data
-        .results
-        .iter()
-        .filter(|r| &*r.load_case == lc && &*r.find == "state")
-        .collect();
-    let mu = sorted_distinct(rows.iter().filter_map(|r| r.mu));
-    let k = sorted_distinct(rows.iter().filter_map(|r| r.k));
-    if mu.len() < 2 || k.len() < 2 {
-        return None;
+    let title = match &data.manifest.title {
+        Some(t) => format!("{t}{on}"),
+        None => format!("Regimes over μ and K{on}"),
+    };
+    regime_map_of(data, lc, title, None)
+}
+
+/// The arch of an arch axis: half-angle α in degrees and voussoir count (None: continuum).
+pub type ArchKey = (f64, Option<u32>);
+
+fn arch_matches(arch: Option<ArchKey>, a: Option<&crate::store::RowArch>) -> bool {
+    match arch {
+        None => true,
+        Some(key) => a.is_some_and(|a| (a.half_angle_deg, a.voussoirs) == key),
     }
-    let mi: HashMap<u64, usize> = mu
-        .iter()
-        .enumerate()
-        .map(|(i, v)| (v.to_bits(), i))
-        .collect();
-    let ki: HashMap<u64, usize> = k
-        .iter()
-        .enumerate()
-        .map(|(i, v)| (v.to_bits(), i))
-        .collect();
+}
+
+/// The regime of every grid point, K-major (None where no case gives one).
+fn regimes_on_grid(rows: &[&ResultRow], mu: &[f64], k: &[f64]) -> Vec<Option<Arc<str>>> {
+    let index = |v: &[f64]| -> HashMap<u64, usize> {
+        v.iter()
+            .enumerate()
+            .map(|(i, x)| (x.to_bits(), i))
+            .collect()
+    };
+    let (mi, ki) = (index(mu), index(k));
     let mut regimes = vec![None; mu.len() * k.len()];
-    for r in &rows {
+    for r in rows {
         if let (Some(m), Some(kk)) = (r.mu, r.k)
             && let (Some(&i), Some(&j)) = (mi.get(&m.to_bits()), ki.get(&kk.to_bits()))
         {
             regimes[j * mu.len() + i] = r.regime.clone();
         }
     }
-    let all_bounds = data.boundaries_of(lc);
+    regimes
+}
+
+/// The bifurcations of a load case, of one arch when `arch` is given.
+pub fn bifurcations_of_arch<'a>(
+    data: &'a RunData,
+    lc: &str,
+    arch: Option<ArchKey>,
+) -> Vec<&'a crate::store::BifurcationRow> {
+    data.bifurcations
+        .iter()
+        .flatten()
+        .enumerate()
+        .filter(|(i, b)| {
+            b.load_case == lc
+                && arch.is_none_or(|(a, n)| {
+                    data.bifurcation_groups.get(*i).is_some_and(|g| {
+                        g.half_angle_deg.unwrap_or(90.0) == a && g.voussoirs.flatten() == n
+                    })
+                })
+        })
+        .map(|(_, b)| b)
+        .collect()
+}
+
+/// The regime map of a load case's state cases, of one arch of an arch axis when `arch` is
+/// given (rows of results.parquet, boundaries.parquet and bifurcations.parquet of that
+/// arch only), titled `title`.
+pub fn regime_map_of(
+    data: &RunData,
+    lc: &str,
+    title: String,
+    arch: Option<ArchKey>,
+) -> Option<RegimeMap> {
+    let rows: Vec<&ResultRow> = data
+        .results
+        .iter()
+        .enumerate()
+        .filter(|(i, r)| {
+            &*r.load_case == lc
+                && &*r.find == "state"
+                && arch_matches(arch, data.result_arches.get(*i))
+        })
+        .map(|(_, r)| r)
+        .collect();
+    let mu = sorted_distinct(rows.iter().filter_map(|r| r.mu));
+    let k = sorted_distinct(rows.iter().filter_map(|r| r.k));
+    if mu.len() < 2 || k.len() < 2 {
+        return None;
+    }
+    let regimes = regimes_on_grid(&rows, &mu, &k);
+    let all_bounds: Vec<&BoundaryRow> = data
+        .boundaries
+        .iter()
+        .flatten()
+        .enumerate()
+        .filter(|(i, b)| b.load_case == lc && arch_matches(arch, data.boundary_arches.get(*i)))
+        .map(|(_, b)| b)
+        .collect();
     let infinite = infinite_strip(&rows, &k, &all_bounds);
     let bounds: Vec<&BoundaryRow> = all_bounds
         .into_iter()
         .filter(|b| b.mu.is_finite() && b.k.is_finite())
         .collect();
-    let bifs = data.bifurcations_of(lc);
+    let bifs = bifurcations_of_arch(data, lc, arch);
     let span = ((mu[0], mu[mu.len() - 1]), (k[0], k[k.len() - 1]));
     let collapse = collapse_segments(
         &bounds,
@@ -114,10 +178,6 @@ fn regime_map(data: &RunData, lc: &str, on: &str) -> Option<RegimeMap> {
             ],
         })
         .collect();
-    let title = match &data.manifest.title {
-        Some(t) => format!("{t}{on}"),
-        None => format!("Regimes over μ and K{on}"),
-    };
     Some(RegimeMap {
         title,
         mu,
