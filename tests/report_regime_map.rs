@@ -2,7 +2,9 @@
 //! coarse seed study and the README's μ ∈ {0.3, 0.35, 0.4, ∞}) the regime the figure draws
 //! at points away from the boundaries is the regime an independent solve gives there, no
 //! point drawn stable lies on the unstable side of the located collapse curve (nor the
-//! other way round), and μ = ∞ is drawn as its own strip.
+//! other way round), and μ = ∞ is drawn as its own strip. A half-angle axis gets one map
+//! per arch, each with its own bifurcations, and a table of them; a voussoir study with
+//! several cases per count tabulates the values behind its errors.
 
 use crate::common::{run_study, scratch};
 use archstudy::model::{Arch, Discretisation, Friction, WeightModel};
@@ -279,4 +281,51 @@ fn half_angle_study_gets_one_regime_map_per_arch_and_its_collapse_curves() {
         !stems.contains(&"regime-map"),
         "no single map of mixed arches"
     );
+    // "What was computed" describes the half-angle as the axis it is.
+    let md = std::fs::read_to_string(run.join("report.md")).expect("report.md");
+    let computed = md
+        .split("## Key results")
+        .next()
+        .expect("what was computed");
+    assert!(
+        computed.contains("half-embrace angle α (°): grid axis, 2 values: from 80 to 90"),
+        "{computed}"
+    );
+    assert!(!computed.contains("α = 90°"), "{computed}");
+    // The bifurcations by arch, tabulated.
+    assert!(md.contains("### Bifurcations by arch"), "{md}");
+    assert!(
+        md.contains("| α = 90° | mixed / rotational | 0.3953 | 1.1136 | 0.1075 |"),
+        "{md}"
+    );
+}
+
+const ONE_COUNT_STUDY: &str = "\
+name: one-count
+grid:
+  voussoirs: {values: [8, continuum]}
+  mu: {values: [0.4, 0.6, 0.8]}
+load_cases:
+  - {name: gravity, kind: self_weight}
+find: thickness
+";
+
+#[test]
+fn voussoir_study_tabulates_the_values_behind_its_errors_and_skips_a_one_point_chart() {
+    let dir = scratch("values-one-count");
+    let run = run_study(&dir, "one-count.yaml", ONE_COUNT_STUDY);
+    let data = data::load(&RunLayout::at(&run)).expect("the run loads");
+    let stems: Vec<String> = charts::build(&data).into_iter().map(|f| f.stem).collect();
+    assert!(!stems.iter().any(|s| s == "speed-accuracy"), "{stems:?}");
+    let md = std::fs::read_to_string(run.join("report.md")).expect("report.md");
+    assert!(md.contains("### K_c by voussoir count and case"), "{md}");
+    // One row per μ for N = 8, each with the continuum K_c = 1.1135818133 at μ ≥ μ_rot.
+    for mu in ["0.4000", "0.6000", "0.8000"] {
+        assert!(
+            md.contains(&format!(
+                "| {mu} | 8 | 1.1062181517 | 1.1135818133 | -7.364e-3 |"
+            )),
+            "{md}"
+        );
+    }
 }
