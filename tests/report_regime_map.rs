@@ -192,6 +192,25 @@ fn coarse_seed_regime_map_agrees_with_its_located_boundaries() {
     let run = run_study(&dir, "coarse-seed.yaml", &text);
     let m = regime_map(&run);
     assert_eq!(m.mu.len(), 11, "the finite μ axis");
+    // The dashed boundaries reach where they meet: the corner (μ_min, K_c) of the none,
+    // rotational, mixed and sliding regions and the rotational/mixed bifurcation, not the
+    // last located point a grid cell short of them.
+    let reaches = |mu: f64, k: f64| {
+        m.other_boundaries
+            .iter()
+            .filter(|l| {
+                l.iter()
+                    .any(|p| (p.0 - mu).abs() < 1e-8 && (p.1 - k).abs() < 1e-8)
+            })
+            .count()
+    };
+    assert_eq!(
+        reaches(0.309215444330, 1.113581813339),
+        4,
+        "{:?}",
+        m.other_boundaries
+    );
+    assert!(reaches(0.395265252140, 1.113581813339) >= 1);
     drawn_agrees_with_solve(&m, 0.01);
     stable_only_on_stable_side(&m);
     infinite_strip_is_drawn(&m);

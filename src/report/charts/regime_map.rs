@@ -149,7 +149,9 @@ pub fn regime_map_of(
         &bifs.iter().map(|b| (b.mu, b.k)).collect::<Vec<_>>(),
         span,
     );
-    let other = other_boundaries(&bounds);
+    let mut other = other_boundaries(&bounds);
+    let bif_points: Vec<(f64, f64)> = bifs.iter().map(|b| (b.mu, b.k)).collect();
+    extend_to_junctions(&mut other, &bif_points, (&mu, &k));
     let crossing = |b: &&BoundaryRow, fixed: f64, at: f64| Crossing {
         fixed,
         at,
@@ -314,4 +316,78 @@ fn other_boundaries(bounds: &[&BoundaryRow]) -> Vec<Vec<(f64, f64)>> {
         })
         .filter(|p| p.len() >= 2)
         .collect()
+}
+
+/// The largest spacing of a grid axis.
+fn largest_step(v: &[f64]) -> f64 {
+    v.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max)
+}
+
+/// Extends each end of the other boundaries, whose located points stop a grid cell short of
+/// where they meet another boundary, to that meeting point: a bifurcation, or the crossing
+/// with the straight line through another boundary, when it lies on the end's own line
+/// within one grid cell beyond the end.
+fn extend_to_junctions(
+    lines: &mut [Vec<(f64, f64)>],
+    bifs: &[(f64, f64)],
+    (mu, k): (&[f64], &[f64]),
+) {
+    let (dm, dk) = (largest_step(mu).max(1e-12), largest_step(k).max(1e-12));
+    // In cell units, so that μ and K weigh alike.
+    let unit = |p: (f64, f64)| (p.0 / dm, p.1 / dk);
+    let ends: Vec<((f64, f64), (f64, f64))> = lines
+        .iter()
+        .filter_map(|l| Some((unit(*l.first()?), unit(*l.last()?))))
+        .collect();
+    let mut candidates: Vec<(f64, f64)> = bifs.iter().map(|&p| unit(p)).collect();
+    for (i, a) in ends.iter().enumerate() {
+        for b in &ends[i + 1..] {
+            candidates.extend(line_crossing(*a, *b));
+        }
+    }
+    for line in lines.iter_mut() {
+        if line.len() < 2 {
+            continue;
+        }
+        for at_end in [false, true] {
+            let n = line.len();
+            let (end, inner) = if at_end {
+                (unit(line[n - 1]), unit(line[n - 2]))
+            } else {
+                (unit(line[0]), unit(line[1]))
+            };
+            let len = (end.0 - inner.0).hypot(end.1 - inner.1).max(1e-12);
+            let dir = ((end.0 - inner.0) / len, (end.1 - inner.1) / len);
+            let best = candidates
+                .iter()
+                .filter_map(|&c| {
+                    let (x, y) = (c.0 - end.0, c.1 - end.1);
+                    let along = x * dir.0 + y * dir.1;
+                    let off = (x * dir.1 - y * dir.0).abs();
+                    (along > 1e-9 && along <= 1.5 && off <= 0.05).then_some((along, c))
+                })
+                .min_by(|a, b| a.0.total_cmp(&b.0));
+            if let Some((_, c)) = best {
+                let p = (c.0 * dm, c.1 * dk);
+                if at_end {
+                    line.push(p);
+                } else {
+                    line.insert(0, p);
+                }
+            }
+        }
+    }
+}
+
+/// Where the line through a.0 and a.1 crosses the line through b.0 and b.1 (None when
+/// parallel).
+fn line_crossing(a: ((f64, f64), (f64, f64)), b: ((f64, f64), (f64, f64))) -> Option<(f64, f64)> {
+    let r = (a.1.0 - a.0.0, a.1.1 - a.0.1);
+    let s = (b.1.0 - b.0.0, b.1.1 - b.0.1);
+    let den = r.0 * s.1 - r.1 * s.0;
+    if den.abs() < 1e-12 {
+        return None;
+    }
+    let u = ((b.0.0 - a.0.0) * s.1 - (b.0.1 - a.0.1) * s.0) / den;
+    Some((a.0.0 + u * r.0, a.0.1 + u * r.1))
 }
