@@ -141,14 +141,19 @@ fn collapse_overlay(
 }
 
 /// The bifurcation points of every arch against the axis: μ (left) and K (right), one
-/// line per pair of mechanisms. None unless the axis has at least two numeric values with
-/// bifurcations.
+/// line per pair of mechanisms. None unless the study has one arch axis with at least two
+/// numeric values with bifurcations.
 fn bifurcations_against_axis(
     data: &RunData,
     maps: &[(ArchKey, RegimeMap)],
     lc: &LoadCaseFigure,
 ) -> Option<FigureSpec> {
-    let (by_alpha, _) = axes(data);
+    let (by_alpha, by_n) = axes(data);
+    if by_alpha && by_n {
+        // Two arch axes: one line per pair of mechanisms would mix the counts; the table
+        // under "Values" lists them by arch.
+        return None;
+    }
     let x_of = |(a, n): ArchKey| if by_alpha { Some(a) } else { n.map(f64::from) };
     let mut kinds: Vec<String> = maps
         .iter()
