@@ -13,6 +13,7 @@ mod loads;
 mod mechanisms;
 mod report;
 mod report_arches;
+mod report_regime_map;
 mod run;
 mod shard;
 mod solve;

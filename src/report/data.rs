@@ -154,6 +154,11 @@ pub struct RunData {
     pub load_factors: Vec<store::LoadFactorCase>,
     /// The arch group, load position and λ of every row of bifurcations.parquet.
     pub bifurcation_groups: Vec<store::BifurcationGroup>,
+    /// The arch of every row of results.parquet (empty unless the grid has a
+    /// `half_angle_deg` or `voussoirs` axis).
+    pub result_arches: Vec<store::RowArch>,
+    /// The arch of every row of boundaries.parquet (empty as `result_arches`).
+    pub boundary_arches: Vec<store::RowArch>,
 }
 
 fn optional<T>(path: &Path, read: impl Fn(&Path) -> Result<T>) -> Result<Option<T>> {
@@ -227,6 +232,18 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
     } else {
         Vec::new()
     };
+    let arch_axis = manifest
+        .grid
+        .iter()
+        .any(|a| a.name == "voussoirs" || a.name == "half_angle_deg");
+    let (result_arches, boundary_arches) = if arch_axis {
+        (
+            store::read_row_arches(&layout.results())?,
+            optional(&layout.boundaries(), store::read_row_arches)?.unwrap_or_default(),
+        )
+    } else {
+        (Vec::new(), Vec::new())
+    };
     let data = RunData {
         info,
         manifest,
@@ -240,6 +257,8 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
         load_factors,
         bifurcation_groups: optional(&layout.bifurcations(), store::read_bifurcation_groups)?
             .unwrap_or_default(),
+        result_arches,
+        boundary_arches,
     };
     super::checks::check_tables(&layout.dir, &data)?;
     Ok(data)

@@ -6,6 +6,7 @@ use super::charts::FigureSpec;
 use super::data::RunData;
 use super::tables::{
     accuracy, boundaries, convergence, figures, key_results, mechanisms, provenance, study, timing,
+    values,
 };
 use serde::Serialize;
 
@@ -58,6 +59,9 @@ pub struct ReportView {
     pub errors: Vec<ErrorRow>,
     /// Per quantity, when each voussoir count is one case: value, error and time per model.
     pub convergence: Vec<ConvergenceTable>,
+    /// Values against the axes the study varies (bifurcations by arch, the values behind
+    /// the error rows).
+    pub value_tables: Vec<values::ValueTable>,
     /// Collapse mechanisms per bifurcation.
     pub mechanisms: Vec<MechanismSection>,
     /// Reproducibility facts.
@@ -97,6 +101,7 @@ pub fn build(data: &RunData, figs: &[FigureSpec], svgs: &[String]) -> ReportView
         timing: timing::timing(data),
         errors: accuracy::errors(data),
         convergence: convergence::convergence(data),
+        value_tables: values::value_tables(data),
         mechanisms,
         reproducibility: provenance::reproducibility(data),
         stages: provenance::stages(data),

@@ -458,6 +458,32 @@ pub fn read_bifurcation_groups(path: &Path) -> Result<Vec<BifurcationGroup>> {
         .collect())
 }
 
+/// The arch of one row of results.parquet or boundaries.parquet: its half-angle and voussoir
+/// count (what varies along a `half_angle_deg` or `voussoirs` axis).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RowArch {
+    /// Half-embrace angle α, degrees (90 when the table lacks the column).
+    pub half_angle_deg: f64,
+    /// Voussoir count, `None` for the continuum.
+    pub voussoirs: Option<u32>,
+}
+
+/// Reads the half-angle and voussoir count of every row of results.parquet or
+/// boundaries.parquet, in table order (only those two columns are read).
+pub fn read_row_arches(path: &Path) -> Result<Vec<RowArch>> {
+    let df = super::read_parquet_columns(path, &["half_angle_deg", "voussoirs"])?;
+    let half = f64_or_null(&df, "half_angle_deg");
+    let nv = f64_or_null(&df, "voussoirs");
+    Ok(half
+        .iter()
+        .zip(&nv)
+        .map(|(a, n)| RowArch {
+            half_angle_deg: a.unwrap_or(90.0),
+            voussoirs: n.map(|v| v as u32),
+        })
+        .collect())
+}
+
 /// The reference table.
 pub fn reference_frame(rows: &[ReferenceRow]) -> Result<DataFrame> {
     TableBuilder::new()

@@ -12,9 +12,9 @@ mod table;
 pub use boundaries::{bifurcations_frame, boundaries_frame};
 pub use cases::read_case_results;
 pub use figures::{
-    BifurcationGroup, CurvePoint, LoadFactorCase, MechanismRow, ReferenceRow, StateRow,
+    BifurcationGroup, CurvePoint, LoadFactorCase, MechanismRow, ReferenceRow, RowArch, StateRow,
     curves_frame, mechanisms_frame, read_bifurcation_groups, read_curves, read_load_factor_cases,
-    read_mechanisms, read_reference, read_states, reference_frame, states_frame,
+    read_mechanisms, read_reference, read_row_arches, read_states, reference_frame, states_frame,
 };
 pub use results::{filled_by, results_frame};
 pub use rows::{

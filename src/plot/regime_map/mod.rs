@@ -67,6 +67,41 @@ pub struct RegimeMap {
     pub other_boundaries: Vec<Vec<(f64, f64)>>,
     /// Bifurcation points.
     pub bifurcations: Vec<BifurcationMark>,
+    /// The grid's μ = ∞ column, drawn as its own strip right of the finite axis.
+    pub infinite: Option<InfiniteStrip>,
+}
+
+/// The μ = ∞ column of the grid: regimes along K, changing at the located boundaries.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InfiniteStrip {
+    /// Regime names at the grid K values (None: no value).
+    pub regimes: Vec<Option<std::sync::Arc<str>>>,
+    /// Located regime changes along K at μ = ∞ (`fixed` is +∞).
+    pub crossings: Vec<Crossing>,
+    /// The collapse points at μ = ∞: (K, mechanism).
+    pub collapse: Vec<(f64, String)>,
+}
+
+impl InfiniteStrip {
+    /// The regime at K, from the grid K values `k`: the regime of the grid point below,
+    /// changed at every located change between it and K.
+    pub fn regime_at<'a>(&'a self, k: &[f64], at: f64) -> Option<&'a str> {
+        if k.is_empty() || self.regimes.len() != k.len() {
+            return None;
+        }
+        let j = k.partition_point(|&g| g <= at).clamp(1, k.len()) - 1;
+        let mut changes: Vec<&Crossing> = self
+            .crossings
+            .iter()
+            .filter(|c| c.at > k[j] && c.at <= at)
+            .collect();
+        changes.sort_by(|a, b| a.at.total_cmp(&b.at));
+        match changes.last() {
+            Some(c) => Some(c.high.as_str()),
+            None if at < k[0] => self.regimes[0].as_deref(),
+            None => self.regimes[j].as_deref(),
+        }
+    }
 }
 
 mod labels;
@@ -82,8 +117,72 @@ impl Figure for RegimeMap {
         root: &DrawingArea<DB, Shift>,
         ctx: &PlotContext,
     ) -> DrawResult<(), DB> {
-        let legend = self.legend();
+        self.draw_in(root, root, ctx, true)
+    }
+}
+
+/// Regime maps of the values of an arch axis side by side (small multiples): the same grid,
+/// axes and colours in every panel.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RegimeMapPanels {
+    /// The maps, one per value, each titled by its value.
+    pub maps: Vec<RegimeMap>,
+}
+
+impl RegimeMapPanels {
+    fn columns(&self) -> usize {
+        match self.maps.len() {
+            0 | 1 => 1,
+            2 | 4 => 2,
+            _ => 3,
+        }
+    }
+}
+
+impl Figure for RegimeMapPanels {
+    fn size(&self) -> (u32, u32) {
+        let cols = self.columns();
+        let rows = self.maps.len().div_ceil(cols).max(1);
+        (680 * cols as u32, 560 * rows as u32)
+    }
+
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        ctx: &PlotContext,
+    ) -> DrawResult<(), DB> {
+        let cols = self.columns();
+        let rows = self.maps.len().div_ceil(cols).max(1);
+        // One legend for all panels, in the order of the first map that has each item.
+        let mut legend: Vec<LegendItem> = Vec::new();
+        for item in self.maps.iter().flat_map(RegimeMap::legend) {
+            if !legend.iter().any(|l| l.label == item.label) {
+                legend.push(item);
+            }
+        }
         let upper = style::above_legend(root, ctx, &legend)?;
+        for (area, map) in upper.split_evenly((rows, cols)).iter().zip(&self.maps) {
+            map.draw_in(root, area, ctx, false)?;
+        }
+        Ok(())
+    }
+}
+
+impl RegimeMap {
+    /// Draws the map in `area`, a part of `root` (the whole canvas, on which the pieces
+    /// placed in absolute pixels are drawn), with its legend below it when `with_legend`.
+    fn draw_in<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        area: &DrawingArea<DB, Shift>,
+        ctx: &PlotContext,
+        with_legend: bool,
+    ) -> DrawResult<(), DB> {
+        let upper = if with_legend {
+            style::above_legend(area, ctx, &self.legend())?
+        } else {
+            area.clone()
+        };
         if self.mu.len() < 2 || self.k.len() < 2 {
             upper.draw(&Text::new(
                 "The regime map needs at least two values of μ and of K.".to_string(),
@@ -97,16 +196,22 @@ impl Figure for RegimeMap {
             (self.k[0], self.k[self.k.len() - 1]),
         );
         let ((mu0, mu1), (k0, k1)) = window;
+        let strip = if self.infinite.is_some() {
+            STRIP_GAP + STRIP_WIDTH
+        } else {
+            0.0
+        };
         let mut chart = ChartBuilder::on(&upper)
             .caption(&self.title, ctx.font(17.0))
             .margin(ctx.px(10.0))
-            .margin_right(ctx.px(86.0))
+            .margin_right(ctx.px(86.0 + strip))
             .x_label_area_size(ctx.px(50.0))
             .y_label_area_size(ctx.px(72.0))
             .build_cartesian_2d(mu0..mu1, k0..k1)?;
         self.draw_regions(&mut chart, ctx, window)?;
         draw_mesh(&mut chart, ctx, window)?;
-        draw_t_axis(root, &chart, ctx, window)?;
+        self.draw_strip(root, &chart, ctx, window)?;
+        draw_t_axis(root, &chart, ctx, window, ctx.px(strip))?;
         self.draw_curves(&mut chart, ctx, window)?;
         let mut labels = labels::Labels::new(self, &chart, ctx, window);
         labels.draw_bifurcations(root)?;
@@ -232,11 +337,12 @@ fn draw_t_axis<DB: DrawingBackend>(
     chart: &Chart<DB>,
     ctx: &PlotContext,
     ((_, mu1), (k0, k1)): Window,
+    offset: i32,
 ) -> DrawResult<(), DB> {
     let (xr, yr) = chart.plotting_area().get_pixel_range();
     let (t0, t1) = (t_over_r_from_k(k0), t_over_r_from_k(k1));
     let (ticks, dec) = t_ticks(t0, t1);
-    let x_axis = xr.end;
+    let x_axis = xr.end + offset;
     let tick_font = ctx.font(13.0).pos(Pos::new(HPos::Left, VPos::Center));
     root.draw(&PathElement::new(
         vec![(x_axis, yr.start), (x_axis, yr.end)],
@@ -265,6 +371,63 @@ fn draw_t_axis<DB: DrawingBackend>(
     ))
 }
 
+/// Width of the μ = ∞ strip and of the gap that separates it from the finite axis, design
+/// pixels.
+const STRIP_WIDTH: f64 = 30.0;
+const STRIP_GAP: f64 = 16.0;
+
+impl RegimeMap {
+    /// The μ = ∞ column as a strip right of the plot, separated from the finite μ axis by a
+    /// gap: its regimes along K (the raster's rows), its collapse points as thick ticks in
+    /// the mechanism's colour, a frame and the label ∞ under it.
+    fn draw_strip<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        chart: &Chart<DB>,
+        ctx: &PlotContext,
+        ((_, mu1), (k0, k1)): Window,
+    ) -> DrawResult<(), DB> {
+        let Some(strip) = &self.infinite else {
+            return Ok(());
+        };
+        let (xr, yr) = chart.plotting_area().get_pixel_range();
+        let (x0, x1) = (
+            xr.end + ctx.px(STRIP_GAP),
+            xr.end + ctx.px(STRIP_GAP + STRIP_WIDTH),
+        );
+        let y = |k: f64| chart.backend_coord(&(mu1, k)).1;
+        let ny = ((f64::from(yr.end - yr.start) / ctx.scale / 2.0).ceil() as usize).max(2);
+        let edge = |r: usize| k0 + (k1 - k0) * r as f64 / ny as f64;
+        let mut r = 0;
+        while r < ny {
+            let name = strip.regime_at(&self.k, 0.5 * (edge(r) + edge(r + 1)));
+            let start = r;
+            while r < ny && strip.regime_at(&self.k, 0.5 * (edge(r) + edge(r + 1))) == name {
+                r += 1;
+            }
+            if let Some(name) = name {
+                root.draw(&Rectangle::new(
+                    [(x0, y(edge(r))), (x1, y(edge(start)))],
+                    palette::regime(name).filled(),
+                ))?;
+            }
+        }
+        for (k, mech) in strip.collapse.iter().filter(|c| c.0 >= k0 && c.0 <= k1) {
+            root.draw(&PathElement::new(
+                vec![(x0, y(*k)), (x1, y(*k))],
+                palette::mechanism(mech).stroke_width(ctx.upx(3.2)),
+            ))?;
+        }
+        let frame = BLACK.stroke_width(ctx.upx(1.0).max(1));
+        root.draw(&Rectangle::new([(x0, yr.start), (x1, yr.end)], frame))?;
+        root.draw(&Text::new(
+            "∞".to_string(),
+            ((x0 + x1) / 2, yr.end + ctx.px(8.0)),
+            ctx.font(13.0).pos(Pos::new(HPos::Center, VPos::Top)),
+        ))
+    }
+}
+
 const REGIME_ORDER: [&str; 5] = ["stable", "rotational", "mixed", "sliding", "none"];
 
 /// Ticks of t/R_c inside [t0, t1] at a nice step.
@@ -283,7 +446,13 @@ impl RegimeMap {
     fn legend(&self) -> Vec<LegendItem> {
         let mut items = Vec::new();
         for name in REGIME_ORDER {
-            if self.regimes.iter().any(|r| r.as_deref() == Some(name)) {
+            let strip = self.infinite.iter().flat_map(|s| s.regimes.iter());
+            if self
+                .regimes
+                .iter()
+                .chain(strip)
+                .any(|r| r.as_deref() == Some(name))
+            {
                 let label = match name {
                     "none" => "none (no equilibrium)",
                     other => other,

@@ -152,7 +152,12 @@ pub fn figure(data: &RunData) -> Option<FigureSpec> {
 
 fn accuracy(data: &RunData) -> Option<AccuracyChart> {
     let rows = accuracy_rows(data);
-    if rows.is_empty() {
+    // One voussoir count gives one point per quantity: no line, no order, nothing to read
+    // off a chart that the table does not say.
+    let mut counts: Vec<u32> = rows.iter().map(|r| r.voussoirs).collect();
+    counts.sort_unstable();
+    counts.dedup();
+    if counts.len() < 2 {
         return None;
     }
     let orders = orders(&rows);

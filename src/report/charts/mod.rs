@@ -3,6 +3,7 @@
 //! module of the same name as the chart's file in `crate::plot`.
 
 pub mod accuracy;
+pub mod arch_axis;
 pub mod critical;
 pub mod domains;
 pub mod load_factor;
@@ -20,7 +21,7 @@ use crate::plot::critical::CriticalChart;
 use crate::plot::domains::DomainsChart;
 use crate::plot::lines::LinesChart;
 use crate::plot::mechanisms::MechanismPanels;
-use crate::plot::regime_map::RegimeMap;
+use crate::plot::regime_map::{RegimeMap, RegimeMapPanels};
 use crate::plot::state::StateDrawing;
 use crate::plot::{self, Format};
 
@@ -29,6 +30,8 @@ use crate::plot::{self, Format};
 pub enum Chart {
     /// Figure 1.
     RegimeMap(RegimeMap),
+    /// Figure 1 for every arch of an arch axis, side by side.
+    RegimeMapPanels(RegimeMapPanels),
     /// Figure 2.
     Domains(DomainsChart),
     /// Figure 3.
@@ -61,6 +64,7 @@ impl FigureSpec {
     pub fn render(&self, format: Format) -> Result<Vec<u8>, plot::PlotError> {
         match &self.chart {
             Chart::RegimeMap(c) => plot::render(c, format),
+            Chart::RegimeMapPanels(c) => plot::render(c, format),
             Chart::Domains(c) => plot::render(c, format),
             Chart::State(c) => plot::render(c, format),
             Chart::Critical(c) => plot::render(c, format),
@@ -123,6 +127,7 @@ pub fn build(data: &RunData) -> Vec<FigureSpec> {
             },
         };
         out.extend(regime_map::figure(data, &lc));
+        out.extend(arch_axis::figures(data, &lc));
         out.extend(critical::figure(data, &lc));
         out.extend(load_factor::figures(data, &lc));
     }

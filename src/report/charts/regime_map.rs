@@ -2,13 +2,18 @@
 //! boundaries and the bifurcations.
 
 use super::{Chart, FigureSpec, LoadCaseFigure, single_model};
-use crate::plot::regime_map::{BifurcationMark, CollapseSegment, Crossing, RegimeMap};
+use crate::plot::regime_map::{
+    BifurcationMark, CollapseSegment, Crossing, InfiniteStrip, RegimeMap,
+};
 use crate::report::data::RunData;
 use crate::report::format::short;
-use crate::store::BoundaryRow;
+use crate::store::{BoundaryRow, ResultRow};
 use std::collections::{BTreeMap, HashMap};
+use std::sync::Arc;
 
 const REGIME_CAPTION: &str = "Regimes over the friction coefficient μ (horizontal) and the thickness ratio K = R/r (left axis; t/R_c on the right axis). Stable: an admissible state exists (Hʳ ∩ Hˢ ≠ ∅). Rotational: no line of thrust fits in the arch whatever the friction (Hʳ = ∅). Sliding: no thrust satisfies Coulomb's law at every joint whatever the thickness (Hˢ = ∅). Mixed: both domains exist but are disjoint. The thick line is the collapse curve through the located boundary points, coloured and labelled by the collapse mechanism (hinges only, hinges and sliding joints, sliding joints only); dots mark the bifurcations where two mechanisms coexist, with their values. Dashed lines are the other regime boundaries.";
+
+const REGIONS_NOTE: &str = " Between grid points the regions are bounded by straight lines between the located boundary points.";
 
 fn sorted_distinct(v: impl Iterator<Item = f64>) -> Vec<f64> {
     let mut v: Vec<f64> = v.filter(|x| x.is_finite()).collect();
@@ -22,10 +27,15 @@ fn sorted_distinct(v: impl Iterator<Item = f64>) -> Vec<f64> {
 pub fn figure(data: &RunData, lc: &LoadCaseFigure) -> Option<FigureSpec> {
     let on = &lc.title_suffix;
     let map = regime_map(data, lc.name, on)?;
+    let mut caption = REGIME_CAPTION.to_string();
+    if map.infinite.is_some() {
+        caption.push_str(" The strip at the right, apart from the μ axis, is μ = ∞.");
+    }
+    caption.push_str(REGIONS_NOTE);
     Some(FigureSpec {
         stem: format!("regime-map{}", lc.stem_suffix),
         title: format!("Regime map{on}"),
-        caption: REGIME_CAPTION.into(),
+        caption,
         chart: Chart::RegimeMap(map),
     })
 }
@@ -34,43 +44,114 @@ fn regime_map(data: &RunData, lc: &str, on: &str) -> Option<RegimeMap> {
     if data.manifest.find_of(lc) != "state" || !single_model(data) {
         return None;
     }
-    let rows: Vec<_> = data
-        .results
-        .iter()
-        .filter(|r| &*r.load_case == lc && &*r.find == "state")
-        .collect();
-    let mu = sorted_distinct(rows.iter().filter_map(|r| r.mu));
-    let k = sorted_distinct(rows.iter().filter_map(|r| r.k));
-    if mu.len() < 2 || k.len() < 2 {
-        return None;
+    let title = match &data.manifest.title {
+        Some(t) => format!("{t}{on}"),
+        None => format!("Regimes over μ and K{on}"),
+    };
+    regime_map_of(data, lc, title, None)
+}
+
+/// The arch of an arch axis: half-angle α in degrees and voussoir count (None: continuum).
+pub type ArchKey = (f64, Option<u32>);
+
+fn arch_matches(arch: Option<ArchKey>, a: Option<&crate::store::RowArch>) -> bool {
+    match arch {
+        None => true,
+        Some(key) => a.is_some_and(|a| (a.half_angle_deg, a.voussoirs) == key),
     }
-    let mi: HashMap<u64, usize> = mu
-        .iter()
-        .enumerate()
-        .map(|(i, v)| (v.to_bits(), i))
-        .collect();
-    let ki: HashMap<u64, usize> = k
-        .iter()
-        .enumerate()
-        .map(|(i, v)| (v.to_bits(), i))
-        .collect();
+}
+
+/// The regime of every grid point, K-major (None where no case gives one).
+fn regimes_on_grid(rows: &[&ResultRow], mu: &[f64], k: &[f64]) -> Vec<Option<Arc<str>>> {
+    let index = |v: &[f64]| -> HashMap<u64, usize> {
+        v.iter()
+            .enumerate()
+            .map(|(i, x)| (x.to_bits(), i))
+            .collect()
+    };
+    let (mi, ki) = (index(mu), index(k));
     let mut regimes = vec![None; mu.len() * k.len()];
-    for r in &rows {
+    for r in rows {
         if let (Some(m), Some(kk)) = (r.mu, r.k)
             && let (Some(&i), Some(&j)) = (mi.get(&m.to_bits()), ki.get(&kk.to_bits()))
         {
             regimes[j * mu.len() + i] = r.regime.clone();
         }
     }
-    let bounds = data.boundaries_of(lc);
-    let bifs = data.bifurcations_of(lc);
+    regimes
+}
+
+/// The bifurcations of a load case, of one arch when `arch` is given.
+pub fn bifurcations_of_arch<'a>(
+    data: &'a RunData,
+    lc: &str,
+    arch: Option<ArchKey>,
+) -> Vec<&'a crate::store::BifurcationRow> {
+    data.bifurcations
+        .iter()
+        .flatten()
+        .enumerate()
+        .filter(|(i, b)| {
+            b.load_case == lc
+                && arch.is_none_or(|(a, n)| {
+                    data.bifurcation_groups.get(*i).is_some_and(|g| {
+                        g.half_angle_deg.unwrap_or(90.0) == a && g.voussoirs.flatten() == n
+                    })
+                })
+        })
+        .map(|(_, b)| b)
+        .collect()
+}
+
+/// The regime map of a load case's state cases, of one arch of an arch axis when `arch` is
+/// given (rows of results.parquet, boundaries.parquet and bifurcations.parquet of that
+/// arch only), titled `title`.
+pub fn regime_map_of(
+    data: &RunData,
+    lc: &str,
+    title: String,
+    arch: Option<ArchKey>,
+) -> Option<RegimeMap> {
+    let rows: Vec<&ResultRow> = data
+        .results
+        .iter()
+        .enumerate()
+        .filter(|(i, r)| {
+            &*r.load_case == lc
+                && &*r.find == "state"
+                && arch_matches(arch, data.result_arches.get(*i))
+        })
+        .map(|(_, r)| r)
+        .collect();
+    let mu = sorted_distinct(rows.iter().filter_map(|r| r.mu));
+    let k = sorted_distinct(rows.iter().filter_map(|r| r.k));
+    if mu.len() < 2 || k.len() < 2 {
+        return None;
+    }
+    let regimes = regimes_on_grid(&rows, &mu, &k);
+    let all_bounds: Vec<&BoundaryRow> = data
+        .boundaries
+        .iter()
+        .flatten()
+        .enumerate()
+        .filter(|(i, b)| b.load_case == lc && arch_matches(arch, data.boundary_arches.get(*i)))
+        .map(|(_, b)| b)
+        .collect();
+    let infinite = infinite_strip(&rows, &k, &all_bounds);
+    let bounds: Vec<&BoundaryRow> = all_bounds
+        .into_iter()
+        .filter(|b| b.mu.is_finite() && b.k.is_finite())
+        .collect();
+    let bifs = bifurcations_of_arch(data, lc, arch);
     let span = ((mu[0], mu[mu.len() - 1]), (k[0], k[k.len() - 1]));
     let collapse = collapse_segments(
         &bounds,
         &bifs.iter().map(|b| (b.mu, b.k)).collect::<Vec<_>>(),
         span,
     );
-    let other = other_boundaries(&bounds);
+    let mut other = other_boundaries(&bounds);
+    let bif_points: Vec<(f64, f64)> = bifs.iter().map(|b| (b.mu, b.k)).collect();
+    extend_to_junctions(&mut other, &bif_points, (&mu, &k));
     let crossing = |b: &&BoundaryRow, fixed: f64, at: f64| Crossing {
         fixed,
         at,
@@ -99,10 +180,6 @@ fn regime_map(data: &RunData, lc: &str, on: &str) -> Option<RegimeMap> {
             ],
         })
         .collect();
-    let title = match &data.manifest.title {
-        Some(t) => format!("{t}{on}"),
-        None => format!("Regimes over μ and K{on}"),
-    };
     Some(RegimeMap {
         title,
         mu,
@@ -113,6 +190,48 @@ fn regime_map(data: &RunData, lc: &str, on: &str) -> Option<RegimeMap> {
         collapse,
         other_boundaries: other,
         bifurcations,
+        infinite,
+    })
+}
+
+/// The μ = ∞ column of the grid, when it has one: its regimes at the grid K values, the
+/// located changes along K there and its collapse points.
+fn infinite_strip(
+    rows: &[&ResultRow],
+    k: &[f64],
+    bounds: &[&BoundaryRow],
+) -> Option<InfiniteStrip> {
+    let at_inf: Vec<_> = rows
+        .iter()
+        .filter(|r| r.mu.is_some_and(f64::is_infinite))
+        .collect();
+    if at_inf.is_empty() {
+        return None;
+    }
+    let mut regimes: Vec<Option<Arc<str>>> = vec![None; k.len()];
+    for r in at_inf {
+        if let Some(j) = r.k.and_then(|kk| k.iter().position(|&g| g == kk)) {
+            regimes[j] = r.regime.clone();
+        }
+    }
+    let inf = bounds
+        .iter()
+        .filter(|b| b.mu.is_infinite() && b.axis == "k");
+    Some(InfiniteStrip {
+        regimes,
+        crossings: inf
+            .clone()
+            .map(|b| Crossing {
+                fixed: b.mu,
+                at: b.k,
+                low: b.regime_low.clone(),
+                high: b.regime_high.clone(),
+            })
+            .collect(),
+        collapse: inf
+            .filter(|b| b.on_collapse_curve)
+            .map(|b| (b.k, b.mechanism.clone().unwrap_or_default()))
+            .collect(),
     })
 }
 
@@ -197,4 +316,78 @@ fn other_boundaries(bounds: &[&BoundaryRow]) -> Vec<Vec<(f64, f64)>> {
         })
         .filter(|p| p.len() >= 2)
         .collect()
+}
+
+/// The largest spacing of a grid axis.
+fn largest_step(v: &[f64]) -> f64 {
+    v.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max)
+}
+
+/// Extends each end of the other boundaries, whose located points stop a grid cell short of
+/// where they meet another boundary, to that meeting point: a bifurcation, or the crossing
+/// with the straight line through another boundary, when it lies on the end's own line
+/// within one grid cell beyond the end.
+fn extend_to_junctions(
+    lines: &mut [Vec<(f64, f64)>],
+    bifs: &[(f64, f64)],
+    (mu, k): (&[f64], &[f64]),
+) {
+    let (dm, dk) = (largest_step(mu).max(1e-12), largest_step(k).max(1e-12));
+    // In cell units, so that μ and K weigh alike.
+    let unit = |p: (f64, f64)| (p.0 / dm, p.1 / dk);
+    let ends: Vec<((f64, f64), (f64, f64))> = lines
+        .iter()
+        .filter_map(|l| Some((unit(*l.first()?), unit(*l.last()?))))
+        .collect();
+    let mut candidates: Vec<(f64, f64)> = bifs.iter().map(|&p| unit(p)).collect();
+    for (i, a) in ends.iter().enumerate() {
+        for b in &ends[i + 1..] {
+            candidates.extend(line_crossing(*a, *b));
+        }
+    }
+    for line in lines.iter_mut() {
+        if line.len() < 2 {
+            continue;
+        }
+        for at_end in [false, true] {
+            let n = line.len();
+            let (end, inner) = if at_end {
+                (unit(line[n - 1]), unit(line[n - 2]))
+            } else {
+                (unit(line[0]), unit(line[1]))
+            };
+            let len = (end.0 - inner.0).hypot(end.1 - inner.1).max(1e-12);
+            let dir = ((end.0 - inner.0) / len, (end.1 - inner.1) / len);
+            let best = candidates
+                .iter()
+                .filter_map(|&c| {
+                    let (x, y) = (c.0 - end.0, c.1 - end.1);
+                    let along = x * dir.0 + y * dir.1;
+                    let off = (x * dir.1 - y * dir.0).abs();
+                    (along > 1e-9 && along <= 1.5 && off <= 0.05).then_some((along, c))
+                })
+                .min_by(|a, b| a.0.total_cmp(&b.0));
+            if let Some((_, c)) = best {
+                let p = (c.0 * dm, c.1 * dk);
+                if at_end {
+                    line.push(p);
+                } else {
+                    line.insert(0, p);
+                }
+            }
+        }
+    }
+}
+
+/// Where the line through a.0 and a.1 crosses the line through b.0 and b.1 (None when
+/// parallel).
+fn line_crossing(a: ((f64, f64), (f64, f64)), b: ((f64, f64), (f64, f64))) -> Option<(f64, f64)> {
+    let r = (a.1.0 - a.0.0, a.1.1 - a.0.1);
+    let s = (b.1.0 - b.0.0, b.1.1 - b.0.1);
+    let den = r.0 * s.1 - r.1 * s.0;
+    if den.abs() < 1e-12 {
+        return None;
+    }
+    let u = ((b.0.0 - a.0.0) * s.1 - (b.0.1 - a.0.1) * s.0) / den;
+    Some((a.0.0 + u * r.0, a.0.1 + u * r.1))
 }

@@ -10,6 +10,7 @@ pub mod mechanisms;
 pub mod provenance;
 pub mod study;
 pub mod timing;
+pub mod values;
 
 use serde::Serialize;
 

@@ -63,31 +63,71 @@ fn finds_text(m: &ManifestView) -> String {
     }
 }
 
-/// The arch and the model: shape, joints, weight model, material, find and tolerance.
+/// A value of an axis as the report writes it: `continuum` for a voussoir axis's null, ∞
+/// for another axis's.
+fn axis_value(axis: &str, v: Option<f64>) -> String {
+    match (axis, v) {
+        ("voussoirs", None) => "continuum".into(),
+        (_, None) => "∞".into(),
+        (_, Some(x)) => given(x),
+    }
+}
+
+/// An axis of the grid in words: `grid axis, 4 values from 60 to 90`, `grid axis, 25
+/// values from 3 to 4096 and the continuum`.
+fn axis_words(m: &ManifestView, name: &str) -> Option<String> {
+    let a = m.axis(name)?;
+    let finite: Vec<f64> = a.values.iter().flatten().copied().collect();
+    let lo = finite.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = finite.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let mut range = match finite.len() {
+        0 => String::new(),
+        1 => given(lo),
+        _ => format!("from {} to {}", given(lo), given(hi)),
+    };
+    if a.values.iter().any(Option::is_none) {
+        let extra = axis_value(name, None);
+        range = if range.is_empty() {
+            extra
+        } else {
+            format!("{range} and the {extra}").replace("the ∞", "∞")
+        };
+    }
+    Some(match a.values.len() {
+        1 => format!("grid axis, one value: {range}"),
+        n => format!("grid axis, {n} values: {range}"),
+    })
+}
+
+/// The arch and the model: shape, joints, weight model, material, find and tolerance. A
+/// half-angle or voussoir count that varies is described as the axis it is.
 pub fn model(m: &ManifestView) -> Vec<Item> {
+    let alpha = axis_words(m, "half_angle_deg").map_or_else(
+        || format!("half-embrace angle α = {}°", given(m.arch.half_angle_deg)),
+        |w| format!("half-embrace angle α (°): {w}"),
+    );
+    let joints = axis_words(m, "voussoirs").map_or_else(
+        || {
+            m.arch
+                .voussoir_count()
+                .map_or("continuum (every section a potential joint)".into(), |n| {
+                    format!("{n} voussoirs")
+                })
+        },
+        |w| format!("voussoir count N: {w}"),
+    );
     vec![
         item(
             "shape",
             format!(
-                "{}{}, half-embrace angle α = {}°",
+                "{}{}, {alpha}",
                 m.arch.shape,
                 m.arch
                     .eccentricity
                     .map_or(String::new(), |e| format!(" (eccentricity {e})")),
-                given(m.arch.half_angle_deg)
             ),
         ),
-        item(
-            "joints",
-            format!(
-                "{}, {}",
-                m.arch.joints,
-                m.arch.voussoir_count().map_or(
-                    "continuum (every section a potential joint)".into(),
-                    |n| format!("{n} voussoirs")
-                )
-            ),
-        ),
+        item("joints", format!("{}, {joints}", m.arch.joints)),
         item(
             "weight model",
             match m.arch.weight.as_str() {
@@ -115,9 +155,7 @@ pub fn grid(m: &ManifestView) -> Vec<AxisRow> {
     m.grid
         .iter()
         .map(|a| {
-            let g = |v: Option<&Option<f64>>| {
-                v.map_or("—".into(), |x| given(x.unwrap_or(f64::INFINITY)))
-            };
+            let g = |v: Option<&Option<f64>>| v.map_or("—".into(), |x| axis_value(&a.name, *x));
             AxisRow {
                 name: axis_name(&a.name).to_string(),
                 count: a.values.len().to_string(),
