@@ -199,19 +199,38 @@ impl Plan {
             Some(e) => format!("{} (e = {e})", m.arch.shape),
             None => m.arch.shape.to_string(),
         };
+        // An arch parameter that is a grid axis is described with the axes, not as one value.
+        let is_axis = |n: AxisName| m.grid.iter().any(|a| a.name == n);
+        let alpha = if is_axis(AxisName::HalfAngleDeg) {
+            "α: grid axis".to_string()
+        } else {
+            format!("α = {}°", m.arch.half_angle_deg)
+        };
+        let voussoirs = if is_axis(AxisName::Voussoirs) {
+            "voussoirs: grid axis".to_string()
+        } else {
+            m.arch.voussoirs.to_string()
+        };
         s.push_str(&format!(
-            "arch: {} α = {}°, {} joints, {} weight, {}\n",
-            shape, m.arch.half_angle_deg, m.arch.joints, m.arch.weight, m.arch.voussoirs
+            "arch: {} {alpha}, {} joints, {} weight, {voussoirs}\n",
+            shape, m.arch.joints, m.arch.weight
         ));
         for a in &m.grid {
             let first = a.values.first().copied().unwrap_or(f64::NAN);
             let last = a.values.last().copied().unwrap_or(f64::NAN);
+            let show = |v: f64| {
+                if a.name == AxisName::Voussoirs && v.is_infinite() {
+                    "continuum".to_string()
+                } else {
+                    v.to_string()
+                }
+            };
             s.push_str(&format!(
                 "axis {}: {} values from {} to {}\n",
                 a.name.as_str(),
                 a.values.len(),
-                first,
-                last
+                show(first),
+                show(last)
             ));
         }
         let names: Vec<String> = m
@@ -242,6 +261,24 @@ impl Plan {
 mod tests {
     use super::*;
     use std::path::Path;
+
+    #[test]
+    fn arch_axes_are_described_as_axes() {
+        let m = crate::manifest::parse(
+            "name: ax\ngrid:\n  half_angle_deg: {values: [60, 90]}\n  voussoirs: {values: [8, continuum]}\n  k: {values: [1.2]}\n  mu: {values: [0.4]}\n",
+            Path::new("ax.yaml"),
+        )
+        .unwrap();
+        let text = build(m).unwrap().describe();
+        assert!(text.contains("α: grid axis"), "{text}");
+        assert!(text.contains("voussoirs: grid axis"), "{text}");
+        assert!(!text.contains("α = 90°"), "{text}");
+        assert!(
+            text.contains("axis voussoirs: 2 values from 8 to continuum"),
+            "{text}"
+        );
+        assert!(text.contains("cases: 4"), "{text}");
+    }
 
     #[test]
     fn load_cases_span_the_axes_of_their_own_find() {
