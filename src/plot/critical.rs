@@ -205,11 +205,7 @@ impl Figure for CriticalChart {
         root: &DrawingArea<DB, Shift>,
         ctx: &PlotContext,
     ) -> DrawResult<(), DB> {
-        let legend = self.legend();
-        let upper = style::above_legend(root, ctx, &legend)?;
-        let upper = style::title(&upper, ctx, &self.title)?;
-        let n = self.panels.len().max(1);
-        let areas = upper.split_evenly((1, n));
+        let areas = style::panel_areas(root, ctx, &self.legend(), &self.title, self.panels.len())?;
         for (a, p) in areas.iter().zip(&self.panels) {
             draw_panel(a, root, ctx, p)?;
         }

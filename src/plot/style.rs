@@ -559,6 +559,20 @@ pub fn decimals_for(span: f64) -> usize {
     (-step.log10().floor()).max(0.0) as usize
 }
 
+/// Draws the legend along the bottom and the title at the top of `root`, and returns `n`
+/// side-by-side areas for the panels of a chart between them.
+pub fn panel_areas<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    ctx: &PlotContext,
+    legend: &[LegendItem],
+    heading: &str,
+    n: usize,
+) -> DrawResult<Vec<DrawingArea<DB, Shift>>, DB> {
+    let upper = above_legend(root, ctx, legend)?;
+    let upper = title(&upper, ctx, heading)?;
+    Ok(upper.split_evenly((1, n.max(1))))
+}
+
 /// Draws a title centred at the top of `area` and returns the area below it.
 pub fn title<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
