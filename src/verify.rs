@@ -71,14 +71,42 @@ pub fn verify(opts: &VerifyOptions, out: &mut dyn Write) -> Result<bool> {
         return Ok(false);
     };
     provenance(&prov, out)?;
-    let reports = redraw::reports_match(&dir, &prov, out)?;
-    if !redraw::rows_match_plan(&dir, out)? {
+    let Some(cases) = redraw::rows_match_plan(&dir, out)? else {
         writeln!(
             out,
             "verdict: DIFFERENT (results.parquet does not hold the manifest's cases); not re-run"
         )?;
         return Ok(false);
+    };
+    // Drawing the reports again and re-running both hold every case in memory.
+    let needed = runner::needed_bytes(u64::try_from(cases).unwrap_or(u64::MAX));
+    let available = runner::available_memory();
+    let too_big = runner::check_memory(cases, available).is_err();
+    if too_big && opts.rerun {
+        let gib = |b: u64| b as f64 / f64::from(1u32 << 30);
+        return Err(UsageError::new(
+            "ARCHIVE|RUN_DIR",
+            target.display(),
+            format!(
+                "a run small enough to re-run here: its {cases} cases need about {:.1} GiB of \
+                 memory, {:.1} GiB is available. Check its integrity only with `archstudy \
+                 verify --no-rerun`, or verify it on a machine with that memory",
+                gib(needed),
+                gib(available.unwrap_or(0))
+            ),
+        )
+        .into());
     }
+    let reports = if too_big {
+        writeln!(
+            out,
+            "reports: {cases} cases are too many to draw again in the memory available; \
+                 checked by checksum only"
+        )?;
+        true
+    } else {
+        redraw::reports_match(&dir, &prov, out)?
+    };
     if !opts.rerun {
         writeln!(out, "re-run: skipped (--no-rerun)")?;
         if reports {

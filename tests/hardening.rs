@@ -357,3 +357,178 @@ proptest! {
         }
     }
 }
+
+/// Spawns archstudy with `args` and kills it with SIGKILL (which no handler sees) as soon as
+/// `leftover` exists; false when the command finished first.
+fn killed_when_it_writes(args: &[&str], leftover: impl Fn(u32) -> PathBuf) -> bool {
+    let mut child = bin().args(args).spawn().unwrap();
+    let path = leftover(child.id());
+    while !path.exists() {
+        if child.try_wait().unwrap().is_some() {
+            return false;
+        }
+        std::thread::yield_now();
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert!(
+        path.exists(),
+        "{} vanished with its process",
+        path.display()
+    );
+    true
+}
+
+/// A 400 × 400 grid: long enough to be caught mid-way.
+const LARGER: &str = "name: tiny
+grid:
+  k: {from: 1.05, to: 1.5, steps: 400}
+  mu: {from: 0.2, to: 0.8, steps: 400}
+";
+
+#[test]
+fn kill_9_mid_run_keeps_the_earlier_run_and_the_next_run_sweeps_the_staging() {
+    let dir = scratch("kill9-run");
+    let run = tiny_run(&dir);
+    let before = std::fs::read(run.join("results.parquet")).unwrap();
+    let out = dir.join("out");
+    let larger = manifest(&dir, "larger.yaml", LARGER);
+    let args = [
+        "run",
+        larger.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ];
+    let killed = (0..5)
+        .any(|_| killed_when_it_writes(&args, |pid| out.join(format!(".tiny.partial-{pid}"))));
+    assert!(killed, "every run finished before it could be killed");
+    // The killed run could not clean up: its staging directory is the only leftover.
+    assert_eq!(leftovers(&dir).len(), 1, "{:?}", leftovers(&dir));
+    assert!(std::fs::read(run.join("results.parquet")).unwrap() == before);
+    let again = manifest(&dir, "tiny.yaml", TINY);
+    let o = archstudy(&[
+        "run",
+        again.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(leftovers(&dir).is_empty(), "{:?}", leftovers(&dir));
+    assert!(run.join("run.json").is_file());
+}
+
+#[test]
+fn kill_9_mid_archive_leaves_no_archive_and_the_next_archive_sweeps_its_temporary() {
+    let dir = scratch("kill9-archive");
+    let larger = manifest(&dir, "larger.yaml", LARGER);
+    let out = dir.join("out");
+    let o = archstudy(&[
+        "run",
+        larger.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let run = out.join("tiny");
+    let target = dir.join("run.tar.gz");
+    let args = [
+        "archive",
+        run.to_str().unwrap(),
+        "-o",
+        target.to_str().unwrap(),
+    ];
+    let killed = (0..5).any(|_| {
+        let _ = std::fs::remove_file(&target);
+        killed_when_it_writes(&args, |pid| dir.join(format!(".run.tar.gz.tmp-{pid}")))
+    });
+    assert!(killed, "every archive finished before it could be killed");
+    assert!(
+        !target.exists(),
+        "a killed archive must not leave a complete-looking file"
+    );
+    assert_eq!(leftovers(&dir).len(), 1, "{:?}", leftovers(&dir));
+    let o = archstudy(&[
+        "archive",
+        run.to_str().unwrap(),
+        "-o",
+        target.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(leftovers(&dir).is_empty(), "{:?}", leftovers(&dir));
+    let o = archstudy(&["verify", target.to_str().unwrap(), "--no-rerun"]);
+    assert!(o.status.success(), "{}", crate::common::stdout(&o));
+}
+
+#[test]
+fn an_out_directory_that_is_a_link_is_followed_but_a_linked_run_directory_is_not_replaced() {
+    let dir = scratch("linked-out");
+    let m = manifest(&dir, "tiny.yaml", TINY);
+    // OUT itself a link (scratch storage on a cluster): the user chose it, so it is used.
+    let storage = dir.join("storage");
+    std::fs::create_dir(&storage).unwrap();
+    let out = dir.join("out");
+    std::os::unix::fs::symlink(&storage, &out).unwrap();
+    let args = |o: &Path| {
+        archstudy(&[
+            "run",
+            m.to_str().unwrap(),
+            "--out",
+            o.to_str().unwrap(),
+            "--quiet",
+        ])
+    };
+    let o = args(&out);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(storage.join("tiny/results.parquet").is_file());
+    // OUT/NAME a link to a run elsewhere: never replaced, the run it points to untouched.
+    let other = dir.join("other");
+    std::fs::create_dir(&other).unwrap();
+    std::os::unix::fs::symlink(storage.join("tiny"), other.join("tiny")).unwrap();
+    let before = std::fs::read(storage.join("tiny/results.parquet")).unwrap();
+    let o = args(&other);
+    assert_usage_error(&o, &["--out", "symbolic link"]);
+    assert!(
+        std::fs::symlink_metadata(other.join("tiny"))
+            .unwrap()
+            .is_symlink()
+    );
+    assert_eq!(
+        std::fs::read(storage.join("tiny/results.parquet")).unwrap(),
+        before
+    );
+    assert!(leftovers(&dir).is_empty(), "{:?}", leftovers(&dir));
+}
+
+#[test]
+fn verify_of_a_run_too_large_to_redo_here_checks_integrity_within_the_memory_limit() {
+    use polars::prelude::{DataFrame, IntoColumn, NamedFrom, ParquetWriter, Series};
+    let dir = scratch("verify-large");
+    let run = tiny_run(&dir);
+    // The run of a 2000 × 1500 grid: 3,000,000 rows, more than 4 GB of memory can re-run.
+    let text = "name: tiny\ngrid:\n  k: {from: 1.05, to: 1.5, steps: 2000}\n  mu: {from: 0.2, to: 0.8, steps: 1500}\n";
+    let old = archstudy::provenance::sha256_hex(&std::fs::read(run.join("manifest.yaml")).unwrap());
+    std::fs::write(run.join("manifest.yaml"), text).unwrap();
+    let new = archstudy::provenance::sha256_hex(text.as_bytes());
+    let info = std::fs::read_to_string(run.join("run.json")).unwrap();
+    std::fs::write(run.join("run.json"), info.replace(&old, &new)).unwrap();
+    let ids = Series::new("case_id".into(), vec![0u32; 3_000_000]).into_column();
+    let mut frame = DataFrame::new(3_000_000, vec![ids]).unwrap();
+    let file = std::fs::File::create(run.join("results.parquet")).unwrap();
+    ParquetWriter::new(file).finish(&mut frame).unwrap();
+    let r = run.to_str().unwrap();
+
+    let o = limited("ulimit -v 4000000", &["verify", r]);
+    assert_usage_error(&o, &["3000000 cases", "GiB", "--no-rerun"]);
+    let o = limited("ulimit -v 4000000", &["verify", r, "--no-rerun"]);
+    let text = crate::common::stdout(&o);
+    assert!(o.status.success(), "{text}{}", stderr(&o));
+    assert!(
+        text.contains("results.parquet has the 3000000 rows of the plan"),
+        "{text}"
+    );
+    assert!(text.contains("too many to draw again"), "{text}");
+    assert!(text.contains("verdict: OK (integrity only)"), "{text}");
+}
