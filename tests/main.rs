@@ -8,6 +8,7 @@ mod boundaries;
 mod citation;
 mod common;
 mod damaged;
+mod disk_full;
 mod hardening;
 mod loads;
 mod mechanisms;
