@@ -544,3 +544,31 @@ fn verify_of_a_run_too_large_to_redo_here_checks_integrity_within_the_memory_lim
     assert!(text.contains("too many to draw again"), "{text}");
     assert!(text.contains("verdict: OK (integrity only)"), "{text}");
 }
+
+#[test]
+fn archive_never_packs_what_a_link_in_the_run_points_to() {
+    let dir = scratch("archive-link");
+    let run = tiny_run(&dir);
+    let secret = dir.join("secret.txt");
+    std::fs::write(&secret, "not part of any run").unwrap();
+    std::os::unix::fs::symlink(&secret, run.join("plots/extra.svg")).unwrap();
+    let a = dir.join("a.tar.gz");
+    let o = archstudy(&["archive", run.to_str().unwrap(), "-o", a.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("plots/extra.svg was left out"),
+        "{}",
+        stderr(&o)
+    );
+    let listing = Command::new("tar").arg("tzvf").arg(&a).output().unwrap();
+    let listing = String::from_utf8_lossy(&listing.stdout);
+    assert!(!listing.contains("extra.svg"), "{listing}");
+    let bytes = Command::new("tar")
+        .arg("xzOf")
+        .arg(&a)
+        .output()
+        .unwrap()
+        .stdout;
+    let text = String::from_utf8_lossy(&bytes);
+    assert!(!text.contains("not part of any run"));
+}

@@ -128,7 +128,10 @@ fn render(args: &ReportArgs) -> Result<ExitCode> {
 fn pack(args: &ArchiveArgs) -> Result<ExitCode> {
     let s = archive::write_archive_with(&args.run_dir, args.output.as_deref(), args.force)?;
     for k in &s.skipped {
-        eprintln!("warning: {k} is not a file a run writes and was left out");
+        eprintln!(
+            "warning: {k} was left out: only the regular files a run writes are archived, \
+             never a symbolic link or a file added by hand"
+        );
     }
     eprintln!(
         "{} files and {} under {}/ ({} bytes) written to {}",
