@@ -95,3 +95,33 @@ pub fn assert_usage_error(o: &Output, names: &[&str]) {
         assert!(e.contains(n), "the message does not name `{n}`: {e}");
     }
 }
+
+/// A 2 × 2 state study named `tiny`: a run of a few files.
+pub const TINY: &str = "name: tiny
+grid:
+  k: {values: [1.2, 1.3]}
+  mu: {values: [0.4, 0.6]}
+";
+
+/// A 400 × 400 state study named `tiny`: long enough to be caught or to fill a small disk.
+pub const LARGER: &str = "name: tiny
+grid:
+  k: {from: 1.05, to: 1.5, steps: 400}
+  mu: {from: 0.2, to: 0.8, steps: 400}
+";
+
+/// Every hidden leftover (staging, set-aside run, temporary) under `dir`, recursively; links
+/// are not followed.
+pub fn leftovers(dir: &Path) -> Vec<String> {
+    let mut out = Vec::new();
+    for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+        let n = e.file_name().to_string_lossy().into_owned();
+        if n.contains(".partial-") || n.contains(".old-") || n.contains(".tmp-") {
+            out.push(e.path().display().to_string());
+        }
+        if e.file_type().is_ok_and(|t| t.is_dir()) {
+            out.extend(leftovers(&e.path()));
+        }
+    }
+    out
+}

@@ -3,7 +3,7 @@
 //! stay alive, must fail with a message and clean up after themselves. Mounting needs root
 //! (as on CI); elsewhere the test says why it did nothing.
 
-use crate::common::{archstudy, manifest, scratch, stderr};
+use crate::common::{LARGER, TINY, archstudy, leftovers, manifest, scratch, stderr};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -50,34 +50,6 @@ fn fs_free(p: &Path) -> u64 {
     let text = String::from_utf8_lossy(&o.stdout);
     text.lines().nth(1).unwrap().trim().parse::<u64>().unwrap() * 1024
 }
-
-/// Names under `dir` that a failed command must not leave: staging, set-aside runs,
-/// temporaries.
-fn leftovers(dir: &Path) -> Vec<String> {
-    let mut out = Vec::new();
-    for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
-        let n = e.file_name().to_string_lossy().into_owned();
-        if n.contains(".partial-") || n.contains(".old-") || n.contains(".tmp-") {
-            out.push(n);
-        }
-        if e.file_type().unwrap().is_dir() {
-            out.extend(leftovers(&e.path()));
-        }
-    }
-    out
-}
-
-const TINY: &str = "name: tiny
-grid:
-  k: {values: [1.2, 1.3]}
-  mu: {values: [0.4, 0.6]}
-";
-
-const LARGER: &str = "name: tiny
-grid:
-  k: {from: 1.05, to: 1.5, steps: 300}
-  mu: {from: 0.2, to: 0.8, steps: 300}
-";
 
 fn run(m: &Path, out: &Path) -> std::process::Output {
     archstudy(&[

@@ -2,16 +2,12 @@
 //! run directory. Each test asserts the refusal (exit 2, the key or option named) or that the
 //! earlier run is intact and no temporary is left.
 
-use crate::common::{archstudy, assert_usage_error, bin, manifest, scratch, stderr};
+use crate::common::{
+    LARGER, TINY, archstudy, assert_usage_error, bin, leftovers, manifest, scratch, stderr,
+};
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-
-const TINY: &str = "name: tiny
-grid:
-  k: {values: [1.2, 1.3]}
-  mu: {values: [0.4, 0.6]}
-";
 
 fn corpus() -> Vec<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus");
@@ -34,21 +30,6 @@ fn limited(limit: &str, args: &[&str]) -> std::process::Output {
         .args(args)
         .output()
         .unwrap()
-}
-
-/// Every hidden leftover (staging, set-aside run, temporary) under `dir`, recursively.
-fn leftovers(dir: &Path) -> Vec<String> {
-    let mut out = Vec::new();
-    for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
-        let n = e.file_name().to_string_lossy().into_owned();
-        if n.contains(".partial-") || n.contains(".old-") || n.contains(".tmp-") {
-            out.push(e.path().display().to_string());
-        }
-        if e.file_type().unwrap().is_dir() {
-            out.extend(leftovers(&e.path()));
-        }
-    }
-    out
 }
 
 #[test]
@@ -390,13 +371,6 @@ fn killed_when_it_writes(args: &[&str], leftover: impl Fn(u32) -> PathBuf) -> bo
     );
     true
 }
-
-/// A 400 × 400 grid: long enough to be caught mid-way.
-const LARGER: &str = "name: tiny
-grid:
-  k: {from: 1.05, to: 1.5, steps: 400}
-  mu: {from: 0.2, to: 0.8, steps: 400}
-";
 
 #[test]
 fn kill_9_mid_run_keeps_the_earlier_run_and_the_next_run_sweeps_the_staging() {
