@@ -31,6 +31,17 @@ pub fn manifest(dir: &Path, file: &str, text: &str) -> PathBuf {
     p
 }
 
+/// `archstudy run MANIFEST --out OUT --quiet`.
+pub fn run_quiet(manifest: &Path, out: &Path) -> Output {
+    archstudy(&[
+        "run",
+        manifest.to_str().expect("a UTF-8 path"),
+        "--out",
+        out.to_str().expect("a UTF-8 path"),
+        "--quiet",
+    ])
+}
+
 /// Standard output as text.
 pub fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()

@@ -3,7 +3,7 @@
 //! stay alive, must fail with a message and clean up after themselves. Mounting needs root
 //! (as on CI); elsewhere the test says why it did nothing.
 
-use crate::common::{LARGER, TINY, archstudy, leftovers, manifest, scratch, stderr};
+use crate::common::{LARGER, TINY, archstudy, leftovers, manifest, run_quiet, scratch, stderr};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -51,16 +51,6 @@ fn fs_free(p: &Path) -> u64 {
     text.lines().nth(1).unwrap().trim().parse::<u64>().unwrap() * 1024
 }
 
-fn run(m: &Path, out: &Path) -> std::process::Output {
-    archstudy(&[
-        "run",
-        m.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ])
-}
-
 #[test]
 fn run_report_and_archive_on_a_full_disk_fail_cleanly_and_keep_the_earlier_run() {
     let dir = scratch("disk-full");
@@ -70,7 +60,7 @@ fn run_report_and_archive_on_a_full_disk_fail_cleanly_and_keep_the_earlier_run()
     };
     let out = disk.0.join("out");
     let tiny = manifest(&dir, "tiny.yaml", TINY);
-    let o = run(&tiny, &out);
+    let o = run_quiet(&tiny, &out);
     assert!(o.status.success(), "{}", stderr(&o));
     let earlier = out.join("tiny");
     let results = std::fs::read(earlier.join("results.parquet")).unwrap();
@@ -79,7 +69,7 @@ fn run_report_and_archive_on_a_full_disk_fail_cleanly_and_keep_the_earlier_run()
     // A run whose results and figures do not fit: an error naming the full disk.
     disk.fill_but(600 << 10);
     let larger = manifest(&dir, "larger.yaml", LARGER);
-    let o = run(&larger, &out);
+    let o = run_quiet(&larger, &out);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("No space left"), "{}", stderr(&o));
     assert!(std::fs::read(earlier.join("results.parquet")).unwrap() == results);

@@ -3,7 +3,8 @@
 //! earlier run is intact and no temporary is left.
 
 use crate::common::{
-    LARGER, TINY, archstudy, assert_usage_error, bin, leftovers, manifest, scratch, stderr,
+    LARGER, TINY, archstudy, assert_usage_error, bin, leftovers, manifest, run_quiet, scratch,
+    stderr,
 };
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
@@ -131,13 +132,7 @@ fn run_never_replaces_a_users_directory_of_the_same_name() {
     let out = dir.join("out");
     std::fs::create_dir_all(out.join("tiny")).unwrap();
     std::fs::write(out.join("tiny/thesis.tex"), "mine").unwrap();
-    let o = archstudy(&[
-        "run",
-        m.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
+    let o = run_quiet(&m, &out);
     assert_usage_error(&o, &["--out", "not a run directory"]);
     assert_eq!(
         std::fs::read_to_string(out.join("tiny/thesis.tex")).unwrap(),
@@ -149,13 +144,7 @@ fn run_never_replaces_a_users_directory_of_the_same_name() {
 fn tiny_run(dir: &Path) -> PathBuf {
     let m = manifest(dir, "tiny.yaml", TINY);
     let out = dir.join("out");
-    let o = archstudy(&[
-        "run",
-        m.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
+    let o = run_quiet(&m, &out);
     assert!(o.status.success(), "{}", stderr(&o));
     out.join("tiny")
 }
@@ -209,13 +198,7 @@ fn a_full_disk_during_run_keeps_the_earlier_run_and_leaves_no_temporary() {
     assert!(!o.status.success(), "the run fitted in 10 kB");
     assert_eq!(std::fs::read(run.join("results.parquet")).unwrap(), before);
     // A process killed by the limit cannot clean up; the next run sweeps what it left.
-    let o = archstudy(&[
-        "run",
-        m.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
+    let o = run_quiet(&m, &out);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(leftovers(&dir).is_empty(), "{:?}", leftovers(&dir));
     // report and archive under the same limit leave nothing either once rerun.
@@ -393,13 +376,7 @@ fn kill_9_mid_run_keeps_the_earlier_run_and_the_next_run_sweeps_the_staging() {
     assert_eq!(leftovers(&dir).len(), 1, "{:?}", leftovers(&dir));
     assert!(std::fs::read(run.join("results.parquet")).unwrap() == before);
     let again = manifest(&dir, "tiny.yaml", TINY);
-    let o = archstudy(&[
-        "run",
-        again.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
+    let o = run_quiet(&again, &out);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(leftovers(&dir).is_empty(), "{:?}", leftovers(&dir));
     assert!(run.join("run.json").is_file());
@@ -410,13 +387,7 @@ fn kill_9_mid_archive_leaves_no_archive_and_the_next_archive_sweeps_its_temporar
     let dir = scratch("kill9-archive");
     let larger = manifest(&dir, "larger.yaml", LARGER);
     let out = dir.join("out");
-    let o = archstudy(&[
-        "run",
-        larger.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
+    let o = run_quiet(&larger, &out);
     assert!(o.status.success(), "{}", stderr(&o));
     let run = out.join("tiny");
     let target = dir.join("run.tar.gz");
@@ -457,15 +428,7 @@ fn an_out_directory_that_is_a_link_is_followed_but_a_linked_run_directory_is_not
     std::fs::create_dir(&storage).unwrap();
     let out = dir.join("out");
     std::os::unix::fs::symlink(&storage, &out).unwrap();
-    let args = |o: &Path| {
-        archstudy(&[
-            "run",
-            m.to_str().unwrap(),
-            "--out",
-            o.to_str().unwrap(),
-            "--quiet",
-        ])
-    };
+    let args = |o: &Path| run_quiet(&m, o);
     let o = args(&out);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(storage.join("tiny/results.parquet").is_file());
