@@ -17,3 +17,4 @@ mod report_regime_map;
 mod run;
 mod shard;
 mod solve;
+mod symmetric_lines;

@@ -1,0 +1,154 @@
+//! The regimes of one K line of a symmetric self-weight state grid on any form (pointed
+//! arches, vertical joints, voussoirs), from a few margins of the general route.
+//!
+//! At fixed K the rotational rows do not involve the friction angle φ, and the feasible sets
+//! of the sliding rows alone and of all rows grow with φ (each Coulomb cone |T| ≤ N tan φ
+//! contains the cones of smaller φ). Hence along a K line: H^r ≠ ∅ is one answer for every
+//! φ, H^s ≠ ∅ holds from a sliding threshold φ_s(K) up, and the arch stands from a critical
+//! friction angle φ_m(K) ≥ φ_s(K) up. The line's regimes are read from these two thresholds,
+//! each located among the line's own friction values by bisection on their index. Every
+//! margin is the one the general route evaluates at that point (the same geometry, angle,
+//! rows and settings), so a point the bisection visits has exactly the general route's
+//! answer, and every other point is decided by monotonicity from two visited neighbours.
+
+use crate::analysis::general::{self, Outcome, RowSet, Settings};
+use crate::analysis::statics::ArchGeometry;
+use crate::analysis::types::Regime;
+
+/// The thresholds of one K line among its sorted friction angles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct LineRegimes {
+    /// Whether the rotational rows alone are feasible (H^r ≠ ∅) on this line.
+    pub rotational: bool,
+    /// Index of the first angle at which the sliding rows alone are feasible (the count of
+    /// angles when none is).
+    pub first_sliding: usize,
+    /// Index of the first angle at which all rows are feasible (the count of angles when
+    /// none is).
+    pub first_stable: usize,
+    /// Margins (linear programmes) evaluated to find them.
+    pub margins: usize,
+}
+
+impl LineRegimes {
+    /// The regime at the angle of index `i` (as [`general::regime`] names it).
+    pub fn regime(&self, i: usize) -> Regime {
+        match (
+            self.rotational,
+            i >= self.first_sliding,
+            i >= self.first_stable,
+        ) {
+            (_, _, true) => Regime::Stable,
+            (true, true, false) => Regime::Mixed,
+            (false, true, false) => Regime::Rotational,
+            (true, false, false) => Regime::Sliding,
+            (false, false, false) => Regime::None,
+        }
+    }
+}
+
+/// The smallest index in `from..n` at which `feasible` holds, for a predicate that holds on
+/// a final segment of the indices (`n` when it holds nowhere); `None` when a margin fails.
+fn first_feasible(
+    from: usize,
+    n: usize,
+    mut feasible: impl FnMut(usize) -> Option<bool>,
+) -> Option<usize> {
+    let (mut lo, mut hi) = (from, n);
+    // Invariant: the predicate fails below lo (or lo = from) and holds at hi (or hi = n).
+    while lo < hi {
+        let mid = lo + (hi - lo) / 2;
+        if feasible(mid)? {
+            hi = mid;
+        } else {
+            lo = mid + 1;
+        }
+    }
+    Some(lo)
+}
+
+/// The regimes of a K line of geometry `geom` at the friction angles `phis` (radians,
+/// ascending; π/2 for μ = ∞), with the general route's settings. `None` when a margin could
+/// not be computed (the general route gives no regime there either): the caller then
+/// analyses the line point by point.
+pub fn line_regimes<G: ArchGeometry + ?Sized>(
+    geom: &G,
+    phis: &[f64],
+    settings: &Settings,
+) -> Option<LineRegimes> {
+    let n = phis.len();
+    let mut margins = 0usize;
+    let mut feasible = |set: RowSet, phi: f64| {
+        margins += 1;
+        let m = general::margin(geom, phi, set, settings);
+        (m.outcome == Outcome::Solved).then(|| m.feasible(settings))
+    };
+    // The rotational rows do not involve φ.
+    let phi_any = phis.first().copied().unwrap_or(std::f64::consts::FRAC_PI_2);
+    let rotational = feasible(RowSet::Rotational, phi_any)?;
+    let first_sliding = first_feasible(0, n, |i| feasible(RowSet::Sliding, phis[i]))?;
+    // All rows feasible needs the sliding rows feasible, and the rotational ones.
+    let first_stable = if rotational {
+        first_feasible(first_sliding, n, |i| feasible(RowSet::All, phis[i]))?
+    } else {
+        n
+    };
+    Some(LineRegimes {
+        rotational,
+        first_sliding,
+        first_stable,
+        margins,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bisection_finds_the_first_feasible_index() {
+        for n in 0..12 {
+            for t in 0..=n {
+                let mut calls = 0;
+                let r = first_feasible(0, n, |i| {
+                    calls += 1;
+                    Some(i >= t)
+                });
+                assert_eq!(r, Some(t), "n {n} t {t}");
+                assert!(calls <= 4, "n {n}: {calls} calls");
+            }
+        }
+        assert_eq!(first_feasible(0, 5, |_| None), None);
+        assert_eq!(first_feasible(3, 8, |i| Some(i >= 1)), Some(3));
+    }
+
+    #[test]
+    fn regimes_follow_the_thresholds() {
+        let line = LineRegimes {
+            rotational: true,
+            first_sliding: 2,
+            first_stable: 4,
+            margins: 0,
+        };
+        let got: Vec<Regime> = (0..6).map(|i| line.regime(i)).collect();
+        use Regime as R;
+        assert_eq!(
+            got,
+            [
+                R::Sliding,
+                R::Sliding,
+                R::Mixed,
+                R::Mixed,
+                R::Stable,
+                R::Stable
+            ]
+        );
+        let thin = LineRegimes {
+            rotational: false,
+            first_stable: 3,
+            ..line
+        };
+        assert_eq!(thin.regime(1), R::None);
+        assert_eq!(thin.regime(2), R::Rotational);
+    }
+}
