@@ -11,9 +11,11 @@
 //! rows and settings), so a point the bisection visits has exactly the general route's
 //! answer, and every other point is decided by monotonicity from two visited neighbours.
 
-use crate::analysis::general::{self, Outcome, RowSet, Settings};
+use crate::analysis::forms::ArchModel;
+use crate::analysis::general::{self, Critical, Outcome, RowSet, Settings};
 use crate::analysis::statics::ArchGeometry;
 use crate::analysis::types::Regime;
+use crate::model::{Arch, ArchForm, Friction, Load};
 
 /// The thresholds of one K line among its sorted friction angles.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -99,6 +101,47 @@ pub fn line_regimes<G: ArchGeometry + ?Sized>(
         first_stable,
         margins,
     })
+}
+
+/// The collapse thickness K_c(μ) of an arch of any form under self-weight (its own K is
+/// ignored): the closed forms for the circular arch with radial joints, the general route
+/// otherwise. NaN where no K lets it stand, or every K does.
+pub fn collapse_thickness(arch: &Arch, form: ArchForm, mu: f64) -> f64 {
+    let Some(friction) = Friction::new(mu) else {
+        return f64::NAN;
+    };
+    if form.is_circular_radial() {
+        return super::thickness(arch, friction)
+            .found()
+            .map_or(f64::NAN, |s| s.k);
+    }
+    let make = |k: f64| ArchModel::new(arch.with_k(k), form, Load::SelfWeight).ok();
+    let k_max = form.max_k(arch.half_angle);
+    general::thickness_with(make, k_max, None, friction, &Settings::default())
+        .found()
+        .and_then(|s| s.k)
+        .unwrap_or(f64::NAN)
+}
+
+/// The critical friction μ_c(K) of an arch of any form under self-weight at thickness `k`:
+/// 0 where it stands without friction, NaN where no friction lets it stand.
+pub fn critical_friction(arch: &Arch, form: ArchForm, k: f64) -> f64 {
+    let arch = arch.with_k(k);
+    if form.is_circular_radial() {
+        return match super::friction(&arch) {
+            super::Critical::Found(s) => s.mu,
+            super::Critical::AlwaysStands => 0.0,
+            super::Critical::NeverStands => f64::NAN,
+        };
+    }
+    let Ok(model) = ArchModel::new(arch, form, Load::SelfWeight) else {
+        return f64::NAN;
+    };
+    match general::friction(&model, &Settings::default()) {
+        Critical::Found(s) => s.mu,
+        Critical::AlwaysStands => 0.0,
+        _ => f64::NAN,
+    }
 }
 
 #[cfg(test)]
