@@ -279,10 +279,19 @@ fn k_lines(plan: &Plan) -> Vec<Vec<usize>> {
     lines
 }
 
+/// Consecutive K lines analysed in turn by one task, each starting its threshold search from
+/// the previous line's thresholds (a cost, not a result: any grouping gives the same answers).
+const LINES_PER_TASK: usize = 16;
+
 /// The results of one K line: its regimes from the line's thresholds, or every case through
 /// the general route when a margin fails or the form does not exist at this K. The line's
-/// solve time is shared equally by its cases.
-fn line_results(plan: &Plan, line: &[usize]) -> Vec<CaseResult> {
+/// solve time is shared equally by its cases. `near` holds the thresholds of the previous
+/// line of the task and receives this line's.
+fn line_results(
+    plan: &Plan,
+    line: &[usize],
+    near: &mut Option<symmetric::LineRegimes>,
+) -> Vec<CaseResult> {
     let cases: Vec<&Case> = line.iter().map(|&n| &plan.cases[n]).collect();
     let one_by_one = || -> Vec<CaseResult> {
         cases
@@ -306,11 +315,12 @@ fn line_results(plan: &Plan, line: &[usize]) -> Vec<CaseResult> {
         ..GeneralSettings::default()
     };
     let found = catch_unwind(AssertUnwindSafe(|| {
-        symmetric::line_regimes(&model, &phis, &settings)
+        symmetric::line_regimes(&model, &phis, &settings, near.as_ref())
     }));
     let Ok(Some(regimes)) = found else {
         return one_by_one();
     };
+    *near = Some(regimes);
     let share = start.elapsed().as_secs_f64() * 1e6 / cases.len() as f64;
     cases
         .iter()
@@ -336,11 +346,16 @@ fn line_results(plan: &Plan, line: &[usize]) -> Vec<CaseResult> {
 fn run_lines(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
     let lines = k_lines(plan);
     let per_line: Vec<(Vec<usize>, Vec<CaseResult>)> = lines
-        .into_par_iter()
-        .map(|line| {
-            let r = line_results(plan, &line);
-            progress.advance(line.len() as u64);
-            (line, r)
+        .par_chunks(LINES_PER_TASK)
+        .flat_map_iter(|task| {
+            let mut near = None;
+            task.iter()
+                .map(|line| {
+                    let r = line_results(plan, line, &mut near);
+                    progress.advance(line.len() as u64);
+                    (line.clone(), r)
+                })
+                .collect::<Vec<_>>()
         })
         .collect();
     let mut slots: Vec<Option<CaseResult>> = vec![None; plan.cases.len()];

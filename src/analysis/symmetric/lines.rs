@@ -69,14 +69,78 @@ fn first_feasible(
     Some(lo)
 }
 
+/// [`first_feasible`] from `from` up to `hi`, where the predicate is known to hold at `hi`:
+/// steps of 1, 2, 4, … down from `hi` until it fails, then bisection.
+fn gallop_down(
+    from: usize,
+    hi: usize,
+    feasible: &mut impl FnMut(usize) -> Option<bool>,
+) -> Option<usize> {
+    let (mut hi, mut step) = (hi, 1);
+    while hi > from {
+        let probe = hi.saturating_sub(step).max(from);
+        if !feasible(probe)? {
+            return first_feasible(probe + 1, hi, feasible);
+        }
+        hi = probe;
+        step *= 2;
+    }
+    Some(from)
+}
+
+/// [`first_feasible`] over `lo..n`, where the predicate is known to fail below `lo`: steps
+/// of 1, 2, 4, … up from `lo` until it holds, then bisection.
+fn gallop_up(
+    lo: usize,
+    n: usize,
+    feasible: &mut impl FnMut(usize) -> Option<bool>,
+) -> Option<usize> {
+    let (mut lo, mut step) = (lo, 1);
+    while lo < n {
+        let probe = (lo + step - 1).min(n - 1);
+        if feasible(probe)? {
+            return first_feasible(lo, probe, feasible);
+        }
+        lo = probe + 1;
+        step *= 2;
+    }
+    Some(n)
+}
+
+/// [`first_feasible`] starting from a guess (the answer of a neighbouring K line): two
+/// margins when the guess is right, a few more when it is near.
+fn first_feasible_near(
+    from: usize,
+    n: usize,
+    guess: Option<usize>,
+    mut feasible: impl FnMut(usize) -> Option<bool>,
+) -> Option<usize> {
+    let Some(g) = guess else {
+        return first_feasible(from, n, feasible);
+    };
+    if n <= from {
+        return Some(n);
+    }
+    let g = g.clamp(from, n - 1);
+    if feasible(g)? {
+        gallop_down(from, g, &mut feasible)
+    } else {
+        gallop_up(g + 1, n, &mut feasible)
+    }
+}
+
 /// The regimes of a K line of geometry `geom` at the friction angles `phis` (radians,
 /// ascending; π/2 for μ = ∞), with the general route's settings. `None` when a margin could
 /// not be computed (the general route gives no regime there either): the caller then
 /// analyses the line point by point.
+///
+/// `near`, the regimes of a neighbouring K line, only makes the search cheaper: the thresholds
+/// move little from one K to the next.
 pub fn line_regimes<G: ArchGeometry + ?Sized>(
     geom: &G,
     phis: &[f64],
     settings: &Settings,
+    near: Option<&LineRegimes>,
 ) -> Option<LineRegimes> {
     let n = phis.len();
     let mut margins = 0usize;
@@ -88,10 +152,13 @@ pub fn line_regimes<G: ArchGeometry + ?Sized>(
     // The rotational rows do not involve φ.
     let phi_any = phis.first().copied().unwrap_or(std::f64::consts::FRAC_PI_2);
     let rotational = feasible(RowSet::Rotational, phi_any)?;
-    let first_sliding = first_feasible(0, n, |i| feasible(RowSet::Sliding, phis[i]))?;
+    let first_sliding = first_feasible_near(0, n, near.map(|l| l.first_sliding), |i| {
+        feasible(RowSet::Sliding, phis[i])
+    })?;
     // All rows feasible needs the sliding rows feasible, and the rotational ones.
     let first_stable = if rotational {
-        first_feasible(first_sliding, n, |i| feasible(RowSet::All, phis[i]))?
+        let guess = near.filter(|l| l.rotational).map(|l| l.first_stable);
+        first_feasible_near(first_sliding, n, guess, |i| feasible(RowSet::All, phis[i]))?
     } else {
         n
     };
@@ -162,6 +229,22 @@ mod tests {
             }
         }
         assert_eq!(first_feasible(0, 5, |_| None), None);
+        // From a guess: the same answer whatever the guess, two calls when it is right.
+        for n in 0..40 {
+            for t in 0..=n {
+                for g in 0..=n + 2 {
+                    let mut calls = 0;
+                    let r = first_feasible_near(0, n, Some(g), |i| {
+                        calls += 1;
+                        Some(i >= t)
+                    });
+                    assert_eq!(r, Some(t), "n {n} t {t} guess {g}");
+                    if g == t && t > 0 && t < n {
+                        assert_eq!(calls, 2);
+                    }
+                }
+            }
+        }
         assert_eq!(first_feasible(3, 8, |i| Some(i >= 1)), Some(3));
     }
 
