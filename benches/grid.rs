@@ -1,7 +1,8 @@
 //! Whole-grid costs (`cargo bench --bench grid`): the seed `state` grid through the engine
 //! (analysis only) and through the store, at several sizes to show the scaling in the number
 //! of grid points; and whole runs (`archstudy run`: engine, Parquet, boundaries, figure data,
-//! figures and reports) of the seed study and of a 1001 × 1001 map over the same ranges.
+//! figures and reports) of the seed study and of a 1001 × 1001 map over the same ranges. The
+//! same engine on a pointed arch and on vertical joints (per K line) at 101² and 201².
 
 use archstudy::engine;
 use archstudy::runner::{self, RunOptions};
@@ -28,6 +29,34 @@ fn seed_plan(side: usize) -> plan::Plan {
 fn state_grid_engine(bencher: Bencher, side: usize) {
     let plan = seed_plan(side);
     // Points per second in the output: constant when the cost is linear in the points.
+    bencher
+        .counter(ItemsCount::new(plan.cases.len()))
+        .bench(|| engine::run(black_box(&plan), &archstudy::progress::Silent).len());
+}
+
+/// The seed ranges on another form (`arch` is the manifest's `arch:` block), side × side.
+fn form_plan(arch: &str, side: usize) -> plan::Plan {
+    let text = format!(
+        "name: bench\narch:\n{arch}\ngrid:\n  k: {{from: 1.05, to: 1.5, steps: {side}}}\n  mu: {{from: 0.2, to: 0.8, steps: {side}}}\n"
+    );
+    let m = manifest::parse(&text, Path::new("bench.yaml")).expect("a valid manifest");
+    plan::build(m).expect("a plan of allowed size")
+}
+
+/// Engine time of a side × side state grid of a pointed arch (e = 0.2): per K line, a few
+/// margins of the general route each; compare with `state_grid_engine` at the same size.
+#[divan::bench(args = [101, 201], sample_count = 10)]
+fn pointed_state_grid_engine(bencher: Bencher, side: usize) {
+    let plan = form_plan("  shape: pointed\n  eccentricity: 0.2", side);
+    bencher
+        .counter(ItemsCount::new(plan.cases.len()))
+        .bench(|| engine::run(black_box(&plan), &archstudy::progress::Silent).len());
+}
+
+/// Engine time of a side × side state grid of a semicircle with vertical joints.
+#[divan::bench(args = [101, 201], sample_count = 10)]
+fn vertical_joints_state_grid_engine(bencher: Bencher, side: usize) {
+    let plan = form_plan("  joints: vertical", side);
     bencher
         .counter(ItemsCount::new(plan.cases.len()))
         .bench(|| engine::run(black_box(&plan), &archstudy::progress::Silent).len());

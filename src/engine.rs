@@ -7,8 +7,16 @@
 //! rotational domain per distinct K and one sliding domain per distinct μ, plus a comparison
 //! per point. The solve time of such a case is its share of both domain solves plus its
 //! comparison.
+//!
+//! A symmetric self-weight `state` grid on any other form (pointed arches, vertical joints)
+//! is analysed per K line: at fixed K the regime along μ is monotone (H^r does not involve μ,
+//! H^s and the stable set grow with it), so each line costs the margins of a bisection for
+//! its sliding threshold and its critical friction among the line's own μ values
+//! ([`symmetric::line_regimes`]), each the general route's own margin at a grid point.
 
 use crate::analysis::circular::SymmetricCircular;
+use crate::analysis::forms::ArchModel;
+use crate::analysis::settings::GeneralSettings;
 use crate::analysis::symmetric::{self, RotationalDomain, SlidingDomain};
 use crate::model::Discretisation;
 use crate::plan::{Case, Plan};
@@ -88,6 +96,8 @@ pub fn run(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
     progress.begin(Stage::Analyse, Some(plan.cases.len() as u64));
     let out = if plan.is_separable_state_grid() {
         run_separable(plan, progress)
+    } else if is_symmetric_state_grid(plan) {
+        run_lines(plan, progress)
     } else {
         plan.cases
             .par_iter()
@@ -240,4 +250,123 @@ fn run_separable(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
         .collect();
     debug_assert!(results.iter().all(|r| r.solution.find == Find::State));
     results
+}
+
+/// True when every case is a symmetric self-weight `state` query on a form other than the
+/// circular arch with radial joints: the grid goes per K line ([`symmetric::line_regimes`]).
+pub fn is_symmetric_state_grid(plan: &Plan) -> bool {
+    !plan.is_separable_state_grid()
+        && plan
+            .manifest
+            .load_cases
+            .iter()
+            .all(|l| l.find == Find::State && !l.kind.is_live())
+}
+
+/// The cases of one K line (one arch, every μ), in plan order.
+fn k_lines(plan: &Plan) -> Vec<Vec<usize>> {
+    let mut index: HashMap<(u64, Discretisation, u64), usize> = HashMap::new();
+    let mut lines: Vec<Vec<usize>> = Vec::new();
+    for (n, c) in plan.cases.iter().enumerate() {
+        let a = &c.scene.arch;
+        let key = (a.half_angle.to_bits(), a.joints, a.k.to_bits());
+        let l = *index.entry(key).or_insert_with(|| {
+            lines.push(Vec::new());
+            lines.len() - 1
+        });
+        lines[l].push(n);
+    }
+    lines
+}
+
+/// Consecutive K lines analysed in turn by one task, each starting its threshold search from
+/// the previous line's thresholds (a cost, not a result: any grouping gives the same answers).
+const LINES_PER_TASK: usize = 16;
+
+/// The results of one K line: its regimes from the line's thresholds, or every case through
+/// the general route when a margin fails or the form does not exist at this K. The line's
+/// solve time is shared equally by its cases. `near` holds the thresholds of the previous
+/// line of the task and receives this line's.
+fn line_results(
+    plan: &Plan,
+    line: &[usize],
+    near: &mut Option<symmetric::LineRegimes>,
+) -> Vec<CaseResult> {
+    let cases: Vec<&Case> = line.iter().map(|&n| &plan.cases[n]).collect();
+    let one_by_one = || -> Vec<CaseResult> {
+        cases
+            .iter()
+            .map(|c| checked(c, || scene::solve(&c.scene)))
+            .collect()
+    };
+    let Some(first) = cases.first() else {
+        return Vec::new();
+    };
+    let start = Instant::now();
+    let sc = &first.scene;
+    let Ok(model) = ArchModel::new(sc.arch, sc.form, sc.load) else {
+        return one_by_one();
+    };
+    let mut phis: Vec<f64> = cases.iter().map(|c| c.scene.friction.angle()).collect();
+    phis.sort_by(f64::total_cmp);
+    phis.dedup();
+    let settings = GeneralSettings {
+        lambda: sc.lambda,
+        ..GeneralSettings::default()
+    };
+    let found = catch_unwind(AssertUnwindSafe(|| {
+        symmetric::line_regimes(&model, &phis, &settings, near.as_ref())
+    }));
+    let Ok(Some(regimes)) = found else {
+        return one_by_one();
+    };
+    *near = Some(regimes);
+    let share = start.elapsed().as_secs_f64() * 1e6 / cases.len() as f64;
+    cases
+        .iter()
+        .map(|c| {
+            let phi = c.scene.friction.angle();
+            let i = phis.partition_point(|p| p.total_cmp(&phi).is_lt());
+            let mut solution = Solution::empty(&c.scene);
+            solution.regime = Some(regimes.regime(i));
+            solution.solve_time_us = share;
+            CaseResult {
+                case_id: c.id,
+                load_case: c.load_case,
+                solution,
+                status: Status::Ok,
+                message: None,
+            }
+        })
+        .collect()
+}
+
+/// A symmetric self-weight `state` grid on any form, per K line in parallel; results in plan
+/// order.
+fn run_lines(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
+    let lines = k_lines(plan);
+    let per_line: Vec<(Vec<usize>, Vec<CaseResult>)> = lines
+        .par_chunks(LINES_PER_TASK)
+        .flat_map_iter(|task| {
+            let mut near = None;
+            task.iter()
+                .map(|line| {
+                    let r = line_results(plan, line, &mut near);
+                    progress.advance(line.len() as u64);
+                    (line.clone(), r)
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    let mut slots: Vec<Option<CaseResult>> = vec![None; plan.cases.len()];
+    for (line, results) in per_line {
+        for (n, r) in line.into_iter().zip(results) {
+            slots[n] = Some(r);
+        }
+    }
+    slots
+        .into_iter()
+        .zip(&plan.cases)
+        .map(|(r, c)| r.unwrap_or_else(|| checked(c, || scene::solve(&c.scene))))
+        .collect()
 }

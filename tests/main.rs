@@ -18,3 +18,5 @@ mod report_regime_map;
 mod run;
 mod shard;
 mod solve;
+mod symmetric_boundaries;
+mod symmetric_lines;

@@ -212,6 +212,29 @@ impl Default for SymmetricSettings {
     }
 }
 
+/// Settings of the per-K-line analysis of symmetric self-weight state grids on forms other
+/// than the circular arch with radial joints (pointed arches, vertical joints).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LineSettings {
+    /// Friction-angle step, radians, above the sliding threshold μ_s(K) at which a K line is
+    /// tested for a mixed band when the mixed/sliding bifurcation is located (default 1e-11:
+    /// above the margin noise of 1e-12, below the 1e-9 to which boundaries are located).
+    pub band_friction_step: f64,
+}
+
+impl LineSettings {
+    /// The defaults.
+    pub const DEFAULT: Self = LineSettings {
+        band_friction_step: 1e-11,
+    };
+}
+
+impl Default for LineSettings {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
 /// Settings of the kinematic (mechanism) analysis ([`crate::analysis::kinematics`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct KinematicsSettings {

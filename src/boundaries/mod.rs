@@ -25,6 +25,9 @@
 //! Figs. 6, 7): the rotational/mixed one is μ_c at the rotational K_c, the mixed/sliding one
 //! K_c at μ_min; which exist is read from the mechanism changes between consecutive located
 //! collapse points, and each is confirmed by a bracketing search between them.
+//! A `state` study of self-weight on another form (pointed arches, vertical joints) has the
+//! same three indicators on the margins of the general route, with H^s depending on K as
+//! well (`lines`).
 //! `thickness` and `friction` studies trace one collapse curve each: their mechanism
 //! changes along the swept parameter are located by bisection and reported as
 //! bifurcations; their boundary table is empty (the critical points are the rows of
@@ -33,6 +36,7 @@
 mod bifurcation;
 mod general;
 mod grid;
+mod lines;
 mod probe;
 mod state_grid;
 mod sweep;
@@ -40,6 +44,7 @@ mod sweep;
 pub use crate::records::{Bifurcation, BoundaryPoint, EdgeAxis, Located};
 
 use crate::engine::CaseResult;
+use crate::model::Load;
 use crate::plan::Plan;
 use crate::scene::Find;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -70,7 +75,10 @@ pub fn locate(plan: &Plan, results: &[CaseResult]) -> Located {
     let mut bifurcations = Vec::new();
     for g in &groups {
         let one = std::slice::from_ref(g);
-        let (b, f) = if !g.scene.uses_closed_forms() {
+        let symmetric_state = g.scene.find == Find::State && g.scene.load == Load::SelfWeight;
+        let (b, f) = if !g.scene.uses_closed_forms() && symmetric_state {
+            lines::locate(g, results, tol, &counter)
+        } else if !g.scene.uses_closed_forms() {
             general::locate(g, results, tol, &counter)
         } else {
             match g.scene.find {

@@ -17,11 +17,11 @@ use crate::engine::CaseResult;
 use rayon::prelude::*;
 use std::cell::OnceCell;
 
-fn h_r_nonempty(r: Regime) -> bool {
+pub(super) fn h_r_nonempty(r: Regime) -> bool {
     matches!(r, Regime::Stable | Regime::Mixed | Regime::Sliding)
 }
 
-fn h_s_nonempty(r: Regime) -> bool {
+pub(super) fn h_s_nonempty(r: Regime) -> bool {
     matches!(r, Regime::Stable | Regime::Mixed | Regime::Rotational)
 }
 
@@ -33,17 +33,20 @@ struct Flip<D> {
 
 /// A crossing inside one edge.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Crossing {
-    x: f64,
-    low: Regime,
-    high: Regime,
+pub(super) struct Crossing {
+    /// Where the regime changes.
+    pub x: f64,
+    /// The regime below x.
+    pub low: Regime,
+    /// The regime above x.
+    pub high: Regime,
 }
 
 /// The crossings inside an edge [lo, hi] with regimes `a` at lo and `b` at hi.
 /// `primary` is the indicator that may flip along the edge, `flip` where it does,
 /// `stable_at_flip` whether the point is already stable there and `stable_root(lo, hi,
 /// good_hi)` locates the collapse curve in a sub-bracket.
-fn crossings(
+pub(super) fn crossings(
     (lo, hi): (f64, f64),
     (a, b): (Regime, Regime),
     primary: fn(Regime) -> bool,

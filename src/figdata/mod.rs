@@ -18,6 +18,7 @@ use crate::plan::Plan;
 use crate::store::{self, BifurcationGroup, BifurcationRow, CurvePoint, JointLists, StateRow};
 use anyhow::{Context, Result};
 use curves::Samples;
+use rayon::prelude::*;
 
 /// Figure id of the Fig. 2 curves of a state.
 pub fn domains_figure(state_id: &str) -> String {
@@ -379,18 +380,17 @@ fn critical_curves(
     let bif_mu: Vec<f64> = bifurcations.iter().map(|b| b.mu).collect();
     let bif_k: Vec<f64> = bifurcations.iter().map(|b| b.k).collect();
     let fig = critical_figure(load_case);
+    let form = manifest.arch.form();
     let mus = curves::linspace_with(mu_lo, mu_hi, CRITICAL_SAMPLES, &bif_mu);
-    out.push(
-        &fig,
-        K_CRIT_OF_MU,
-        &curves::critical_thickness_curve(&arch, &mus),
-    );
+    let k_of_mu: Samples = (mus.par_iter())
+        .map(|&mu| (mu, symmetric::collapse_thickness(&arch, form, mu)))
+        .collect();
+    out.push(&fig, K_CRIT_OF_MU, &k_of_mu);
     let ks = curves::linspace_with(k_lo, k_hi, CRITICAL_SAMPLES, &bif_k);
-    out.push(
-        &fig,
-        MU_CRIT_OF_K,
-        &curves::critical_friction_curve(&arch, &ks),
-    );
+    let mu_of_k: Samples = (ks.par_iter())
+        .map(|&k| (k, symmetric::critical_friction(&arch, form, k)))
+        .collect();
+    out.push(&fig, MU_CRIT_OF_K, &mu_of_k);
     Ok(())
 }
 
@@ -447,6 +447,16 @@ pub fn run(plan: &Plan, layout: &RunLayout) -> Result<FigureDataSummary> {
         }
         if lc.find == crate::scene::Find::State && single_model(manifest) {
             let own: Vec<BifurcationRow> = bifs.into_iter().map(|(b, _)| b.clone()).collect();
+            critical_curves(manifest, &lc.name, &own, &mut out)?;
+        }
+    }
+    // Self-weight on other forms: the critical curves alone (no drawings of the arch).
+    for lc in (manifest.load_cases.iter()).filter(|l| !drawable && !l.kind.is_live()) {
+        let own: Vec<BifurcationRow> = (bifurcations.iter())
+            .filter(|b| b.load_case == lc.name)
+            .cloned()
+            .collect();
+        if lc.find == crate::scene::Find::State && single_model(manifest) {
             critical_curves(manifest, &lc.name, &own, &mut out)?;
         }
     }

@@ -9,6 +9,7 @@
 
 mod critical;
 mod domains;
+mod lines;
 #[cfg(test)]
 mod tests;
 
@@ -16,6 +17,7 @@ pub use critical::{friction_with, sliding_threshold_with, thickness_with, thrust
 pub use domains::{
     domains_with, rotational_domain_with, rotational_peak_with, sliding_domain_with,
 };
+pub use lines::{LineRegimes, collapse_thickness, critical_friction, line_regimes};
 
 use crate::analysis::circular::SymmetricCircular;
 pub use crate::analysis::settings::SymmetricSettings as Settings;
