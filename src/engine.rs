@@ -46,6 +46,41 @@ impl Status {
     }
 }
 
+/// How the engine goes through a plan.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GridPath {
+    /// Symmetric self-weight `state` grid of a circular arch with radial joints: one
+    /// rotational domain per K, one sliding domain per μ, a comparison per case.
+    Separable,
+    /// Symmetric self-weight `state` grid of any other form: per K line, a bisection for the
+    /// sliding threshold and the critical friction among the line's own μ values.
+    KLines,
+    /// Every case analysed on its own.
+    CaseByCase,
+}
+
+impl GridPath {
+    /// The path the engine takes for a plan.
+    pub fn of(plan: &Plan) -> Self {
+        if plan.is_separable_state_grid() {
+            GridPath::Separable
+        } else if is_symmetric_state_grid(plan) {
+            GridPath::KLines
+        } else {
+            GridPath::CaseByCase
+        }
+    }
+
+    /// `separable`, `k_lines` or `case_by_case` (run.json's `grid_path`).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            GridPath::Separable => "separable",
+            GridPath::KLines => "k_lines",
+            GridPath::CaseByCase => "case_by_case",
+        }
+    }
+}
+
 /// The result of one case.
 #[derive(Debug, Clone)]
 pub struct CaseResult {
@@ -94,19 +129,18 @@ fn checked(case: &Case, run: impl FnOnce() -> Solution) -> CaseResult {
 /// Progress is reported as the [`Stage::Analyse`] stage, counted in cases.
 pub fn run(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
     progress.begin(Stage::Analyse, Some(plan.cases.len() as u64));
-    let out = if plan.is_separable_state_grid() {
-        run_separable(plan, progress)
-    } else if is_symmetric_state_grid(plan) {
-        run_lines(plan, progress)
-    } else {
-        plan.cases
+    let out = match GridPath::of(plan) {
+        GridPath::Separable => run_separable(plan, progress),
+        GridPath::KLines => run_lines(plan, progress),
+        GridPath::CaseByCase => plan
+            .cases
             .par_iter()
             .map(|c| {
                 let r = checked(c, || scene::solve(&c.scene));
                 progress.advance(1);
                 r
             })
-            .collect()
+            .collect(),
     };
     progress.end(Stage::Analyse);
     out

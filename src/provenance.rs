@@ -60,8 +60,14 @@ pub struct RunInfo {
     pub finished_at: String,
     /// Cases by status.
     pub cases: CaseCounts,
-    /// Whether the separable fast path was used (symmetric `state` grid).
+    /// Whether the separable fast path was used (symmetric `state` grid of a circular arch
+    /// with radial joints).
     pub separable: bool,
+    /// How the engine went through the plan: `separable`, `k_lines` (symmetric `state` grid
+    /// of another form, per K line) or `case_by_case`; empty in runs made before it was
+    /// recorded.
+    #[serde(default)]
+    pub grid_path: String,
     /// Wall time of each stage.
     pub stages: StageTimings,
     /// Extra analyses spent locating boundaries and bifurcations.

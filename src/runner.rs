@@ -432,6 +432,7 @@ pub(crate) fn finish_run(
             error: total - ok,
         },
         separable: plan.is_separable_state_grid(),
+        grid_path: engine::GridPath::of(&plan).as_str().to_string(),
         stages,
         boundary_refinement_analyses: located.refinement_analyses,
     };

@@ -198,7 +198,9 @@ pub fn run_shard(opts: &RunOptions, shard: Shard) -> Result<RunSummary> {
     let total = plan_cases(&m)?;
     let ids = plan::shard_ids(total, shard.index, shard.count);
     check_chunk(shard, ids.end - ids.start)?;
-    let separable = plan::build_slice(m.clone(), 0..0).is_separable_state_grid();
+    let empty = plan::build_slice(m.clone(), 0..0);
+    let separable = empty.is_separable_state_grid();
+    let grid_path = engine::GridPath::of(&empty).as_str().to_string();
     let mut stages = StageTimings {
         plan_ms: ms(t0),
         ..Default::default()
@@ -236,6 +238,7 @@ pub fn run_shard(opts: &RunOptions, shard: Shard) -> Result<RunSummary> {
             error: count - ok,
         },
         separable,
+        grid_path,
         stages,
         boundary_refinement_analyses: 0,
     };

@@ -555,6 +555,7 @@ load_cases:
     let info: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("out/st/run.json")).unwrap()).unwrap();
     assert_eq!(info["separable"], false);
+    assert_eq!(info["grid_path"], "case_by_case");
     let df = store::read_parquet(&dir.join("out/st/results.parquet")).unwrap();
     let regime = store::str_column(&df, "regime").unwrap();
     let lambda = store::f64_column(&df, "lambda").unwrap();
@@ -961,4 +962,23 @@ find: thresholds
         md.contains("| μ_min, sliding threshold, continuum (gravity) | 0.3092154443 | 0.309 |"),
         "{md}"
     );
+}
+
+#[test]
+fn a_self_weight_state_study_of_a_pointed_arch_goes_per_k_line() {
+    let dir = scratch("loads-k-lines");
+    let text = "name: kl
+arch: {shape: pointed, eccentricity: 0.2}
+grid:
+  k: {from: 1.05, to: 1.2, steps: 3}
+  mu: {values: [0.25, 0.4, inf]}
+";
+    let o = run_study(&dir, "kl", text);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let info: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("out/kl/run.json")).unwrap()).unwrap();
+    assert_eq!(info["separable"], false);
+    assert_eq!(info["grid_path"], "k_lines");
+    let md = std::fs::read_to_string(dir.join("out/kl/report.md")).unwrap();
+    assert!(md.contains("per K line"), "{md}");
 }

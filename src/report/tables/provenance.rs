@@ -19,15 +19,19 @@ pub fn reproducibility(data: &RunData) -> Vec<Item> {
         item("command line", i.command_line.join(" ")),
         item("threads", i.threads.to_string()),
         item("date", i.started_at.clone()),
-        item(
-            "separable grid path",
-            if i.separable {
-                "yes".to_string()
-            } else {
-                "no".to_string()
-            },
-        ),
+        item("grid path", grid_path(i)),
     ]
+}
+
+/// How the engine went through the plan, in words.
+fn grid_path(i: &crate::provenance::RunInfo) -> String {
+    match i.grid_path.as_str() {
+        "separable" => "separable: one H^r per K, one H^s per μ".into(),
+        "k_lines" => "per K line: thresholds in μ by bisection".into(),
+        "case_by_case" => "case by case".into(),
+        _ if i.separable => "separable".into(),
+        _ => "not recorded".into(),
+    }
 }
 
 /// Wall time of each stage of the run.
