@@ -129,7 +129,15 @@ fn checked(case: &Case, run: impl FnOnce() -> Solution) -> CaseResult {
 /// Progress is reported as the [`Stage::Analyse`] stage, counted in cases.
 pub fn run(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
     progress.begin(Stage::Analyse, Some(plan.cases.len() as u64));
-    let out = match GridPath::of(plan) {
+    let out = analyse(plan, progress);
+    progress.end(Stage::Analyse);
+    out
+}
+
+/// Analyses every case of a plan, in plan order, advancing the current stage by one per
+/// case; the caller begins and ends the stage (a shard spans one stage over its chunks).
+pub fn analyse(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
+    match GridPath::of(plan) {
         GridPath::Separable => run_separable(plan, progress),
         GridPath::KLines => run_lines(plan, progress),
         GridPath::CaseByCase => plan
@@ -141,9 +149,7 @@ pub fn run(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
                 r
             })
             .collect(),
-    };
-    progress.end(Stage::Analyse);
-    out
+    }
 }
 
 /// Key of the geometry shared by the cases whose domains can be reused.

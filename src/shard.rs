@@ -10,6 +10,7 @@ use crate::engine::{self, CaseResult, Status};
 use crate::error::UsageError;
 use crate::output::{StagedRun, write_atomic};
 use crate::plan;
+use crate::progress::Stage;
 use crate::provenance::{
     CaseCounts, RunInfo, StageTimings, git_commit, now_rfc3339, rustc_version, sha256_hex, version,
 };
@@ -168,10 +169,12 @@ fn analyse_in_chunks(
         store_ms: 0.0,
     };
     let mut appender: Option<store::ParquetAppender> = None;
+    // One progress stage over all chunks, so the bar and the rate do not restart.
+    progress.begin(Stage::Analyse, Some(ids.end - ids.start));
     for start in starts {
         let plan = plan::build_slice(m.clone(), start..(start + chunk).min(ids.end));
         let t = Instant::now();
-        let rows: Vec<CaseResult> = pool.install(|| engine::run(&plan, progress));
+        let rows: Vec<CaseResult> = pool.install(|| engine::analyse(&plan, progress));
         out.engine_ms += ms(t);
         let t = Instant::now();
         let mut df = pool.install(|| store::results_frame(&plan, &rows))?;
@@ -183,6 +186,7 @@ fn analyse_in_chunks(
         out.ok += rows.iter().filter(|r| r.status == Status::Ok).count() as u64;
         out.total += rows.len() as u64;
     }
+    progress.end(Stage::Analyse);
     if let Some(a) = appender {
         a.finish()?;
     }
@@ -313,6 +317,26 @@ mod tests {
         assert_eq!(sorted, names);
     }
 
+    /// Progress events as they arrive: begins (with their totals), ends, and the count.
+    #[derive(Default)]
+    struct Recorded {
+        events: std::sync::Mutex<Vec<(Stage, Option<u64>)>>,
+        advanced: std::sync::atomic::AtomicU64,
+    }
+
+    impl crate::progress::Progress for Recorded {
+        fn begin(&self, stage: Stage, total: Option<u64>) {
+            self.events.lock().unwrap().push((stage, total));
+        }
+        fn advance(&self, n: u64) {
+            self.advanced
+                .fetch_add(n, std::sync::atomic::Ordering::Relaxed);
+        }
+        fn end(&self, stage: Stage) {
+            self.events.lock().unwrap().push((stage, None));
+        }
+    }
+
     #[test]
     fn rows_stored_in_chunks_are_those_of_one_pass() {
         // 13 × 11 cases of a state map, a slice of 100 of them in chunks of 7 (the last one
@@ -330,8 +354,18 @@ mod tests {
             .unwrap();
         let silent = crate::progress::Silent;
         let (chunked, whole) = (dir.join("chunked.parquet"), dir.join("whole.parquet"));
-        let done = analyse_in_chunks(&m, 20..120, &pool, &silent, (&chunked, 7)).unwrap();
+        let seen = Recorded::default();
+        let done = analyse_in_chunks(&m, 20..120, &pool, &seen, (&chunked, 7)).unwrap();
         assert_eq!((done.total, done.ok), (100, 100));
+        // One stage over the 15 chunks: the bar neither restarts nor loses its total.
+        assert_eq!(
+            *seen.events.lock().unwrap(),
+            vec![(Stage::Analyse, Some(100)), (Stage::Analyse, None)]
+        );
+        assert_eq!(
+            seen.advanced.load(std::sync::atomic::Ordering::Relaxed),
+            100
+        );
         analyse_in_chunks(&m, 20..120, &pool, &silent, (&whole, 1000)).unwrap();
         let read = |p: &std::path::Path| {
             let mut t = store::read_table(p).unwrap();
