@@ -31,10 +31,12 @@ impl Stage {
         }
     }
 
-    /// What the stage counts (`cases`, `figures`), when it counts anything.
+    /// What the stage counts (`cases`, refinement `analyses`, `figures`), when it counts
+    /// anything.
     pub fn unit(self) -> &'static str {
         match self {
             Stage::Analyse => "cases",
+            Stage::Boundaries => "analyses",
             Stage::Figures => "figures",
             _ => "steps",
         }

@@ -396,7 +396,7 @@ pub(crate) fn finish_run(
     })?;
 
     let (located, boundaries_ms) = stage(progress, Stage::Boundaries, || {
-        let located = pool.install(|| boundaries::locate(&plan, &results));
+        let located = pool.install(|| boundaries::locate_with(&plan, &results, progress));
         store::write_parquet(
             &mut store::boundaries_frame(&plan, &located)?,
             &layout.boundaries(),

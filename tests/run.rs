@@ -368,3 +368,45 @@ fn convergence_study_thresholds_approach_the_continuum() {
     let e = lf[25 + i4096].unwrap() - lambda_c;
     assert!(e < 1e-7, "λ: error {e} at N = 4096");
 }
+
+#[test]
+fn a_batch_log_names_every_stage_and_counts_the_boundary_analyses() {
+    let dir = scratch("batch-log");
+    let m = manifest(
+        &dir,
+        "lf.yaml",
+        "name: lf
+grid:
+  k: {from: 1.15, to: 1.45, steps: 4}
+  mu: {values: [0.35, 0.5, inf]}
+load_cases:
+  - {name: wind, kind: horizontal, find: load_factor}
+",
+    );
+    let out = dir.join("out");
+    // Standard error is a pipe here, as in a batch job: plain lines, no bar.
+    let o = archstudy(&["run", m.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let log = stderr(&o);
+    for line in [
+        "analysing: 12 cases",
+        "analysing: done, 12/12 cases in",
+        "storing results: done in",
+        "figure data: done in",
+        "drawing figures: done",
+        "writing reports: done in",
+    ] {
+        assert!(log.contains(line), "no `{line}` in:\n{log}");
+    }
+    let info: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("lf/run.json")).unwrap()).unwrap();
+    let analyses = info["boundary_refinement_analyses"].as_u64().unwrap();
+    assert!(analyses > 0, "{info}");
+    assert!(
+        log.contains(&format!(
+            "locating boundaries: done, {analyses} analyses in"
+        )),
+        "{log}"
+    );
+    assert!(!log.contains('\r'), "a bar was drawn into a log: {log:?}");
+}

@@ -49,6 +49,14 @@ impl Shown {
                     stage.unit()
                 ),
             ),
+            None if stage.unit() != "steps" => (
+                ProgressBar::new_spinner(),
+                format!(
+                    "{{spinner}} {} {{pos}} {} ({{per_sec}}, {{elapsed}})",
+                    stage.as_str(),
+                    stage.unit()
+                ),
+            ),
             None => (
                 ProgressBar::new_spinner(),
                 format!("{{spinner}} {} ({{elapsed}})", stage.as_str()),
@@ -66,17 +74,19 @@ impl Shown {
     fn log_line(r: &Running, done: u64, last: bool) {
         let secs = r.started.elapsed().as_secs_f64();
         let what = if last { "done" } else { "running" };
+        let rate = if secs > 0.0 { done as f64 / secs } else { 0.0 };
+        let (stage, unit) = (r.stage.as_str(), r.stage.unit());
         match r.total {
             Some(total) => {
-                let rate = if secs > 0.0 { done as f64 / secs } else { 0.0 };
                 eprintln!(
-                    "{}: {what}, {done}/{total} {} in {secs:.1} s ({rate:.0} {}/s)",
-                    r.stage.as_str(),
-                    r.stage.unit(),
-                    r.stage.unit()
+                    "{stage}: {what}, {done}/{total} {unit} in {secs:.1} s ({rate:.0} {unit}/s)"
                 );
             }
-            None => eprintln!("{}: {what} in {secs:.1} s", r.stage.as_str()),
+            // A stage of unknown length that counts: how many so far, and how fast.
+            None if done > 0 => {
+                eprintln!("{stage}: {what}, {done} {unit} in {secs:.1} s ({rate:.0} {unit}/s)");
+            }
+            None => eprintln!("{stage}: {what} in {secs:.1} s"),
         }
     }
 }

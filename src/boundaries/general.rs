@@ -124,7 +124,7 @@ struct Change {
 struct Refiner<'a> {
     grid: &'a Grid,
     tol: f64,
-    counter: &'a Counter,
+    counter: &'a Counter<'a>,
 }
 
 impl Refiner<'_> {

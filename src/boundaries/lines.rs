@@ -58,7 +58,7 @@ fn indicator(set: RowSet) -> fn(Regime) -> bool {
 /// Counted margins of one grid's arch at any (K, μ).
 struct Margins<'a> {
     grid: &'a Grid,
-    counter: &'a Counter,
+    counter: &'a Counter<'a>,
     settings: Settings,
     tol: f64,
 }

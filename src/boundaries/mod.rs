@@ -46,29 +46,53 @@ pub use crate::records::{Bifurcation, BoundaryPoint, EdgeAxis, Located};
 use crate::engine::CaseResult;
 use crate::model::Load;
 use crate::plan::Plan;
+use crate::progress::{Progress, Silent};
 use crate::scene::Find;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-/// Counts analyses; shared by parallel tasks.
-#[derive(Debug, Default)]
-pub(crate) struct Counter(AtomicU64);
+/// Counts analyses, shared by parallel tasks, and reports each to the run's progress.
+pub(crate) struct Counter<'p> {
+    n: AtomicU64,
+    progress: &'p dyn Progress,
+}
 
-impl Counter {
+impl Default for Counter<'static> {
+    fn default() -> Self {
+        Counter::new(&Silent)
+    }
+}
+
+impl<'p> Counter<'p> {
+    /// A counter at zero that advances `progress` by one per analysis.
+    pub(crate) fn new(progress: &'p dyn Progress) -> Self {
+        Counter {
+            n: AtomicU64::new(0),
+            progress,
+        }
+    }
+
     /// Adds one analysis.
     pub(crate) fn tick(&self) {
-        self.0.fetch_add(1, Ordering::Relaxed);
+        self.n.fetch_add(1, Ordering::Relaxed);
+        self.progress.advance(1);
     }
 
     /// The count so far.
     pub(crate) fn get(&self) -> u64 {
-        self.0.load(Ordering::Relaxed)
+        self.n.load(Ordering::Relaxed)
     }
 }
 
 /// Locates the regime boundaries and bifurcations of a run, to the manifest's
 /// `boundary_tolerance` in K and μ. `results` are the engine's rows in plan order.
 pub fn locate(plan: &Plan, results: &[CaseResult]) -> Located {
-    let counter = Counter::default();
+    locate_with(plan, results, &Silent)
+}
+
+/// [`locate`], advancing `progress` by one per refinement analysis (the caller begins and
+/// ends the [`Stage::Boundaries`](crate::progress::Stage::Boundaries) stage).
+pub fn locate_with(plan: &Plan, results: &[CaseResult], progress: &dyn Progress) -> Located {
+    let counter = Counter::new(progress);
     let tol = plan.manifest.boundary_tolerance;
     let groups = grid::groups(plan, results);
     let mut boundaries = Vec::new();

@@ -23,7 +23,7 @@ const MU_FAR: f64 = 1e15;
 pub(crate) struct Probe<'a> {
     /// The arch (half-angle, weight model, joints).
     pub arch: Arch,
-    counter: &'a Counter,
+    counter: &'a Counter<'a>,
 }
 
 impl<'a> Probe<'a> {
