@@ -96,3 +96,18 @@ pub(crate) fn groups(plan: &Plan, results: &[CaseResult]) -> Vec<Grid> {
     }
     grids
 }
+
+/// The boundary points of every μ row and then every K column of a grid, each line refined
+/// in parallel; `row(j)` and `column(i)` give the points of one line.
+pub(crate) fn every_line<R, C>(grid: &Grid, row: R, column: C) -> Vec<super::BoundaryPoint>
+where
+    R: Fn(usize) -> Vec<super::BoundaryPoint> + Sync + Send,
+    C: Fn(usize) -> Vec<super::BoundaryPoint> + Sync + Send,
+{
+    use rayon::prelude::*;
+    let rows: Vec<Vec<super::BoundaryPoint>> =
+        (0..grid.mus.len()).into_par_iter().map(row).collect();
+    let cols: Vec<Vec<super::BoundaryPoint>> =
+        (0..grid.ks.len()).into_par_iter().map(column).collect();
+    rows.into_iter().chain(cols).flatten().collect()
+}

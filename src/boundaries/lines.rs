@@ -429,15 +429,7 @@ pub(crate) fn locate(
     counter: &Counter,
 ) -> (Vec<BoundaryPoint>, Vec<Bifurcation>) {
     let r = Refiner::new(grid, results, tol, counter);
-    let rows: Vec<Vec<BoundaryPoint>> = (0..grid.mus.len())
-        .into_par_iter()
-        .map(|j| r.row(j))
-        .collect();
-    let cols: Vec<Vec<BoundaryPoint>> = (0..grid.ks.len())
-        .into_par_iter()
-        .map(|i| r.column(i))
-        .collect();
-    let found: Vec<BoundaryPoint> = rows.into_iter().chain(cols).flatten().collect();
+    let found = super::grid::every_line(grid, |j| r.row(j), |i| r.column(i));
     let bifs = bifurcations(&r, &found);
     (found, bifs)
 }

@@ -14,7 +14,6 @@ use super::{Bifurcation, BoundaryPoint, Counter, EdgeAxis};
 use crate::analysis::symmetric::{Critical, CriticalState, RotationalDomain, SlidingDomain};
 use crate::analysis::{MechanismKind, Regime};
 use crate::engine::CaseResult;
-use rayon::prelude::*;
 use std::cell::OnceCell;
 
 pub(super) fn h_r_nonempty(r: Regime) -> bool {
@@ -327,15 +326,7 @@ pub(crate) fn locate(
     let mut bifurcations = Vec::new();
     for grid in grids {
         let g = GridRefiner::new(grid, results, tol, counter);
-        let rows: Vec<Vec<BoundaryPoint>> = (0..grid.mus.len())
-            .into_par_iter()
-            .map(|j| g.row(j))
-            .collect();
-        let cols: Vec<Vec<BoundaryPoint>> = (0..grid.ks.len())
-            .into_par_iter()
-            .map(|i| g.column(i))
-            .collect();
-        let found: Vec<BoundaryPoint> = rows.into_iter().chain(cols).flatten().collect();
+        let found = super::grid::every_line(grid, |j| g.row(j), |i| g.column(i));
         bifurcations.extend(bifurcation::on_collapse_curve(grid, &g.lm, &found, tol));
         points.extend(found);
     }
