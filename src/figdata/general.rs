@@ -84,11 +84,25 @@ pub fn model_of_state(s: &StateRow) -> Result<ArchModel> {
         .map_err(|e| anyhow!("the arch of state {}: {e}", s.state_id))
 }
 
+/// The joint parameter named by a stored angle (degrees): a support (|angle| = α; the
+/// supports of a vertical-joint arch lie just beyond α) or the angle itself (0 is the crown
+/// joint).
+pub fn joint_parameter(model: &ArchModel, angle_deg: f64) -> f64 {
+    let alpha = model.arch().half_angle;
+    let t = angle_deg.to_radians();
+    if t.abs() >= alpha - 1e-9 {
+        alpha.next_up().copysign(t)
+    } else {
+        t
+    }
+}
+
 /// The parameters at which the line of thrust is evaluated: every family of joints sampled
 /// about every half degree with its ends (both sides of a point load), the isolated joints
 /// (a pointed arch's crown joint, the supports of vertical joints) and every joint of a
-/// discrete arch, in increasing order.
-fn sections(model: &ArchModel) -> Vec<f64> {
+/// discrete arch, with the `extra` parameters (the state's hinges and sliding joints), in
+/// increasing order.
+fn sections(model: &ArchModel, extra: &[f64]) -> Vec<f64> {
     let mut t: Vec<f64> = Vec::new();
     for [lo, hi] in model.families() {
         let n = (((hi - lo) * SECTIONS_PER_RADIAN).ceil() as usize).max(1);
@@ -97,6 +111,7 @@ fn sections(model: &ArchModel) -> Vec<f64> {
     }
     t.extend(model.isolated_joints());
     t.extend(model.discrete_joints().unwrap_or_default());
+    t.extend(extra);
     t.sort_by(f64::total_cmp);
     t.dedup();
     t
@@ -122,10 +137,16 @@ pub fn thrust_point(model: &ArchModel, c: &CrownForce, theta: f64) -> Option<(f6
         .then(|| (i[0] + s * (e[0] - i[0]), i[1] + s * (e[1] - i[1])))
 }
 
-/// The line of thrust of a state: its crossing of every sampled section, from the left
-/// springing to the right one, NaN where a section carries no compression.
-pub fn line_of_thrust(model: &ArchModel, c: &CrownForce) -> Samples {
-    sections(model)
+/// The line of thrust of a state: its crossing of every sampled section and of the joints
+/// at `angles_deg` (its hinges and sliding joints, so that it passes through the hinges
+/// exactly), from the left springing to the right one, NaN where a section carries no
+/// compression.
+pub fn line_of_thrust(model: &ArchModel, c: &CrownForce, angles_deg: &[f64]) -> Samples {
+    let extra: Vec<f64> = angles_deg
+        .iter()
+        .map(|&a| joint_parameter(model, a))
+        .collect();
+    sections(model, &extra)
         .into_iter()
         .map(|t| thrust_point(model, c, t).unwrap_or((f64::NAN, f64::NAN)))
         .collect()
@@ -211,7 +232,7 @@ mod tests {
             m0: -s.crown_moment,
             lambda: 0.0,
         };
-        let line = line_of_thrust(&model, &c);
+        let line = line_of_thrust(&model, &c, &[]);
         let crown = thrust_point(&model, &c, 0.0).unwrap();
         assert!(
             crown.0.abs() < 1e-12 && (crown.1 - s.k).abs() < 1e-9,
@@ -232,7 +253,7 @@ mod tests {
             let r = row(1.3, "pointed", 0.3, joints, "self_weight");
             let model = model_of_state(&r).unwrap();
             let c = largest_margin_state(&model, mu.atan(), 0.0).unwrap();
-            for t in sections(&model) {
+            for t in sections(&model, &[]) {
                 let p = thrust_point(&model, &c, t).unwrap();
                 let j = model.joint(t);
                 // p = I + s(E − I) with s strictly inside (0, 1).

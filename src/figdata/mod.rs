@@ -84,7 +84,18 @@ impl Collector {
         };
         let model = general::model_of_state(row)?;
         let fig = line_of_thrust_figure(&row.state_id);
-        self.push(&fig, LINE_OF_THRUST, &general::line_of_thrust(&model, &c));
+        let j = &row.joints;
+        let angles: Vec<f64> = j
+            .hinge_angles_deg
+            .iter()
+            .chain(&j.sliding_angles_deg)
+            .copied()
+            .collect();
+        self.push(
+            &fig,
+            LINE_OF_THRUST,
+            &general::line_of_thrust(&model, &c, &angles),
+        );
         self.push(&fig, LINE_ON_JOINTS, &general::line_on_joints(&model, &c));
         Ok(())
     }

@@ -32,7 +32,12 @@ pub fn figure(data: &RunData, s: &StateRow) -> FigureSpec {
         line.is_empty()
             .then(|| "line of thrust not unique: not drawn".to_string())
     });
-    let caption = format!("{}{joints_note}", texts.caption);
+    let vertical_note = if s.joint_orientation == "vertical" {
+        " The joints are vertical planes through the intrados and the supports the radial springing joints; between the last vertical section and a support the model has no section, and the line of thrust is drawn straight there."
+    } else {
+        ""
+    };
+    let caption = format!("{}{joints_note}{vertical_note}", texts.caption);
     let geometry = geometry::of_state(s);
     FigureSpec {
         stem: format!("state-{}", safe(&s.state_id)),

@@ -6,7 +6,7 @@
 
 use crate::analysis::forms::ArchModel;
 use crate::analysis::statics::{ArchGeometry, Joint};
-use crate::figdata::general::model_of_state;
+use crate::figdata::general::{joint_parameter as parameter, model_of_state};
 use crate::plot::state::{DrawnHinge, DrawnJoint, DrawnLoad, DrawnSlide, DrawnSupport, Xy};
 use crate::report::format::short;
 use crate::store::StateRow;
@@ -64,18 +64,6 @@ pub fn outline(model: &ArchModel) -> Vec<Xy> {
     out.extend(mirror(right_ex));
     out.dedup_by(|a, b| (a.0 - b.0).abs() < 1e-12 && (a.1 - b.1).abs() < 1e-12);
     out
-}
-
-/// The joint parameter named by a stored angle: a support (|angle| = α, a vertical-joint
-/// arch's supports lie just beyond α) or the angle itself (0 is the crown joint).
-fn parameter(model: &ArchModel, angle_deg: f64) -> f64 {
-    let alpha = model.arch().half_angle;
-    let t = angle_deg.to_radians();
-    if t.abs() >= alpha - 1e-9 {
-        alpha.next_up().copysign(t)
-    } else {
-        t
-    }
 }
 
 fn drawn(model: &ArchModel, j: &Joint) -> DrawnJoint {
@@ -184,5 +172,117 @@ pub fn of_state(s: &StateRow) -> StateGeometry {
         sliding,
         load: load(&model, s),
         note: None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(k: f64, e: f64, joints: &str, load: &str, at_deg: Option<f64>) -> StateRow {
+        StateRow {
+            state_id: "t".into(),
+            k,
+            half_angle_deg: 90.0,
+            weight: "annular".into(),
+            voussoirs: Some(6),
+            shape: if e > 0.0 { "pointed" } else { "circular" }.into(),
+            eccentricity: e,
+            joint_orientation: joints.into(),
+            load: load.into(),
+            at_deg,
+            load_factor: Some(0.25),
+            ..StateRow::default()
+        }
+    }
+
+    fn near(p: Xy, q: Xy) -> bool {
+        (p.0 - q.0).abs() < 1e-12 && (p.1 - q.1).abs() < 1e-12
+    }
+
+    #[test]
+    fn pointed_outline_meets_at_the_analytic_apexes() {
+        // Intrados arcs of radius 1 about (∓d, 0), d = e(1 + K)/2: they meet on x = 0 at
+        // height √(1 − d²); the extrados arcs (radius K) at √(K² − d²).
+        let (k, e) = (1.3, 0.2);
+        let d = e * (1.0 + k) / 2.0;
+        for joints in ["radial", "vertical"] {
+            let g = of_state(&row(k, e, joints, "self_weight", None));
+            // The intrados: the points at distance 1 from the centre of their own half.
+            let top_in = g
+                .outline
+                .iter()
+                .filter(|p| ((p.0.abs() + d).hypot(p.1) - 1.0).abs() < 1e-12)
+                .fold(f64::NEG_INFINITY, |m, p| m.max(p.1));
+            assert!((top_in - (1.0 - d * d).sqrt()).abs() < 1e-12, "{top_in}");
+            assert!(
+                g.outline
+                    .iter()
+                    .any(|&p| near(p, (0.0, (1.0 - d * d).sqrt())))
+            );
+            assert!(
+                g.outline
+                    .iter()
+                    .any(|&p| near(p, (0.0, (k * k - d * d).sqrt())))
+            );
+            // Springings: the radial support joints at ψ = 90° about (±d, 0).
+            let [l, r] = g.supports;
+            assert!(near(r.intrados, (1.0 - d, 0.0)) && near(r.extrados, (k - d, 0.0)));
+            assert!(near(l.intrados, (d - 1.0, 0.0)) && near(l.extrados, (d - k, 0.0)));
+            assert!((r.into_ground.1 + 1.0).abs() < 1e-12 && (l.into_ground.1 + 1.0).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn joints_are_drawn_radial_or_vertical_as_the_model_defines_them() {
+        let (k, e) = (1.3, 0.2);
+        let d = e * (1.0 + k) / 2.0;
+        let radial = of_state(&row(k, e, "radial", "self_weight", None));
+        let vertical = of_state(&row(k, e, "vertical", "self_weight", None));
+        assert_eq!(radial.voussoir_joints.len(), 5);
+        assert_eq!(vertical.voussoir_joints.len(), 5);
+        for j in &vertical.voussoir_joints {
+            assert!((j.intrados.0 - j.extrados.0).abs() < 1e-12, "{j:?}");
+        }
+        for j in radial.voussoir_joints.iter().filter(|j| j.angle_deg != 0.0) {
+            // On the line through the centre of its own half, (∓d, 0).
+            let c = if j.intrados.0 > 0.0 { -d } else { d };
+            let cross = (j.intrados.0 - c) * j.extrados.1 - (j.extrados.0 - c) * j.intrados.1;
+            assert!(cross.abs() < 1e-12, "{j:?}");
+        }
+        // Every joint end lies on the outline's arcs.
+        for j in radial
+            .voussoir_joints
+            .iter()
+            .chain(&vertical.voussoir_joints)
+        {
+            let c = if j.intrados.0 >= 0.0 { -d } else { d };
+            assert!(((j.intrados.0 - c).hypot(j.intrados.1) - 1.0).abs() < 1e-12);
+            assert!(((j.extrados.0 - c).hypot(j.extrados.1) - k).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn a_point_load_is_drawn_at_the_extrados_end_of_its_joint() {
+        let (k, e) = (1.3, 0.2);
+        let d = e * (1.0 + k) / 2.0;
+        let t = (-40.0f64).to_radians();
+        let g = of_state(&row(k, e, "radial", "point", Some(-40.0)));
+        let Some(DrawnLoad::Point { at, label }) = g.load else {
+            panic!("no point load");
+        };
+        assert!(near(at, (d + k * t.sin(), k * t.cos())), "{at:?}");
+        assert_eq!(label, "λ = 0.2500");
+        let g = of_state(&row(k, e, "vertical", "point", Some(-40.0)));
+        let Some(DrawnLoad::Point { at, .. }) = g.load else {
+            panic!("no point load");
+        };
+        // The top of the vertical joint through the intrados point at ψ = 40°.
+        assert!((at.0 - (d + t.sin())).abs() < 1e-12, "{at:?}");
+        assert!(((at.0 - d).hypot(at.1) - k).abs() < 1e-12, "{at:?}");
+        let g = of_state(&row(k, 0.0, "radial", "horizontal", None));
+        assert!(
+            matches!(g.load, Some(DrawnLoad::Horizontal { ref at, .. }) if at.len() == 3 && at.iter().all(|p| p.0 < 0.0))
+        );
     }
 }
