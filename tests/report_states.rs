@@ -98,6 +98,23 @@ fn assert_case_states(run: &Path, form: (&str, f64, &str), load: &str) {
             s.state_id
         );
         assert_eq!(s.mechanism, c.mechanism, "{}", s.state_id);
+        // Its collapse mechanism is stored and drawn, of the same kind, meeting eq. (11).
+        let mechs = store::read_mechanisms(&RunLayout::at(run).mechanisms()).expect("mechanisms");
+        let m = mechs
+            .iter()
+            .find(|m| m.state_id == s.state_id)
+            .expect("a mechanism of the state");
+        assert_eq!(Some(&m.mechanism), s.mechanism.as_ref(), "{}", s.state_id);
+        assert!(
+            m.work_residual < 1e-6,
+            "{}: {}",
+            s.state_id,
+            m.work_residual
+        );
+        assert!(
+            run.join(format!("plots/mechanisms-{}.png", s.state_id))
+                .is_file()
+        );
         if s.state == "weakest" {
             assert!((lc - weakest).abs() < 1e-15, "{lc} vs {weakest}");
         }

@@ -183,9 +183,85 @@ pub fn load_factor_state(
     model: &ArchModel,
     phi: f64,
 ) -> Option<(CrownForce, Option<crate::analysis::Mechanism>)> {
+    load_factor_collapse(model, phi).map(|c| (c.crown, c.mechanism))
+}
+
+/// A collapse state at λ_max with the active rows that name its mechanism.
+pub struct Collapse {
+    /// Crown force, moment and λ_max.
+    pub crown: CrownForce,
+    /// The mechanism named by the active rows.
+    pub mechanism: Option<crate::analysis::Mechanism>,
+    /// The active rows.
+    pub active: Vec<general::ActiveRow>,
+}
+
+/// The collapse state at λ_max of a live load, with its active rows.
+pub fn load_factor_collapse(model: &ArchModel, phi: f64) -> Option<Collapse> {
     let lf = general::load_factor(model, phi, &Settings::default());
-    (lf.outcome == Outcome::Solved && lf.lambda.is_finite())
-        .then(|| (CrownForce::of(&lf.crown, lf.lambda), lf.mechanism))
+    (lf.outcome == Outcome::Solved && lf.lambda.is_finite()).then(|| Collapse {
+        crown: CrownForce::of(&lf.crown, lf.lambda),
+        mechanism: lf.mechanism,
+        active: lf.active,
+    })
+}
+
+/// The collapse mechanism of a collapse state under the paper's non-associative rule: the
+/// mode of the active rows' pattern of the state's own kind that meets the work equation
+/// best (as the analysis reports it), with its work equation and its drawing, as a row of
+/// mechanisms.parquet (`bifurcation` 0: the state of a case). `None` when the pattern has
+/// no mode.
+pub fn collapse_mechanism_row(
+    model: &ArchModel,
+    c: &Collapse,
+    (state_id, load_case): (&str, &str),
+    mu: f64,
+) -> Option<crate::store::MechanismRow> {
+    use crate::analysis::kinematics::{
+        FlowRule, LimitState, VelocityField, drawing, mechanism_modes, work_equation,
+    };
+    let kind = c.mechanism.as_ref()?.kind;
+    let joints = general::pattern_of_rows(&c.active);
+    let modes = mechanism_modes(model, &joints, FlowRule::NonAssociative, true).ok()?;
+    let state = LimitState {
+        crown_force: [c.crown.fx, c.crown.fy],
+        crown_moment_origin: c.crown.m0,
+        load_factor: c.crown.lambda,
+        mu,
+    };
+    let rank = |f: &VelocityField| (f.kind() != Some(kind), work_equation(model, &state, f));
+    let (field, w) = modes
+        .fields
+        .iter()
+        .map(|f| (f, rank(f)))
+        .min_by(|a, b| {
+            (a.1.0.cmp(&b.1.0)).then(a.1.1.work_residual.total_cmp(&b.1.1.work_residual))
+        })
+        .map(|(f, (_, w))| (f, w))?;
+    let slides: Vec<_> = field.joints.iter().filter(|j| j.slips()).collect();
+    Some(crate::store::MechanismRow {
+        state_id: state_id.to_string(),
+        load_case: load_case.to_string(),
+        bifurcation: 0,
+        k: model.arch().k,
+        mu,
+        mechanism: field.kind().map_or("none", |k| k.as_str()).to_string(),
+        flow_rule: "non_associative".into(),
+        work_loads: w.work_loads,
+        work_normal: w.work_normal,
+        work_friction: w.work_friction,
+        work_residual: w.work_residual,
+        dof: modes.dof,
+        sliding_angles_deg: slides.iter().map(|j| j.angle_deg()).collect(),
+        slip: slides.iter().map(|j| j.slip).collect(),
+        dilatancy: slides.iter().map(|j| j.dilatancy).collect(),
+        drawing_json: serde_json::to_string(&drawing(
+            model,
+            field,
+            super::mechanisms::DRAWING_AMPLITUDE,
+        ))
+        .unwrap_or_default(),
+    })
 }
 
 /// The limit state at the located point of a collapse curve: the state of largest margin

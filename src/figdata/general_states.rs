@@ -11,7 +11,7 @@ use crate::analysis::general::Settings;
 use crate::manifest::{LoadCase, Manifest};
 use crate::model::{Friction, Load, Shape};
 use crate::scene::Find;
-use crate::store::{BifurcationGroup, BifurcationRow, LoadFactorCase, StateRow};
+use crate::store::{BifurcationGroup, BifurcationRow, LoadFactorCase, MechanismRow, StateRow};
 use anyhow::Result;
 
 /// What the general route draws for one load case.
@@ -75,14 +75,19 @@ impl LoadCaseStates<'_> {
         self.lc.lambda.unwrap_or(0.0)
     }
 
-    /// Every state of the load case, their lines of thrust pushed to `out`.
-    pub fn states(&self, out: &mut Collector) -> Result<Vec<StateRow>> {
+    /// Every state of the load case, their lines of thrust pushed to `out` and the collapse
+    /// mechanisms of the cases' states to `mechs`.
+    pub fn states(
+        &self,
+        out: &mut Collector,
+        mechs: &mut Vec<MechanismRow>,
+    ) -> Result<Vec<StateRow>> {
         let sfx = suffix(self.manifest, &self.lc.name);
         let mut rows = Vec::new();
         if self.lc.find == Find::LoadFactor {
             for (c, why) in chosen_cases(&self.cases) {
                 let id = format!("case-{}{sfx}", c.row);
-                rows.extend(self.case_state(id, c, why)?);
+                rows.extend(self.case_state(id, (c, why), mechs)?);
             }
         } else {
             for (i, &(b, g)) in self.bifurcations.iter().enumerate() {
@@ -138,7 +143,12 @@ impl LoadCaseStates<'_> {
     }
 
     /// The collapse state at λ_max of a stored case, solved again for its whole crown state.
-    fn case_state(&self, id: String, c: &LoadFactorCase, why: &str) -> Result<Option<StateRow>> {
+    fn case_state(
+        &self,
+        id: String,
+        (c, why): (&LoadFactorCase, &str),
+        mechs: &mut Vec<MechanismRow>,
+    ) -> Result<Option<StateRow>> {
         let group = ArchGroup {
             half_angle_deg: c.half_angle_deg,
             voussoirs: c.voussoirs.map_or(
@@ -150,10 +160,16 @@ impl LoadCaseStates<'_> {
             return Ok(None);
         };
         let f = friction(c.mu);
-        let lf = general::load_factor_state(&model, f.angle());
-        let Some((crown, mechanism)) = lf else {
+        let Some(collapse) = general::load_factor_collapse(&model, f.angle()) else {
             return Ok(None);
         };
+        let (crown, mechanism) = (collapse.crown, collapse.mechanism.clone());
+        mechs.extend(general::collapse_mechanism_row(
+            &model,
+            &collapse,
+            (&id, &self.lc.name),
+            f.mu(),
+        ));
         let mut row = blank_state(self.manifest, self.lc, group, id);
         row.source = "case".into();
         row.state = why.into();

@@ -492,7 +492,7 @@ pub fn run(plan: &Plan, layout: &RunLayout) -> Result<FigureDataSummary> {
                     .filter(|c| c.load_case == lc.name)
                     .collect(),
             };
-            states.extend(general.states(&mut out)?);
+            states.extend(general.states(&mut out, &mut mechs)?);
             continue;
         }
         symmetric_states(manifest, lc, &bifs, (&mut states, &mut mechs), &mut out)?;
