@@ -327,8 +327,12 @@ impl StateDrawing {
                 vec![j.intrados, j.extrados],
                 palette::SLIDING_LINE.stroke_width(ctx.upx(3.5)),
             ))?;
-            let (ix, iy) = j.intrados;
-            let thick = (j.extrados.0 - ix).hypot(j.extrados.1 - iy).max(0.15);
+            // Sized by the arch's thickness (the springing joint), not by the joint: a
+            // vertical joint near a springing is much longer than the arch is thick.
+            let s0 = &self.supports[1];
+            let thick = (s0.extrados.0 - s0.intrados.0)
+                .hypot(s0.extrados.1 - s0.intrados.1)
+                .max(0.15);
             let off = 0.3 * thick;
             let m = j.middle();
             let c = (m.0 + off * s.crown_side.0, m.1 + off * s.crown_side.1);
@@ -415,9 +419,10 @@ impl StateDrawing {
                     Pos::new(HPos::Left, VPos::Bottom),
                     (p.0 + ctx.px(6.0), p.1 - ctx.px(2.0)),
                 ),
-                DrawnLoad::Horizontal { .. } => {
-                    (Pos::new(HPos::Left, VPos::Bottom), (p.0, p.1 - ctx.px(8.0)))
-                }
+                DrawnLoad::Horizontal { .. } => (
+                    Pos::new(HPos::Right, VPos::Center),
+                    (p.0 - ctx.px(6.0), p.1),
+                ),
             };
             let f = ctx.font(13.0).color(&palette::GREEN).pos(pos);
             root.draw(&Text::new(label.to_string(), at, f))?;
@@ -502,7 +507,17 @@ impl StateDrawing {
             .collect();
         if let Some(t) = self.load_tails().iter().max_by(|a, b| a.1.total_cmp(&b.1)) {
             let p = chart.backend_coord(t);
-            out.push((p.0 - pad, p.1 - ctx.px(30.0), p.0 + ctx.px(110.0), p.1));
+            out.push(match &self.load {
+                Some(DrawnLoad::Point { .. }) => {
+                    (p.0 - pad, p.1 - ctx.px(30.0), p.0 + ctx.px(110.0), p.1)
+                }
+                _ => (
+                    p.0 - ctx.px(110.0),
+                    p.1 - ctx.px(12.0),
+                    p.0,
+                    p.1 + ctx.px(12.0),
+                ),
+            });
         }
         out
     }
@@ -549,6 +564,7 @@ impl AngleLabels {
         let text = format!("{:.1}°", t);
         let (tw, th) = style::text_block_size(font, std::slice::from_ref(&text), 1.0);
         let p = chart.backend_coord(&anchor);
+        let far = ctx.px(14.0);
         let cands = [
             (p.0 - tw / 2, p.1 - th / 2),
             (p.0, p.1 - th),
@@ -557,6 +573,12 @@ impl AngleLabels {
             (p.0 - tw, p.1),
             (p.0 + ctx.px(8.0), p.1 - th / 2),
             (p.0 - tw - ctx.px(8.0), p.1 - th / 2),
+            (p.0 + far, p.1 + far / 2),
+            (p.0 - tw - far, p.1 + far / 2),
+            (p.0 + far, p.1 - th - far / 2),
+            (p.0 - tw - far, p.1 - th - far / 2),
+            (p.0 - tw / 2, p.1 + far),
+            (p.0 - tw / 2, p.1 - th - far),
         ];
         let pos = self.placer.place(tw, th, &cands);
         root.draw(&Text::new(

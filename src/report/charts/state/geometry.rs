@@ -97,7 +97,7 @@ fn load(model: &ArchModel, s: &StateRow) -> Option<DrawnLoad> {
         "horizontal" => {
             // Arrows onto the extrados of the left half, the side the force pushes from.
             let (a, p) = (model.arch().half_angle, model.first_joint());
-            let at = [0.12, 0.42, 0.72]
+            let at = [0.3, 0.6, 0.9]
                 .iter()
                 .map(|&f: &f64| xy(model.joint(-(p + f * (a - p))).extrados))
                 .collect();
