@@ -15,6 +15,7 @@ mod mechanisms;
 mod report;
 mod report_arches;
 mod report_regime_map;
+mod report_states;
 mod run;
 mod shard;
 mod solve;

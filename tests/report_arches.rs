@@ -52,7 +52,7 @@ fn line_of_thrust(run: &Path, id: &str) -> Vec<(f64, f64)> {
     let curves = store::read_curves(&RunLayout::at(run).curves()).expect("curves.parquet");
     curves
         .iter()
-        .filter(|c| c.figure == format!("line_of_thrust/{id}"))
+        .filter(|c| c.figure == format!("line_of_thrust/{id}") && c.series == "line_of_thrust")
         .map(|c| (c.x, c.y))
         .collect()
 }

@@ -1,6 +1,5 @@
 //! The curves the figures need that come from evaluating the statics: the thrust bounds of
-//! the paper's Fig. 2 against the joint angle, the line of thrust of a state and the
-//! critical curves K_c(μ), μ_c(K). Pure functions of the analysis; no I/O.
+//! the paper's Fig. 2 against the joint angle and the critical curves K_c(μ), μ_c(K). Pure functions of the analysis; no I/O.
 
 use crate::analysis::circular::{SlidingBound, SymmetricCircular};
 use crate::analysis::symmetric;
@@ -82,46 +81,6 @@ pub fn domain_curves(arch: &Arch, friction: Friction) -> DomainCurves {
     out
 }
 
-/// The line of thrust of a symmetric state with crown thrust h and crown moment m (over
-/// W_half and W_half·r): the point where it crosses each radial section, in units of r, from
-/// the left springing to the right one. It crosses joint θ at radius ρ = −M/N with M = −m − s(θ) and
-/// N = h cos θ + w(θ) sin θ; joints where N ≤ 0 give NaN (no compressive resultant).
-pub fn line_of_thrust(arch: &Arch, h: f64, m: f64) -> Samples {
-    let sym = SymmetricCircular::new(arch);
-    // Every section, not only the joints: the weight is distributed, so the line is curved
-    // within a voussoir too (a polygon through the joint points would cut the intrados).
-    let mut half: Vec<f64> = (0..=360)
-        .map(|i| sym.alpha * f64::from(i) / 360.0)
-        .collect();
-    if sym.voussoirs.is_some() {
-        half.extend(sym.half_joints());
-        half.sort_by(f64::total_cmp);
-        half.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
-    }
-    let rho = |t: f64| {
-        let n = h * t.cos() + sym.w(t) * t.sin();
-        if n > 0.0 {
-            (m + sym.s(t)) / n
-        } else {
-            f64::NAN
-        }
-    };
-    let mut out: Samples = half
-        .iter()
-        .rev()
-        .filter(|&&t| t > 0.0)
-        .map(|&t| {
-            let r = rho(t);
-            (-r * t.sin(), r * t.cos())
-        })
-        .collect();
-    for &t in &half {
-        let r = rho(t);
-        out.push((r * t.sin(), r * t.cos()));
-    }
-    out
-}
-
 /// K_c(μ) at the given friction values: NaN where the arch never stands (or always does).
 pub fn critical_thickness_curve(arch: &Arch, mus: &[f64]) -> Samples {
     mus.iter()
@@ -164,25 +123,6 @@ pub fn linspace_with(lo: f64, hi: f64, n: usize, extra: &[f64]) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn line_of_thrust_passes_the_hinges_of_the_collapse_state() {
-        let arch = Arch::semicircular(1.5).unwrap();
-        let c = symmetric::thickness(&arch, Friction::INFINITE);
-        let s = c.found().unwrap();
-        let a = arch.with_k(s.k);
-        let line = line_of_thrust(&a, s.thrust_over_half_weight, s.crown_moment);
-        // Crown at the extrados, springings at the extrados.
-        let mid = line[line.len() / 2];
-        assert!(mid.0.abs() < 1e-12 && (mid.1 - s.k).abs() < 1e-9, "{mid:?}");
-        let end = line[line.len() - 1];
-        assert!((end.0.hypot(end.1) - s.k).abs() < 1e-9, "{end:?}");
-        // Inside the arch everywhere.
-        for (x, y) in line {
-            let r = x.hypot(y);
-            assert!(r > 1.0 - 1e-9 && r < s.k + 1e-9, "r = {r}");
-        }
-    }
 
     #[test]
     fn fig2_bounds_give_the_domain_ends() {

@@ -6,6 +6,8 @@
 //! bifurcations.parquet (when present) and uses the manifest for the arch and the scenes.
 
 pub mod curves;
+pub mod general;
+mod general_states;
 pub mod mechanisms;
 mod reference;
 pub use reference::find_of_quantity;
@@ -15,6 +17,7 @@ use crate::manifest::{AxisName, LoadCase, Manifest};
 use crate::model::{Arch, Discretisation, Friction};
 use crate::output::RunLayout;
 use crate::plan::Plan;
+use crate::scene::Find;
 use crate::store::{self, BifurcationGroup, BifurcationRow, CurvePoint, JointLists, StateRow};
 use anyhow::{Context, Result};
 use curves::Samples;
@@ -41,6 +44,8 @@ pub const K_CRIT_OF_MU: &str = "k_crit_of_mu";
 pub const MU_CRIT_OF_K: &str = "mu_crit_of_k";
 /// Series of the line of thrust (x, y over r).
 pub const LINE_OF_THRUST: &str = "line_of_thrust";
+/// Series of the line's points on the joints between voussoirs (x, y over r).
+pub const LINE_ON_JOINTS: &str = "line_on_joints";
 
 /// Samples of each critical curve.
 const CRITICAL_SAMPLES: usize = 161;
@@ -70,6 +75,30 @@ impl Collector {
             x,
             y,
         }));
+    }
+
+    /// The line of thrust of a filled state row and its points on the voussoir joints, on
+    /// the row's own arch under its own load (nothing when the row has no crown state).
+    fn push_line(&mut self, row: &StateRow) -> Result<()> {
+        let Some(c) = general::CrownForce::of_row(row) else {
+            return Ok(());
+        };
+        let model = general::model_of_state(row)?;
+        let fig = line_of_thrust_figure(&row.state_id);
+        let j = &row.joints;
+        let angles: Vec<f64> = j
+            .hinge_angles_deg
+            .iter()
+            .chain(&j.sliding_angles_deg)
+            .copied()
+            .collect();
+        self.push(
+            &fig,
+            LINE_OF_THRUST,
+            &general::line_of_thrust(&model, &c, &angles),
+        );
+        self.push(&fig, LINE_ON_JOINTS, &general::line_on_joints(&model, &c));
+        Ok(())
     }
 }
 
@@ -209,6 +238,8 @@ fn blank_state(manifest: &Manifest, lc: &LoadCase, group: ArchGroup, id: String)
         mechanism: None,
         thrust_over_half_weight: None,
         crown_moment: None,
+        crown_shear: None,
+        case_id: None,
         joints: JointLists::default(),
         thrust_r_min: None,
         thrust_r_max: None,
@@ -226,14 +257,6 @@ fn bifurcation_state(
     out: &mut Collector,
 ) -> Result<StateRow> {
     let group = ArchGroup::of_bifurcation(manifest, g);
-    let arch = group.arch(manifest, b.k)?;
-    if let (Some(h), Some(m)) = (b.thrust_over_half_weight, b.crown_moment) {
-        out.push(
-            &line_of_thrust_figure(&id),
-            LINE_OF_THRUST,
-            &curves::line_of_thrust(&arch, h, m),
-        );
-    }
     let mut row = blank_state(manifest, lc, group, id);
     row.source = "bifurcation".into();
     row.state = "bifurcation".into();
@@ -243,10 +266,12 @@ fn bifurcation_state(
     row.thrust_over_half_weight = b.thrust_over_half_weight;
     row.crown_moment = b.crown_moment;
     row.joints = b.joints.clone();
+    row.crown_shear = row.thrust_over_half_weight.map(|_| 0.0);
     if let Some(g) = g {
         row.at_deg = g.at_deg.or(row.at_deg);
         row.load_factor = g.load_factor.or(row.load_factor);
     }
+    out.push_line(&row)?;
     Ok(row)
 }
 
@@ -304,22 +329,17 @@ fn scene_state(
     row.thrust_r_max = (!r.is_empty()).then_some(r.hi).and_then(finite);
     row.thrust_s_min = (!s.is_empty()).then_some(s.lo).and_then(finite);
     row.thrust_s_max = (!s.is_empty()).then_some(s.hi).and_then(finite);
-    let (draw_arch, h, m) = scene_drawn_state(&arch, friction, &mut row);
+    let (h, m) = scene_drawn_state(&arch, friction, &mut row);
     row.thrust_over_half_weight = finite(h);
     row.crown_moment = finite(m);
-    if h.is_finite() && m.is_finite() {
-        out.push(
-            &line_of_thrust_figure(&id),
-            LINE_OF_THRUST,
-            &curves::line_of_thrust(&draw_arch, h, m),
-        );
-    }
+    row.crown_shear = row.thrust_over_half_weight.map(|_| 0.0);
+    out.push_line(&row)?;
     Ok(row)
 }
 
 /// The state a scene draws: its minimum-thrust state, else its collapse state at K_c(μ);
-/// fills the row's state, mechanism and joints and returns the arch, thrust and moment.
-fn scene_drawn_state(arch: &Arch, friction: Friction, row: &mut StateRow) -> (Arch, f64, f64) {
+/// fills the row's state, K, mechanism and joints and returns the thrust and moment.
+fn scene_drawn_state(arch: &Arch, friction: Friction, row: &mut StateRow) -> (f64, f64) {
     match symmetric::thrust(arch, friction) {
         Some((lo, _)) if lo.thrust_over_half_weight.is_finite() => {
             row.state = "minimum_thrust".into();
@@ -329,7 +349,7 @@ fn scene_drawn_state(arch: &Arch, friction: Friction, row: &mut StateRow) -> (Ar
             )
             .map(|k| k.as_str().to_string());
             row.joints = joint_lists(&lo.hinges, &lo.sliding_joints);
-            (*arch, lo.thrust_over_half_weight, lo.crown_moment)
+            (lo.thrust_over_half_weight, lo.crown_moment)
         }
         _ => match symmetric::thickness(arch, friction) {
             symmetric::Critical::Found(c) => {
@@ -338,9 +358,9 @@ fn scene_drawn_state(arch: &Arch, friction: Friction, row: &mut StateRow) -> (Ar
                 row.t_over_r = crate::model::t_over_r_from_k(c.k);
                 row.mechanism = Some(c.mechanism.kind.as_str().into());
                 row.joints = joint_lists(&c.mechanism.hinges, &c.mechanism.sliding_joints);
-                (arch.with_k(c.k), c.thrust_over_half_weight, c.crown_moment)
+                (c.thrust_over_half_weight, c.crown_moment)
             }
-            _ => (*arch, f64::NAN, f64::NAN),
+            _ => (f64::NAN, f64::NAN),
         },
     }
 }
@@ -394,6 +414,38 @@ fn critical_curves(
     Ok(())
 }
 
+/// The states of a self-weight load case on the circular arch with radial joints: every
+/// bifurcation with its mechanisms, and every scene on every arch of the study.
+fn symmetric_states(
+    manifest: &Manifest,
+    lc: &LoadCase,
+    bifs: &[(&BifurcationRow, Option<&BifurcationGroup>)],
+    (states, mechs): (&mut Vec<StateRow>, &mut Vec<store::MechanismRow>),
+    out: &mut Collector,
+) -> Result<()> {
+    let sfx = suffix(manifest, &lc.name);
+    for (i, &(b, g)) in bifs.iter().enumerate() {
+        let id = format!("bifurcation-{}{sfx}", i + 1);
+        let index = u32::try_from(i + 1).unwrap_or(u32::MAX);
+        let arch = ArchGroup::of_bifurcation(manifest, g).arch(manifest, b.k)?;
+        mechs.extend(mechanisms::bifurcation_mechanisms(&arch, b, &id, index));
+        states.push(bifurcation_state(manifest, lc, id, (b, g), out)?);
+    }
+    for group in arch_groups(manifest) {
+        for (i, s) in manifest.scenes.iter().enumerate() {
+            let id = format!("scene-{}{}{sfx}", i + 1, group.suffix(manifest));
+            let at = SceneAt {
+                lc,
+                group,
+                k: s.k,
+                mu: s.mu,
+            };
+            states.push(scene_state(manifest, id, &at, out)?);
+        }
+    }
+    Ok(())
+}
+
 /// Runs the stage: computes the figure data of a run and writes it into its directory.
 pub fn run(plan: &Plan, layout: &RunLayout) -> Result<FigureDataSummary> {
     let manifest = &plan.manifest;
@@ -410,42 +462,41 @@ pub fn run(plan: &Plan, layout: &RunLayout) -> Result<FigureDataSummary> {
     let mut out = Collector { points: Vec::new() };
     let mut states = Vec::new();
     let mut mechs = Vec::new();
-    // The drawings (an arc of a circle, a symmetric line of thrust, H^r and H^s) are those of
-    // self-weight on the circular arch with radial joints: other forms and live loads get
-    // none rather than wrong ones (docs/loads-and-geometries.md).
-    let drawable = manifest.arch.form().is_circular_radial();
-    for lc in manifest
+    let load_factor_cases = if manifest
         .load_cases
         .iter()
-        .filter(|l| drawable && !l.kind.is_live())
+        .any(|l| l.find == Find::LoadFactor)
     {
-        let sfx = suffix(manifest, &lc.name);
+        store::read_load_factor_cases(&layout.results())?
+    } else {
+        Vec::new()
+    };
+    // Self-weight on the circular arch with radial joints has the symmetric closed forms
+    // (H^r, H^s and the paper's Fig. 2); every other form and load is drawn from the general
+    // statics of its own arch.
+    let symmetric = manifest.arch.form().is_circular_radial();
+    for lc in &manifest.load_cases {
         let bifs: Vec<(&BifurcationRow, Option<&BifurcationGroup>)> = bifurcations
             .iter()
             .enumerate()
             .filter(|(_, b)| b.load_case == lc.name)
             .map(|(i, b)| (b, groups.get(i)))
             .collect();
-        for (i, &(b, g)) in bifs.iter().enumerate() {
-            let id = format!("bifurcation-{}{sfx}", i + 1);
-            let index = u32::try_from(i + 1).unwrap_or(u32::MAX);
-            let arch = ArchGroup::of_bifurcation(manifest, g).arch(manifest, b.k)?;
-            mechs.extend(mechanisms::bifurcation_mechanisms(&arch, b, &id, index));
-            states.push(bifurcation_state(manifest, lc, id, (b, g), &mut out)?);
+        if !symmetric || lc.kind.is_live() || lc.find == Find::LoadFactor {
+            let general = general_states::LoadCaseStates {
+                manifest,
+                lc,
+                bifurcations: bifs,
+                cases: load_factor_cases
+                    .iter()
+                    .filter(|c| c.load_case == lc.name)
+                    .collect(),
+            };
+            states.extend(general.states(&mut out, &mut mechs)?);
+            continue;
         }
-        for group in arch_groups(manifest) {
-            for (i, s) in manifest.scenes.iter().enumerate() {
-                let id = format!("scene-{}{}{sfx}", i + 1, group.suffix(manifest));
-                let at = SceneAt {
-                    lc,
-                    group,
-                    k: s.k,
-                    mu: s.mu,
-                };
-                states.push(scene_state(manifest, id, &at, &mut out)?);
-            }
-        }
-        if lc.find == crate::scene::Find::State && single_model(manifest) {
+        symmetric_states(manifest, lc, &bifs, (&mut states, &mut mechs), &mut out)?;
+        if lc.find == Find::State && single_model(manifest) {
             let own: Vec<BifurcationRow> = bifs.into_iter().map(|(b, _)| b.clone()).collect();
             critical_curves(manifest, &lc.name, &own, &mut out)?;
         }

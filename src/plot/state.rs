@@ -9,6 +9,100 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
+/// A point over r.
+pub type Xy = (f64, f64);
+
+/// A joint of the drawn arch: its intrados and extrados ends and the angle that names it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DrawnJoint {
+    /// Intrados end.
+    pub intrados: Xy,
+    /// Extrados end.
+    pub extrados: Xy,
+    /// Angle from the crown, degrees, positive to the right.
+    pub angle_deg: f64,
+}
+
+impl DrawnJoint {
+    /// Unit vector from the intrados end to the extrados end.
+    pub fn along(&self) -> Xy {
+        let (dx, dy) = (
+            self.extrados.0 - self.intrados.0,
+            self.extrados.1 - self.intrados.1,
+        );
+        let l = dx.hypot(dy).max(f64::MIN_POSITIVE);
+        (dx / l, dy / l)
+    }
+
+    fn middle(&self) -> Xy {
+        (
+            0.5 * (self.intrados.0 + self.extrados.0),
+            0.5 * (self.intrados.1 + self.extrados.1),
+        )
+    }
+}
+
+/// A hinge: the joint and the face the line of thrust touches.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DrawnHinge {
+    /// The joint.
+    pub joint: DrawnJoint,
+    /// True at the extrados, false at the intrados.
+    pub extrados: bool,
+}
+
+impl DrawnHinge {
+    /// The hinge point.
+    pub fn point(&self) -> Xy {
+        if self.extrados {
+            self.joint.extrados
+        } else {
+            self.joint.intrados
+        }
+    }
+}
+
+/// A sliding joint with the motion of its crown-side part.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DrawnSlide {
+    /// The joint.
+    pub joint: DrawnJoint,
+    /// True when the crown-side part moves outward (toward the extrados).
+    pub outward: bool,
+    /// Unit vector across the joint toward its crown side.
+    pub crown_side: Xy,
+}
+
+/// A support: the springing joint and the side the ground lies on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DrawnSupport {
+    /// Intrados end of the springing joint.
+    pub intrados: Xy,
+    /// Extrados end.
+    pub extrados: Xy,
+    /// Unit normal of the joint pointing into the ground.
+    pub into_ground: Xy,
+}
+
+/// The live load of a state.
+#[derive(Debug, Clone, PartialEq)]
+pub enum DrawnLoad {
+    /// A vertical point load at a point of the extrados.
+    Point {
+        /// Where it acts.
+        at: Xy,
+        /// Its label (λ).
+        label: String,
+    },
+    /// A horizontal body force, drawn as arrows onto points spread over the arch.
+    Horizontal {
+        /// The points the arrows end at.
+        at: Vec<Xy>,
+        /// Its label (λ).
+        label: String,
+    },
+}
+
 /// What a state drawing shows. Lengths over the intrados radius r.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StateDrawing {
@@ -16,47 +110,69 @@ pub struct StateDrawing {
     pub title: String,
     /// Lines under the title (values, already formatted).
     pub subtitle: Vec<String>,
-    /// K = R/r.
-    pub k: f64,
-    /// Half-embrace angle, degrees.
-    pub alpha_deg: f64,
-    /// Joints between voussoirs, degrees from the crown (empty for the continuum).
-    pub voussoir_joints_deg: Vec<f64>,
-    /// The line of thrust (x, y over r), empty when it is not drawn.
-    pub line_of_thrust: Vec<(f64, f64)>,
-    /// Hinges: angle in degrees and face (`intrados` or `extrados`).
-    pub hinges: Vec<(f64, String)>,
-    /// Sliding joints: angle in degrees and sense (`outward` or `inward`).
-    pub sliding: Vec<(f64, String)>,
+    /// The outline of the arch: a closed polygon (intrados left to right, extrados back),
+    /// first point not repeated.
+    pub outline: Vec<Xy>,
+    /// Joints between voussoirs (empty for the continuum).
+    pub voussoir_joints: Vec<DrawnJoint>,
+    /// The supports, left then right.
+    pub supports: [DrawnSupport; 2],
+    /// The line of thrust (x, y over r; NaN breaks it), empty when it is not drawn.
+    pub line_of_thrust: Vec<Xy>,
+    /// Its points on the joints between voussoirs.
+    pub line_on_joints: Vec<Xy>,
+    /// Hinges.
+    pub hinges: Vec<DrawnHinge>,
+    /// Sliding joints.
+    pub sliding: Vec<DrawnSlide>,
+    /// The live load, if any.
+    pub load: Option<DrawnLoad>,
     /// A note drawn in the middle (e.g. why no line of thrust is drawn).
     pub note: Option<String>,
 }
 
-fn at(radius: f64, theta_deg: f64) -> (f64, f64) {
-    let t = theta_deg.to_radians();
-    (radius * t.sin(), radius * t.cos())
+/// Bounds (x0, x1, y0, y1) of points.
+fn bounds<'a>(pts: impl Iterator<Item = &'a Xy>) -> [f64; 4] {
+    pts.fold(
+        [
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ],
+        |b, p| [b[0].min(p.0), b[1].max(p.0), b[2].min(p.1), b[3].max(p.1)],
+    )
 }
 
-fn arc(radius: f64, a0: f64, a1: f64, n: usize) -> Vec<(f64, f64)> {
-    (0..=n)
-        .map(|i| at(radius, a0 + (a1 - a0) * i as f64 / n as f64))
-        .collect()
+impl StateDrawing {
+    /// A length of the drawing's scale: the larger half-extent of the arch.
+    fn scale(&self) -> f64 {
+        let b = bounds(self.outline.iter());
+        (0.5 * (b[1] - b[0])).max(b[3] - b[2]).max(1e-3)
+    }
+
+    /// Length of a load arrow, over r.
+    fn arrow_length(&self) -> f64 {
+        0.22 * self.scale()
+    }
+
+    /// The points a load arrow starts from.
+    fn load_tails(&self) -> Vec<Xy> {
+        let l = self.arrow_length();
+        match &self.load {
+            Some(DrawnLoad::Point { at, .. }) => vec![(at.0, at.1 + l)],
+            Some(DrawnLoad::Horizontal { at, .. }) => at.iter().map(|p| (p.0 - l, p.1)).collect(),
+            None => Vec::new(),
+        }
+    }
 }
 
-/// Data window: the arch with room around it for labels and supports.
+/// Data window: the arch and its load with room around it for labels and supports.
 fn window(d: &StateDrawing) -> ((f64, f64), (f64, f64)) {
-    let pts: Vec<(f64, f64)> = arc(d.k, -d.alpha_deg, d.alpha_deg, 180)
-        .into_iter()
-        .chain(arc(1.0, -d.alpha_deg, d.alpha_deg, 180))
-        .collect();
-    let x1 = pts.iter().map(|p| p.0.abs()).fold(0.0, f64::max);
-    let (y0, y1) = pts
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
-            (a.min(p.1), b.max(p.1))
-        });
-    let pad = 0.14 * d.k;
-    ((-x1 - pad, x1 + pad), (y0 - pad, y1 + pad))
+    let tails = d.load_tails();
+    let b = bounds(d.outline.iter().chain(&tails));
+    let pad = 0.1 * d.scale();
+    ((b[0] - pad, b[1] + pad), (b[2] - pad, b[3] + 1.3 * pad))
 }
 
 /// The plotting area of a [`Chart`].
@@ -84,10 +200,12 @@ impl Figure for StateDrawing {
         self.draw_supports(plot, ctx)?;
         self.draw_sliding_joints(root, &chart, ctx)?;
         self.draw_line_of_thrust(root, &chart, ctx, w)?;
+        self.draw_load(root, &chart, ctx)?;
         self.draw_hinges(root, &chart, ctx)?;
         if let Some(note) = &self.note {
             let f = ctx.font(14.0).pos(Pos::new(HPos::Center, VPos::Center));
-            let c = chart.backend_coord(&(0.0, 0.45));
+            let b = bounds(self.outline.iter());
+            let c = chart.backend_coord(&(0.5 * (b[0] + b[1]), b[2] + 0.35 * (b[3] - b[2])));
             root.draw(&Text::new(note.clone(), c, f))?;
         }
         Ok(())
@@ -137,16 +255,17 @@ impl StateDrawing {
         plot: &Plot<DB>,
         ctx: &PlotContext,
     ) -> DrawResult<(), DB> {
-        let (k, a) = (self.k, self.alpha_deg);
-        let mut outline = arc(k, -a, a, 360);
-        outline.extend(arc(1.0, a, -a, 360));
+        if self.outline.len() < 3 {
+            return Ok(());
+        }
+        let mut outline = self.outline.clone();
         plot.draw(&Polygon::new(outline.clone(), palette::STONE.filled()))?;
         outline.push(outline[0]);
         let ink = palette::INK.stroke_width(ctx.upx(1.6));
         plot.draw(&PathElement::new(outline, ink))?;
-        for &t in &self.voussoir_joints_deg {
+        for j in &self.voussoir_joints {
             plot.draw(&PathElement::new(
-                vec![at(1.0, t), at(k, t)],
+                vec![j.intrados, j.extrados],
                 palette::INK.stroke_width(ctx.upx(1.0).max(1)),
             ))?;
         }
@@ -159,28 +278,26 @@ impl StateDrawing {
         plot: &Plot<DB>,
         ctx: &PlotContext,
     ) -> DrawResult<(), DB> {
-        let (k, a) = (self.k, self.alpha_deg);
-        let thick = k - 1.0;
-        for side in [-1.0, 1.0] {
-            let t = (side * a).to_radians();
-            // Normal of the springing joint pointing away from the arch.
-            let out = if side > 0.0 {
-                (t.cos(), -t.sin())
-            } else {
-                (-t.cos(), t.sin())
-            };
-            let along = (t.sin(), t.cos());
+        for s in &self.supports {
+            let (i, e) = (s.intrados, s.extrados);
+            let (dx, dy) = (e.0 - i.0, e.1 - i.1);
+            let thick = dx.hypot(dy);
+            let along = (
+                dx / thick.max(f64::MIN_POSITIVE),
+                dy / thick.max(f64::MIN_POSITIVE),
+            );
             let ext = 0.25 * thick;
-            let p0 = (along.0 * (1.0 - ext), along.1 * (1.0 - ext));
-            let p1 = (along.0 * (k + ext), along.1 * (k + ext));
+            let p0 = (i.0 - ext * along.0, i.1 - ext * along.1);
+            let p1 = (e.0 + ext * along.0, e.1 + ext * along.1);
             plot.draw(&PathElement::new(
                 vec![p0, p1],
                 palette::INK.stroke_width(ctx.upx(2.0)),
             ))?;
             let n = 9;
             let depth = 0.35 * thick;
-            for i in 0..=n {
-                let f = i as f64 / n as f64;
+            let out = s.into_ground;
+            for k in 0..=n {
+                let f = k as f64 / n as f64;
                 let q = (p0.0 + f * (p1.0 - p0.0), p0.1 + f * (p1.1 - p0.1));
                 let q2 = (
                     q.0 + depth * (out.0 - 0.6 * along.0),
@@ -195,35 +312,33 @@ impl StateDrawing {
         Ok(())
     }
 
-    /// Sliding joints, each with an arrow on its crown side, radial, in the sense in which
-    /// the crown side moves.
+    /// Sliding joints, each with an arrow on its crown side, along the joint, in the sense in
+    /// which the crown side moves.
     fn draw_sliding_joints<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, Shift>,
         chart: &Chart<DB>,
         ctx: &PlotContext,
     ) -> DrawResult<(), DB> {
-        let k = self.k;
-        let thick = k - 1.0;
         let plot = chart.plotting_area();
-        for (t, sense) in &self.sliding {
+        for s in &self.sliding {
+            let j = &s.joint;
             plot.draw(&PathElement::new(
-                vec![at(1.0, *t), at(k, *t)],
+                vec![j.intrados, j.extrados],
                 palette::SLIDING_LINE.stroke_width(ctx.upx(3.5)),
             ))?;
-            let mid = 0.5 * (1.0 + k);
-            let rad = t.to_radians();
-            let tang = (rad.cos(), -rad.sin());
-            let crown_side = if *t >= 0.0 { -1.0 } else { 1.0 };
-            let off = 0.3 * thick.max(0.15);
-            let c = at(mid, *t);
-            let c = (
-                c.0 + crown_side * off * tang.0,
-                c.1 + crown_side * off * tang.1,
-            );
-            let dir = if sense == "outward" { 1.0 } else { -1.0 };
-            let len = 0.6 * thick.max(0.15);
-            let n = (rad.sin(), rad.cos());
+            // Sized by the arch's thickness (the springing joint), not by the joint: a
+            // vertical joint near a springing is much longer than the arch is thick.
+            let s0 = &self.supports[1];
+            let thick = (s0.extrados.0 - s0.intrados.0)
+                .hypot(s0.extrados.1 - s0.intrados.1)
+                .max(0.15);
+            let off = 0.3 * thick;
+            let m = j.middle();
+            let c = (m.0 + off * s.crown_side.0, m.1 + off * s.crown_side.1);
+            let dir = if s.outward { 1.0 } else { -1.0 };
+            let len = 0.6 * thick;
+            let n = j.along();
             let a0 = (c.0 - dir * 0.5 * len * n.0, c.1 - dir * 0.5 * len * n.1);
             let a1 = (c.0 + dir * 0.5 * len * n.0, c.1 + dir * 0.5 * len * n.1);
             style::arrow(
@@ -255,23 +370,62 @@ impl StateDrawing {
                 ))?;
             }
         }
-        if !self.voussoir_joints_deg.is_empty() {
-            for &(x, y) in &self.line_of_thrust {
-                let t = x.atan2(y).to_degrees();
-                if self
-                    .voussoir_joints_deg
-                    .iter()
-                    .any(|j| (j - t).abs() < 1e-6)
-                {
-                    let c = chart.backend_coord(&(x, y));
-                    root.draw(&Circle::new(c, ctx.upx(3.5), WHITE.filled()))?;
-                    root.draw(&Circle::new(
-                        c,
-                        ctx.upx(3.5),
-                        palette::RED.stroke_width(ctx.upx(1.5)),
-                    ))?;
-                }
+        for p in &self.line_on_joints {
+            if !(x0..=x1).contains(&p.0) || !(y0..=y1).contains(&p.1) {
+                continue;
             }
+            let c = chart.backend_coord(p);
+            root.draw(&Circle::new(c, ctx.upx(3.5), WHITE.filled()))?;
+            root.draw(&Circle::new(
+                c,
+                ctx.upx(3.5),
+                palette::RED.stroke_width(ctx.upx(1.5)),
+            ))?;
+        }
+        Ok(())
+    }
+
+    /// The live load: a vertical arrow onto its point, or arrows across the arch for a
+    /// horizontal body force, with its label.
+    fn draw_load<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        chart: &Chart<DB>,
+        ctx: &PlotContext,
+    ) -> DrawResult<(), DB> {
+        let Some(load) = &self.load else {
+            return Ok(());
+        };
+        let tails = self.load_tails();
+        let (heads, label) = match load {
+            DrawnLoad::Point { at, label } => (std::slice::from_ref(at), label),
+            DrawnLoad::Horizontal { at, label } => (at.as_slice(), label),
+        };
+        for (t, h) in tails.iter().zip(heads) {
+            style::arrow(
+                root,
+                ctx,
+                chart.backend_coord(t),
+                chart.backend_coord(h),
+                palette::GREEN,
+                2.6,
+            )?;
+        }
+        if let Some(t) = tails.iter().max_by(|a, b| a.1.total_cmp(&b.1)) {
+            // Right of the top of a vertical arrow; above the highest tail of horizontal ones.
+            let p = chart.backend_coord(t);
+            let (pos, at) = match load {
+                DrawnLoad::Point { .. } => (
+                    Pos::new(HPos::Left, VPos::Bottom),
+                    (p.0 + ctx.px(6.0), p.1 - ctx.px(2.0)),
+                ),
+                DrawnLoad::Horizontal { .. } => (
+                    Pos::new(HPos::Right, VPos::Center),
+                    (p.0 - ctx.px(6.0), p.1),
+                ),
+            };
+            let f = ctx.font(13.0).color(&palette::GREEN).pos(pos);
+            root.draw(&Text::new(label.to_string(), at, f))?;
         }
         Ok(())
     }
@@ -283,7 +437,6 @@ impl StateDrawing {
         chart: &Chart<DB>,
         ctx: &PlotContext,
     ) -> DrawResult<(), DB> {
-        let k = self.k;
         let (xr, yr) = chart.plotting_area().get_pixel_range();
         let mut labels = AngleLabels {
             placer: LabelPlacer::new((xr.start, yr.start, xr.end, yr.end)),
@@ -291,40 +444,96 @@ impl StateDrawing {
             symmetric: self.is_symmetric(),
             font: ctx.font(12.5),
         };
-        let face_radius = |f: &str| if f == "intrados" { 1.0 } else { k };
         let hinge_px: Vec<(i32, i32)> = self
             .hinges
             .iter()
-            .map(|(t, f)| chart.backend_coord(&at(face_radius(f), *t)))
+            .map(|h| chart.backend_coord(&h.point()))
             .collect();
         for p in &hinge_px {
             let r = ctx.px(7.0);
             labels.placer.block((p.0 - r, p.1 - r, p.0 + r, p.1 + r));
         }
+        for b in self.load_boxes(chart, ctx) {
+            labels.placer.block(b);
+        }
         for p in &hinge_px {
             style::dot(root, ctx, *p, 5.5, palette::INK)?;
         }
-        let gap = 0.09 * k;
-        for (t, f) in &self.hinges {
-            let r = if f == "intrados" { 1.0 - gap } else { k + gap };
-            labels.draw(root, chart, ctx, (*t, r, palette::INK))?;
+        let gap = 0.07 * self.scale();
+        for h in &self.hinges {
+            let (n, p) = (h.joint.along(), h.point());
+            let sign = if h.extrados { 1.0 } else { -1.0 };
+            let anchor = (p.0 + sign * gap * n.0, p.1 + sign * gap * n.1);
+            labels.draw(root, chart, ctx, (h.joint.angle_deg, anchor, palette::INK))?;
         }
-        for (t, _) in &self.sliding {
-            labels.draw(root, chart, ctx, (*t, k + gap, palette::SLIDING_LINE))?;
+        for s in &self.sliding {
+            let (n, p) = (s.joint.along(), s.joint.extrados);
+            let anchor = (p.0 + gap * n.0, p.1 + gap * n.1);
+            labels.draw(
+                root,
+                chart,
+                ctx,
+                (s.joint.angle_deg, anchor, palette::SLIDING_LINE),
+            )?;
         }
         Ok(())
     }
 
+    /// Device-pixel boxes of the load's arrows and label, kept clear of the angle labels.
+    fn load_boxes<DB: DrawingBackend>(
+        &self,
+        chart: &Chart<DB>,
+        ctx: &PlotContext,
+    ) -> Vec<style::PixelBox> {
+        let heads: Vec<Xy> = match &self.load {
+            Some(DrawnLoad::Point { at, .. }) => vec![*at],
+            Some(DrawnLoad::Horizontal { at, .. }) => at.clone(),
+            None => return Vec::new(),
+        };
+        let pad = ctx.px(6.0);
+        let mut out: Vec<style::PixelBox> = self
+            .load_tails()
+            .iter()
+            .zip(&heads)
+            .map(|(t, h)| {
+                let (a, b) = (chart.backend_coord(t), chart.backend_coord(h));
+                (
+                    a.0.min(b.0) - pad,
+                    a.1.min(b.1) - pad,
+                    a.0.max(b.0) + pad,
+                    a.1.max(b.1) + pad,
+                )
+            })
+            .collect();
+        if let Some(t) = self.load_tails().iter().max_by(|a, b| a.1.total_cmp(&b.1)) {
+            let p = chart.backend_coord(t);
+            out.push(match &self.load {
+                Some(DrawnLoad::Point { .. }) => {
+                    (p.0 - pad, p.1 - ctx.px(30.0), p.0 + ctx.px(110.0), p.1)
+                }
+                _ => (
+                    p.0 - ctx.px(110.0),
+                    p.1 - ctx.px(12.0),
+                    p.0,
+                    p.1 + ctx.px(12.0),
+                ),
+            });
+        }
+        out
+    }
+
     /// True when every hinge and sliding joint has its mirror image.
     fn is_symmetric(&self) -> bool {
-        self.hinges.iter().all(|(t, f)| {
+        let mirrored = |a: f64, b: f64| (a + b).abs() < 1e-6;
+        self.hinges.iter().all(|h| {
             self.hinges
                 .iter()
-                .any(|(u, g)| (u + t).abs() < 1e-6 && f == g)
-        }) && self
-            .sliding
-            .iter()
-            .all(|(t, _)| self.sliding.iter().any(|(u, _)| (u + t).abs() < 1e-6))
+                .any(|g| mirrored(h.joint.angle_deg, g.joint.angle_deg) && h.extrados == g.extrados)
+        }) && self.sliding.iter().all(|s| {
+            self.sliding
+                .iter()
+                .any(|u| mirrored(s.joint.angle_deg, u.joint.angle_deg))
+        })
     }
 }
 
@@ -339,13 +548,13 @@ struct AngleLabels {
 }
 
 impl AngleLabels {
-    /// Labels joint `t` (degrees) near radius `radius_out`, in `color`.
+    /// Labels joint `t` (degrees) near the point `anchor` (over r), in `color`.
     fn draw<DB: DrawingBackend>(
         &mut self,
         root: &DrawingArea<DB, Shift>,
         chart: &Chart<DB>,
         ctx: &PlotContext,
-        (t, radius_out, color): (f64, f64, RGBColor),
+        (t, anchor, color): (f64, Xy, RGBColor),
     ) -> DrawResult<(), DB> {
         if (self.symmetric && t < -1e-9) || self.labelled.iter().any(|&u| (u - t).abs() < 1e-6) {
             return Ok(());
@@ -354,7 +563,8 @@ impl AngleLabels {
         let font = &self.font;
         let text = format!("{:.1}°", t);
         let (tw, th) = style::text_block_size(font, std::slice::from_ref(&text), 1.0);
-        let p = chart.backend_coord(&at(radius_out, t));
+        let p = chart.backend_coord(&anchor);
+        let far = ctx.px(14.0);
         let cands = [
             (p.0 - tw / 2, p.1 - th / 2),
             (p.0, p.1 - th),
@@ -363,6 +573,12 @@ impl AngleLabels {
             (p.0 - tw, p.1),
             (p.0 + ctx.px(8.0), p.1 - th / 2),
             (p.0 - tw - ctx.px(8.0), p.1 - th / 2),
+            (p.0 + far, p.1 + far / 2),
+            (p.0 - tw - far, p.1 + far / 2),
+            (p.0 + far, p.1 - th - far / 2),
+            (p.0 - tw - far, p.1 - th - far / 2),
+            (p.0 - tw / 2, p.1 + far),
+            (p.0 - tw / 2, p.1 - th - far),
         ];
         let pos = self.placer.place(tw, th, &cands);
         root.draw(&Text::new(
@@ -386,7 +602,7 @@ impl StateDrawing {
                     dashed: false,
                 },
             ));
-            if !self.voussoir_joints_deg.is_empty() {
+            if !self.line_on_joints.is_empty() {
                 items.push(LegendItem::new(
                     "its point on a joint",
                     Mark::Ring(palette::RED),
@@ -404,6 +620,17 @@ impl StateDrawing {
                 "sliding joint, arrow: motion of the crown side",
                 Mark::Arrow(palette::SLIDING_LINE),
             ));
+        }
+        match &self.load {
+            Some(DrawnLoad::Point { .. }) => items.push(LegendItem::new(
+                "point load λ·W_total",
+                Mark::Arrow(palette::GREEN),
+            )),
+            Some(DrawnLoad::Horizontal { .. }) => items.push(LegendItem::new(
+                "horizontal body force λ·weight",
+                Mark::Arrow(palette::GREEN),
+            )),
+            None => {}
         }
         items
     }

@@ -23,8 +23,9 @@ pub struct CurvePoint {
     pub y: f64,
 }
 
-/// One drawn state: a bifurcation point or a scene of the manifest.
-#[derive(Debug, Clone, PartialEq)]
+/// One drawn state: a bifurcation point, a scene of the manifest or the limit state of a
+/// case.
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct StateRow {
     /// Id, also the figure stem: `bifurcation-1`, `scene-1`, ...
     pub state_id: String,
@@ -71,6 +72,12 @@ pub struct StateRow {
     pub thrust_over_half_weight: Option<f64>,
     /// Crown moment of the drawn state over W_half·r.
     pub crown_moment: Option<f64>,
+    /// Vertical force at the crown of the drawn state over W_half (zero for a symmetric
+    /// state; `None` in runs stored before it was recorded).
+    pub crown_shear: Option<f64>,
+    /// The case of results.parquet the state is the limit state of (`None` for a
+    /// bifurcation or a scene).
+    pub case_id: Option<u32>,
     /// Hinges and sliding joints of the drawn state.
     pub joints: JointLists,
     /// Lower end of H^r over W_half at the scene.
@@ -290,6 +297,8 @@ pub fn states_frame(rows: &[StateRow]) -> Result<DataFrame> {
         )
         .opt_f64("thrust_over_half_weight", o(&|r| r.thrust_over_half_weight))
         .opt_f64("crown_moment", o(&|r| r.crown_moment))
+        .opt_f64("crown_shear", o(&|r| r.crown_shear))
+        .opt_u32("case_id", rows.iter().map(|r| r.case_id).collect())
         .list_f64(
             "hinge_angles_deg",
             rows.iter()
@@ -372,6 +381,8 @@ pub fn read_states(path: &Path) -> Result<Vec<StateRow>> {
             mechanism: mech[i].clone(),
             thrust_over_half_weight: thrust[i],
             crown_moment: moment[i],
+            crown_shear: arch.crown_shear[i],
+            case_id: arch.case_id[i].map(|v| v as u32),
             joints: JointLists {
                 hinge_angles_deg: ha[i].clone(),
                 hinge_faces: hf[i].clone(),
@@ -405,6 +416,8 @@ struct StateArchColumns {
     load: Vec<Option<String>>,
     at_deg: Vec<Option<f64>>,
     load_factor: Vec<Option<f64>>,
+    crown_shear: Vec<Option<f64>>,
+    case_id: Vec<Option<f64>>,
 }
 
 impl StateArchColumns {
@@ -416,6 +429,8 @@ impl StateArchColumns {
             load: str_or_null(df, "load"),
             at_deg: f64_or_null(df, "at_deg"),
             load_factor: f64_or_null(df, "load_factor"),
+            crown_shear: f64_or_null(df, "crown_shear"),
+            case_id: f64_or_null(df, "case_id"),
         }
     }
 }

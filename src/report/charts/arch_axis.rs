@@ -185,10 +185,13 @@ fn bifurcations_against_axis(
                             .bifurcations
                             .iter()
                             .find(|b| b.lines.first() == Some(kind))?;
+                        // Coloured by the mechanism on its lower-μ side, the one that takes
+                        // over below the bifurcation.
+                        let below = kind.split(" / ").next().unwrap_or_default();
                         Some(LinePoint {
                             x,
                             y: value(b.mu, b.k),
-                            mechanism: String::new(),
+                            mechanism: below.to_string(),
                         })
                     })
                     .collect(),
@@ -211,7 +214,7 @@ fn bifurcations_against_axis(
         stem: format!("bifurcations-by-arch{}", lc.stem_suffix),
         title: format!("Bifurcations against the {axis}{on}"),
         caption: format!(
-            "Where two collapse mechanisms meet on the collapse curve of each arch (bifurcations.parquet), against the {axis}: the friction coefficient μ (left) and the thickness ratio K (right) of each bifurcation, one line per pair of mechanisms."
+            "Where two collapse mechanisms meet on the collapse curve of each arch (bifurcations.parquet), against the {axis}: the friction coefficient μ (left) and the thickness ratio K (right) of each bifurcation, one line per pair of mechanisms, each point coloured by the mechanism on its lower-μ side (the one that takes over below it: mixed below the rotational/mixed bifurcation, sliding below the mixed/sliding one)."
         ),
         chart: Chart::Lines(LinesChart {
             title: format!("Bifurcations against the {axis}{on}"),

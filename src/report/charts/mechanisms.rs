@@ -52,6 +52,21 @@ pub fn figure(data: &RunData, s: &StateRow) -> Option<FigureSpec> {
     } else {
         format!(" ({arch})")
     };
+    if s.source == "case" {
+        return Some(FigureSpec {
+            stem: mechanisms_stem(&s.state_id),
+            title: format!(
+                "Collapse mechanism of case {}{on}",
+                s.case_id.map_or("—".into(), |c| c.to_string())
+            ),
+            caption: format!(
+                "The {mech} collapse mechanism of the state at λ_max (K = {}, μ = {}{on}), from the joints at the limit there: the arch before the virtual displacement (dashed), fixed parts (grey), the displaced blocks (blue; largest displacement 0.08 r), hinges (red dots) and sliding joints (orange arrows: the sense in which the crown-side part moves), under the paper's rule (pure sliding, no dilatancy).",
+                short(s.k),
+                short(s.mu)
+            ),
+            chart: Chart::Mechanisms(MechanismPanels { panels }),
+        });
+    }
     Some(FigureSpec {
         stem: mechanisms_stem(&s.state_id),
         title: format!("Collapse mechanisms at the {mech} bifurcation{on}"),

@@ -132,7 +132,9 @@ pub fn build(data: &RunData) -> Vec<FigureSpec> {
         out.extend(load_factor::figures(data, &lc));
     }
     for s in &data.states {
-        if s.source == "scene" {
+        // Fig. 2 exists for the symmetric closed forms only (its curves are stored then).
+        let fig2 = crate::figdata::domains_figure(&s.state_id);
+        if s.source == "scene" && data.curves.iter().any(|c| c.figure == fig2) {
             out.push(domains::figure(data, s));
         }
     }

@@ -8,32 +8,19 @@ use crate::report::data::RunData;
 use crate::report::format::{given, short};
 use crate::store::StateRow;
 
-/// The drawing of a state, to scale.
+pub mod geometry;
+
+/// The drawing of a state, to scale, on its own arch: outline, joints and supports from the
+/// general statics of the state's arch, form and load ([`figdata::general::model_of_state`]).
 pub fn figure(data: &RunData, s: &StateRow) -> FigureSpec {
-    let line = data.curve(
-        &figdata::line_of_thrust_figure(&s.state_id),
-        figdata::LINE_OF_THRUST,
-    );
-    let joints = voussoir_joints(s);
-    let joints_note = if joints.is_empty() {
+    let fig = figdata::line_of_thrust_figure(&s.state_id);
+    let line = data.curve(&fig, figdata::LINE_OF_THRUST);
+    let on_joints = data.curve(&fig, figdata::LINE_ON_JOINTS);
+    let joints_note = if on_joints.is_empty() {
         ""
     } else {
         " Open circles: the line's points on the joints, the only sections where it must stay within the arch."
     };
-    let hinges = s
-        .joints
-        .hinge_angles_deg
-        .iter()
-        .copied()
-        .zip(s.joints.hinge_faces.iter().cloned())
-        .collect();
-    let sliding = s
-        .joints
-        .sliding_angles_deg
-        .iter()
-        .copied()
-        .zip(s.joints.sliding_senses.iter().cloned())
-        .collect();
     let mut texts = StateTexts::of(s);
     let arch = arch_text(s);
     if !arch.is_empty() {
@@ -45,7 +32,13 @@ pub fn figure(data: &RunData, s: &StateRow) -> FigureSpec {
         line.is_empty()
             .then(|| "line of thrust not unique: not drawn".to_string())
     });
-    let caption = format!("{}{joints_note}", texts.caption);
+    let vertical_note = if s.joint_orientation == "vertical" {
+        " The joints are vertical planes through the intrados and the supports the radial springing joints; between the last vertical section and a support the model has no section, and the line of thrust is drawn straight there."
+    } else {
+        ""
+    };
+    let caption = format!("{}{joints_note}{vertical_note}", texts.caption);
+    let geometry = geometry::of_state(s);
     FigureSpec {
         stem: format!("state-{}", safe(&s.state_id)),
         title: texts.heading,
@@ -53,25 +46,16 @@ pub fn figure(data: &RunData, s: &StateRow) -> FigureSpec {
         chart: Chart::State(StateDrawing {
             title: texts.title,
             subtitle: texts.subtitle,
-            k: s.k,
-            alpha_deg: s.half_angle_deg,
-            voussoir_joints_deg: joints,
+            outline: geometry.outline,
+            voussoir_joints: geometry.voussoir_joints,
+            supports: geometry.supports,
             line_of_thrust: line,
-            hinges,
-            sliding,
-            note,
+            line_on_joints: on_joints,
+            hinges: geometry.hinges,
+            sliding: geometry.sliding,
+            load: geometry.load,
+            note: geometry.note.or(note),
         }),
-    }
-}
-
-/// The joints between the voussoirs of a discrete arch, degrees from the crown (none for
-/// the continuum or a single voussoir).
-fn voussoir_joints(s: &StateRow) -> Vec<f64> {
-    match s.voussoirs {
-        Some(n) if n > 1 => (1..n)
-            .map(|j| -s.half_angle_deg + 2.0 * s.half_angle_deg * f64::from(j) / f64::from(n))
-            .collect(),
-        _ => Vec::new(),
     }
 }
 
@@ -138,8 +122,116 @@ impl StateTexts {
         match s.state.as_str() {
             "bifurcation" => Self::bifurcation(&mech, values),
             "minimum_thrust" => Self::minimum_thrust(s, &mech, values),
+            "largest_margin" => Self::largest_margin(s, values),
+            "weakest" | "weakest_of_mechanism" => Self::weakest_case(s, &mech, values),
+            "collapse" if s.load_factor.is_some() && s.load != "self_weight" => {
+                Self::load_factor_collapse(s, &mech, values)
+            }
             "collapse" => Self::collapse(s, &mech, values),
+            "no_load_factor" => Self::no_load_factor(s),
             _ => Self::no_equilibrium(s),
+        }
+    }
+
+    /// The state of largest margin of a scene that stands (general route).
+    fn largest_margin(s: &StateRow, values: String) -> Self {
+        StateTexts {
+            title: format!(
+                "Scene K = {}, μ = {}: state of largest margin",
+                given(s.scene_k),
+                mu_text(s.scene_mu)
+            ),
+            heading: format!(
+                "State of largest margin of scene K = {}, μ = {}",
+                given(s.scene_k),
+                mu_text(s.scene_mu)
+            ),
+            subtitle: vec![
+                values.clone(),
+                format!("regime {}", s.regime.clone().unwrap_or_default()),
+            ],
+            note: None,
+            caption: format!(
+                "The scene stands ({values}); drawn is its admissible state farthest from every limit condition (the largest common margin of the no-tension and friction conditions of all joints), so its line of thrust lies inside the masonry and no joint is at a limit."
+            ),
+        }
+    }
+
+    /// The collapse state at λ_max of a stored load_factor case.
+    fn weakest_case(s: &StateRow, mech: &str, values: String) -> Self {
+        let lambda = s.load_factor.map_or("—".into(), short);
+        let which = if s.state == "weakest" {
+            if s.load == "point" {
+                "the weakest load position of the study".to_string()
+            } else {
+                "the weakest case of the study".to_string()
+            }
+        } else {
+            format!("the weakest case collapsing by a {mech} mechanism")
+        };
+        let at = s
+            .at_deg
+            .map_or(String::new(), |a| format!(", load at {}°", given(a)));
+        StateTexts {
+            title: format!("Collapse at λ_max: {mech} mechanism"),
+            heading: format!(
+                "Collapse state of case {} ({which})",
+                s.case_id.map_or("—".into(), |c| c.to_string())
+            ),
+            subtitle: vec![values.clone(), format!("λ_max = {lambda}{at}; {which}")],
+            note: None,
+            caption: format!(
+                "The collapse state of case {} of results.parquet, {which}, at its largest load factor λ_max = {lambda} ({values}{at}): the arch to scale with the load drawn where it acts, the line of thrust, hinges on the intrados or extrados and sliding joints with the sense in which the part nearer the crown moves.",
+                s.case_id.map_or("—".into(), |c| c.to_string())
+            ),
+        }
+    }
+
+    /// The collapse state at λ_max of a scene of a load_factor study.
+    fn load_factor_collapse(s: &StateRow, mech: &str, values: String) -> Self {
+        let lambda = s.load_factor.map_or("—".into(), short);
+        StateTexts {
+            title: format!(
+                "Scene K = {}, μ = {}: collapse at λ_max",
+                given(s.scene_k),
+                mu_text(s.scene_mu)
+            ),
+            heading: format!(
+                "Collapse state of scene K = {}, μ = {} at λ_max",
+                given(s.scene_k),
+                mu_text(s.scene_mu)
+            ),
+            subtitle: vec![
+                values.clone(),
+                format!("λ_max = {lambda}; {mech} mechanism"),
+            ],
+            note: None,
+            caption: format!(
+                "The collapse state of the scene at its largest load factor λ_max = {lambda} ({values}), with the load drawn where it acts."
+            ),
+        }
+    }
+
+    /// A scene of a load_factor study with no finite load factor.
+    fn no_load_factor(s: &StateRow) -> Self {
+        StateTexts {
+            title: format!(
+                "Scene K = {}, μ = {}: no finite load factor",
+                given(s.scene_k),
+                mu_text(s.scene_mu)
+            ),
+            heading: format!(
+                "Scene K = {}, μ = {}",
+                given(s.scene_k),
+                mu_text(s.scene_mu)
+            ),
+            subtitle: Vec::new(),
+            note: Some("no finite collapse load factor at this scene".to_string()),
+            caption: format!(
+                "The scene K = {}, μ = {} has no finite collapse load factor: it stands under every λ, or under none.",
+                given(s.scene_k),
+                mu_text(s.scene_mu)
+            ),
         }
     }
 

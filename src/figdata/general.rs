@@ -1,0 +1,343 @@
+//! The drawn states of every arch the general route analyses (pointed arches, vertical
+//! joints, live loads): the arch of a state row as an [`ArchModel`], its line of thrust from
+//! the crown force, moment and load factor, and the limit states themselves, solved again
+//! where the stored tables do not hold the whole crown state (the crown shear).
+
+use super::curves::Samples;
+use crate::analysis::forms::ArchModel;
+use crate::analysis::general::{self, CrownState, Outcome, Settings};
+use crate::analysis::statics::ArchGeometry;
+use crate::model::{Arch, ArchForm, Discretisation, JointOrientation, Load, Shape, WeightModel};
+use crate::store::StateRow;
+use anyhow::{Context, Result, anyhow};
+
+/// Sections sampled per radian of a family of joints (about one every half degree).
+const SECTIONS_PER_RADIAN: f64 = 115.0;
+
+/// The statics of a drawn state: the crown force F₀ = (F_x, F_y) over W_half, the moment M₀
+/// about the centre over W_half·r (m = −M₀ is the stored `crown_moment`) and λ.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CrownForce {
+    /// F_x: the horizontal crown thrust.
+    pub fx: f64,
+    /// F_y: the vertical crown shear.
+    pub fy: f64,
+    /// M₀ about the centre.
+    pub m0: f64,
+    /// The load factor of the live load.
+    pub lambda: f64,
+}
+
+impl CrownForce {
+    /// The crown force of a general solution at load factor λ.
+    pub fn of(c: &CrownState, lambda: f64) -> Self {
+        CrownForce {
+            fx: c.thrust_over_half_weight,
+            fy: c.shear_over_half_weight,
+            m0: c.moment_about_centre,
+            lambda,
+        }
+    }
+
+    /// The crown force stored in a state row (`None` when its thrust or moment is missing).
+    pub fn of_row(s: &StateRow) -> Option<Self> {
+        Some(CrownForce {
+            fx: s.thrust_over_half_weight?,
+            fy: s.crown_shear.unwrap_or(0.0),
+            m0: -s.crown_moment?,
+            lambda: s.load_factor.unwrap_or(0.0),
+        })
+    }
+}
+
+/// The load of a state row.
+pub fn load_of_state(s: &StateRow) -> Load {
+    match s.load.as_str() {
+        "horizontal" => Load::Horizontal,
+        "point" => Load::Point {
+            at_deg: s.at_deg.unwrap_or(0.0),
+        },
+        _ => Load::SelfWeight,
+    }
+}
+
+/// The arch, form and load of a state row as the general statics models them: the geometry
+/// every drawing of the state is taken from.
+pub fn model_of_state(s: &StateRow) -> Result<ArchModel> {
+    let voussoirs = s
+        .voussoirs
+        .map_or(Discretisation::Continuum, Discretisation::Voussoirs);
+    let weight = WeightModel::parse(&s.weight).unwrap_or_default();
+    let arch = Arch::new(s.k, s.half_angle_deg, weight, voussoirs)
+        .with_context(|| format!("the arch of state {}", s.state_id))?;
+    let form = ArchForm {
+        shape: if s.shape == "pointed" {
+            Shape::Pointed {
+                eccentricity: s.eccentricity,
+            }
+        } else {
+            Shape::Circular
+        },
+        joints: JointOrientation::parse(&s.joint_orientation).unwrap_or_default(),
+    };
+    ArchModel::new(arch, form, load_of_state(s))
+        .map_err(|e| anyhow!("the arch of state {}: {e}", s.state_id))
+}
+
+/// The joint parameter named by a stored angle (degrees): a support (|angle| = α; the
+/// supports of a vertical-joint arch lie just beyond α) or the angle itself (0 is the crown
+/// joint).
+pub fn joint_parameter(model: &ArchModel, angle_deg: f64) -> f64 {
+    let alpha = model.arch().half_angle;
+    let t = angle_deg.to_radians();
+    if t.abs() >= alpha - 1e-9 {
+        alpha.next_up().copysign(t)
+    } else {
+        t
+    }
+}
+
+/// The parameters at which the line of thrust is evaluated: every family of joints sampled
+/// about every half degree with its ends (both sides of a point load), the isolated joints
+/// (a pointed arch's crown joint, the supports of vertical joints) and every joint of a
+/// discrete arch, with the `extra` parameters (the state's hinges and sliding joints), in
+/// increasing order.
+fn sections(model: &ArchModel, extra: &[f64]) -> Vec<f64> {
+    let mut t: Vec<f64> = Vec::new();
+    for [lo, hi] in model.families() {
+        let n = (((hi - lo) * SECTIONS_PER_RADIAN).ceil() as usize).max(1);
+        t.extend((0..=n).map(|i| lo + (hi - lo) * i as f64 / n as f64));
+        t.push(hi);
+    }
+    t.extend(model.isolated_joints());
+    t.extend(model.discrete_joints().unwrap_or_default());
+    t.extend(extra);
+    t.sort_by(f64::total_cmp);
+    t.dedup();
+    t
+}
+
+/// The point where the line of thrust crosses joint θ: the point p of the joint's line with
+/// M(θ) − p × F(θ) = 0, F = F₀ + C_d + λ C_l and M = M₀ + C_d^M + λ C_l^M (statics.rs);
+/// `None` where the joint carries no compression.
+pub fn thrust_point(model: &ArchModel, c: &CrownForce, theta: f64) -> Option<(f64, f64)> {
+    let d = model.dead_load(theta);
+    let l = model.live_load(theta);
+    let f = [c.fx + d.fx + c.lambda * l.fx, c.fy + d.fy + c.lambda * l.fy];
+    let m = c.m0 + d.m + c.lambda * l.m;
+    let j = model.joint(theta);
+    let nu = j.normal();
+    if f[0] * nu[0] + f[1] * nu[1] <= 0.0 {
+        return None;
+    }
+    let cross = |p: [f64; 2]| p[0] * f[1] - p[1] * f[0];
+    let (i, e) = (j.intrados, j.extrados);
+    let s = (m - cross(i)) / cross([e[0] - i[0], e[1] - i[1]]);
+    s.is_finite()
+        .then(|| (i[0] + s * (e[0] - i[0]), i[1] + s * (e[1] - i[1])))
+}
+
+/// The line of thrust of a state: its crossing of every sampled section and of the joints
+/// at `angles_deg` (its hinges and sliding joints, so that it passes through the hinges
+/// exactly), from the left springing to the right one, NaN where a section carries no
+/// compression.
+pub fn line_of_thrust(model: &ArchModel, c: &CrownForce, angles_deg: &[f64]) -> Samples {
+    let extra: Vec<f64> = angles_deg
+        .iter()
+        .map(|&a| joint_parameter(model, a))
+        .collect();
+    sections(model, &extra)
+        .into_iter()
+        .map(|t| thrust_point(model, c, t).unwrap_or((f64::NAN, f64::NAN)))
+        .collect()
+}
+
+/// The line's points on the joints between the voussoirs of a discrete arch (the supports
+/// left out): the only sections where it must lie within the arch. Empty for the continuum.
+pub fn line_on_joints(model: &ArchModel, c: &CrownForce) -> Samples {
+    let joints = model.discrete_joints().unwrap_or_default();
+    let inner = joints.len().saturating_sub(1);
+    joints
+        .iter()
+        .take(inner)
+        .skip(1)
+        .filter_map(|&t| thrust_point(model, c, t))
+        .collect()
+}
+
+/// The state of largest margin of an arch that stands: every row held with the same
+/// distance to spare, its line of thrust as far inside the masonry as the arch allows.
+pub fn largest_margin_state(model: &ArchModel, phi: f64, lambda: f64) -> Option<CrownForce> {
+    let settings = Settings {
+        lambda,
+        ..Settings::default()
+    };
+    let m = general::margin(model, phi, general::RowSet::All, &settings);
+    (m.outcome == Outcome::Solved && m.feasible(&settings))
+        .then(|| CrownForce::of(&m.crown, lambda))
+}
+
+/// The collapse state at λ_max of a live load at friction angle φ, with its mechanism;
+/// `None` when λ_max is not a finite solved value.
+pub fn load_factor_state(
+    model: &ArchModel,
+    phi: f64,
+) -> Option<(CrownForce, Option<crate::analysis::Mechanism>)> {
+    load_factor_collapse(model, phi).map(|c| (c.crown, c.mechanism))
+}
+
+/// A collapse state at λ_max with the active rows that name its mechanism.
+pub struct Collapse {
+    /// Crown force, moment and λ_max.
+    pub crown: CrownForce,
+    /// The mechanism named by the active rows.
+    pub mechanism: Option<crate::analysis::Mechanism>,
+    /// The active rows.
+    pub active: Vec<general::ActiveRow>,
+}
+
+/// The collapse state at λ_max of a live load, with its active rows.
+pub fn load_factor_collapse(model: &ArchModel, phi: f64) -> Option<Collapse> {
+    let lf = general::load_factor(model, phi, &Settings::default());
+    (lf.outcome == Outcome::Solved && lf.lambda.is_finite()).then(|| Collapse {
+        crown: CrownForce::of(&lf.crown, lf.lambda),
+        mechanism: lf.mechanism,
+        active: lf.active,
+    })
+}
+
+/// The collapse mechanism of a collapse state under the paper's non-associative rule: the
+/// mode of the active rows' pattern of the state's own kind that meets the work equation
+/// best (as the analysis reports it), with its work equation and its drawing, as a row of
+/// mechanisms.parquet (`bifurcation` 0: the state of a case). `None` when the pattern has
+/// no mode.
+pub fn collapse_mechanism_row(
+    model: &ArchModel,
+    c: &Collapse,
+    (state_id, load_case): (&str, &str),
+    mu: f64,
+) -> Option<crate::store::MechanismRow> {
+    use crate::analysis::kinematics::{
+        FlowRule, LimitState, VelocityField, drawing, mechanism_modes, work_equation,
+    };
+    let kind = c.mechanism.as_ref()?.kind;
+    let joints = general::pattern_of_rows(&c.active);
+    let modes = mechanism_modes(model, &joints, FlowRule::NonAssociative, true).ok()?;
+    let state = LimitState {
+        crown_force: [c.crown.fx, c.crown.fy],
+        crown_moment_origin: c.crown.m0,
+        load_factor: c.crown.lambda,
+        mu,
+    };
+    let rank = |f: &VelocityField| (f.kind() != Some(kind), work_equation(model, &state, f));
+    let (field, w) = modes
+        .fields
+        .iter()
+        .map(|f| (f, rank(f)))
+        .min_by(|a, b| {
+            (a.1.0.cmp(&b.1.0)).then(a.1.1.work_residual.total_cmp(&b.1.1.work_residual))
+        })
+        .map(|(f, (_, w))| (f, w))?;
+    let slides: Vec<_> = field.joints.iter().filter(|j| j.slips()).collect();
+    Some(crate::store::MechanismRow {
+        state_id: state_id.to_string(),
+        load_case: load_case.to_string(),
+        bifurcation: 0,
+        k: model.arch().k,
+        mu,
+        mechanism: field.kind().map_or("none", |k| k.as_str()).to_string(),
+        flow_rule: "non_associative".into(),
+        work_loads: w.work_loads,
+        work_normal: w.work_normal,
+        work_friction: w.work_friction,
+        work_residual: w.work_residual,
+        dof: modes.dof,
+        sliding_angles_deg: slides.iter().map(|j| j.angle_deg()).collect(),
+        slip: slides.iter().map(|j| j.slip).collect(),
+        dilatancy: slides.iter().map(|j| j.dilatancy).collect(),
+        drawing_json: serde_json::to_string(&drawing(
+            model,
+            field,
+            super::mechanisms::DRAWING_AMPLITUDE,
+        ))
+        .unwrap_or_default(),
+    })
+}
+
+/// The limit state at the located point of a collapse curve: the state of largest margin
+/// there (zero up to the located tolerance, so it is the limit state), `None` when the
+/// margin cannot be solved.
+pub fn limit_state_at(model: &ArchModel, phi: f64, lambda: f64) -> Option<CrownForce> {
+    let settings = Settings {
+        lambda,
+        ..Settings::default()
+    };
+    let m = general::margin(model, phi, general::RowSet::All, &settings);
+    (m.outcome == Outcome::Solved).then(|| CrownForce::of(&m.crown, lambda))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::symmetric;
+    use crate::model::Friction;
+
+    fn row(k: f64, shape: &str, e: f64, joints: &str, load: &str) -> StateRow {
+        StateRow {
+            k,
+            half_angle_deg: 90.0,
+            weight: "annular".into(),
+            shape: shape.into(),
+            eccentricity: e,
+            joint_orientation: joints.into(),
+            load: load.into(),
+            ..StateRow::default()
+        }
+    }
+
+    #[test]
+    fn general_line_equals_the_symmetric_line_of_the_semicircle() {
+        // The collapse state at μ = ∞: crown extrados, haunch intrados, springing extrados.
+        let arch = Arch::semicircular(1.5).unwrap();
+        let s = symmetric::thickness(&arch, Friction::INFINITE);
+        let s = s.found().unwrap();
+        let model = model_of_state(&row(s.k, "circular", 0.0, "radial", "self_weight")).unwrap();
+        let c = CrownForce {
+            fx: s.thrust_over_half_weight,
+            fy: 0.0,
+            m0: -s.crown_moment,
+            lambda: 0.0,
+        };
+        let line = line_of_thrust(&model, &c, &[]);
+        let crown = thrust_point(&model, &c, 0.0).unwrap();
+        assert!(
+            crown.0.abs() < 1e-12 && (crown.1 - s.k).abs() < 1e-9,
+            "{crown:?}"
+        );
+        let end = line[line.len() - 1];
+        assert!((end.0.hypot(end.1) - s.k).abs() < 1e-9, "{end:?}");
+        for (x, y) in line {
+            let r = x.hypot(y);
+            assert!(r > 1.0 - 1e-9 && r < s.k + 1e-9, "r = {r}");
+        }
+    }
+
+    #[test]
+    fn line_of_a_standing_pointed_arch_lies_inside_its_joints() {
+        // Vertical joints near the springings are nearly flat: they need more friction.
+        for (joints, mu) in [("radial", 0.6f64), ("vertical", 1.5)] {
+            let r = row(1.3, "pointed", 0.3, joints, "self_weight");
+            let model = model_of_state(&r).unwrap();
+            let c = largest_margin_state(&model, mu.atan(), 0.0).unwrap();
+            for t in sections(&model, &[]) {
+                let p = thrust_point(&model, &c, t).unwrap();
+                let j = model.joint(t);
+                // p = I + s(E − I) with s strictly inside (0, 1).
+                let (i, e) = (j.intrados, j.extrados);
+                let s = ((p.0 - i[0]) * (e[0] - i[0]) + (p.1 - i[1]) * (e[1] - i[1]))
+                    / ((e[0] - i[0]).powi(2) + (e[1] - i[1]).powi(2));
+                assert!(s > 1e-3 && s < 1.0 - 1e-3, "{joints} θ = {t}: s = {s}");
+            }
+        }
+    }
+}

@@ -1,0 +1,315 @@
+//! The states drawn for a load case on the general route (a pointed arch, vertical joints or a
+//! live load): each bifurcation of a state, thickness or friction study and each scene, on the
+//! arch of its own group; for a `load_factor` load case, the collapse state of its weakest
+//! case and of the weakest case of every other mechanism found (docs/report-files.md).
+
+use super::general::{self, CrownForce};
+use super::{ArchGroup, Collector, SceneAt, blank_state, finite, joint_lists, suffix};
+use crate::analysis::Mechanism;
+use crate::analysis::forms::ArchModel;
+use crate::analysis::general::Settings;
+use crate::manifest::{LoadCase, Manifest};
+use crate::model::{Friction, Load, Shape};
+use crate::scene::Find;
+use crate::store::{BifurcationGroup, BifurcationRow, LoadFactorCase, MechanismRow, StateRow};
+use anyhow::Result;
+
+/// What the general route draws for one load case.
+pub(super) struct LoadCaseStates<'a> {
+    /// The manifest.
+    pub manifest: &'a Manifest,
+    /// The load case.
+    pub lc: &'a LoadCase,
+    /// Its bifurcations, with their arch groups.
+    pub bifurcations: Vec<(&'a BifurcationRow, Option<&'a BifurcationGroup>)>,
+    /// Its load_factor cases (empty for other finds).
+    pub cases: Vec<&'a LoadFactorCase>,
+}
+
+/// The friction of a stored μ (+inf: infinite).
+fn friction(mu: f64) -> Friction {
+    Friction::new(mu).unwrap_or(Friction::INFINITE)
+}
+
+/// The limit state's values in a row: crown force, moment, shear, λ of a live load, and the
+/// mechanism with its joints when given.
+fn fill(row: &mut StateRow, c: &CrownForce, mechanism: Option<&Mechanism>) {
+    row.thrust_over_half_weight = finite(c.fx);
+    row.crown_moment = finite(-c.m0);
+    row.crown_shear = finite(c.fy);
+    if row.load != "self_weight" {
+        row.load_factor = finite(c.lambda);
+    }
+    if let Some(m) = mechanism {
+        row.mechanism = Some(m.kind.as_str().into());
+        row.joints = joint_lists(&m.hinges, &m.sliding_joints);
+    }
+}
+
+/// The largest K at which the form exists and a point load still sits at a joint (as the
+/// scene's own search: a pointed arch's first joint moves away from the crown as K grows).
+fn k_max(model: &ArchModel) -> f64 {
+    let mut k = model.form().max_k(model.arch().half_angle);
+    if let (Shape::Pointed { eccentricity }, Load::Point { at_deg }) =
+        (model.form().shape, model.load())
+        && at_deg != 0.0
+        && eccentricity > 0.0
+    {
+        let s = at_deg
+            .to_radians()
+            .abs()
+            .min(std::f64::consts::FRAC_PI_2)
+            .sin();
+        k = k.min(2.0 * s / eccentricity - 1.0);
+    }
+    k
+}
+
+impl LoadCaseStates<'_> {
+    fn model(&self, group: ArchGroup, k: f64, at_deg: Option<f64>) -> Result<Option<ArchModel>> {
+        let arch = group.arch(self.manifest, k)?;
+        Ok(ArchModel::new(arch, self.manifest.arch.form(), self.lc.load(at_deg)).ok())
+    }
+
+    fn lambda(&self) -> f64 {
+        self.lc.lambda.unwrap_or(0.0)
+    }
+
+    /// Every state of the load case, their lines of thrust pushed to `out` and the collapse
+    /// mechanisms of the cases' states to `mechs`.
+    pub fn states(
+        &self,
+        out: &mut Collector,
+        mechs: &mut Vec<MechanismRow>,
+    ) -> Result<Vec<StateRow>> {
+        let sfx = suffix(self.manifest, &self.lc.name);
+        let mut rows = Vec::new();
+        if self.lc.find == Find::LoadFactor {
+            for (c, why) in chosen_cases(&self.cases) {
+                let id = format!("case-{}{sfx}", c.row);
+                rows.extend(self.case_state(id, (c, why), mechs)?);
+            }
+        } else {
+            for (i, &(b, g)) in self.bifurcations.iter().enumerate() {
+                let id = format!("bifurcation-{}{sfx}", i + 1);
+                rows.extend(self.bifurcation_state(id, b, g)?);
+            }
+        }
+        for group in super::arch_groups(self.manifest) {
+            for (i, s) in self.manifest.scenes.iter().enumerate() {
+                let id = format!("scene-{}{}{sfx}", i + 1, group.suffix(self.manifest));
+                let at = SceneAt {
+                    lc: self.lc,
+                    group,
+                    k: s.k,
+                    mu: s.mu,
+                };
+                rows.extend(self.scene_state(id, &at)?);
+            }
+        }
+        for r in &rows {
+            out.push_line(r)?;
+        }
+        Ok(rows)
+    }
+
+    /// The limit state at a located bifurcation: the state of largest margin there (zero up
+    /// to the tolerance), with the joints of both mechanisms as stored.
+    fn bifurcation_state(
+        &self,
+        id: String,
+        b: &BifurcationRow,
+        g: Option<&BifurcationGroup>,
+    ) -> Result<Option<StateRow>> {
+        let group = ArchGroup::of_bifurcation(self.manifest, g);
+        let at = g.and_then(|g| g.at_deg).or(self.lc.at_deg);
+        let Some(model) = self.model(group, b.k, at)? else {
+            return Ok(None);
+        };
+        let f = friction(b.mu);
+        let Some(c) = general::limit_state_at(&model, f.angle(), self.lambda()) else {
+            return Ok(None);
+        };
+        let mut row = blank_state(self.manifest, self.lc, group, id);
+        row.source = "bifurcation".into();
+        row.state = "bifurcation".into();
+        (row.scene_k, row.scene_mu, row.k, row.mu) = (b.k, f.mu(), b.k, f.mu());
+        row.t_over_r = b.t_over_r;
+        row.at_deg = at;
+        fill(&mut row, &c, None);
+        row.mechanism = Some(format!("{}/{}", b.mechanism_a, b.mechanism_b));
+        row.joints = b.joints.clone();
+        Ok(Some(row))
+    }
+
+    /// The collapse state at λ_max of a stored case, solved again for its whole crown state.
+    fn case_state(
+        &self,
+        id: String,
+        (c, why): (&LoadFactorCase, &str),
+        mechs: &mut Vec<MechanismRow>,
+    ) -> Result<Option<StateRow>> {
+        let group = ArchGroup {
+            half_angle_deg: c.half_angle_deg,
+            voussoirs: c.voussoirs.map_or(
+                crate::model::Discretisation::Continuum,
+                crate::model::Discretisation::Voussoirs,
+            ),
+        };
+        let Some(model) = self.model(group, c.k, c.at_deg)? else {
+            return Ok(None);
+        };
+        let f = friction(c.mu);
+        let Some(collapse) = general::load_factor_collapse(&model, f.angle()) else {
+            return Ok(None);
+        };
+        let (crown, mechanism) = (collapse.crown, collapse.mechanism.clone());
+        mechs.extend(general::collapse_mechanism_row(
+            &model,
+            &collapse,
+            (&id, &self.lc.name),
+            f.mu(),
+        ));
+        let mut row = blank_state(self.manifest, self.lc, group, id);
+        row.source = "case".into();
+        row.state = why.into();
+        (row.scene_k, row.scene_mu, row.k, row.mu) = (c.k, f.mu(), c.k, f.mu());
+        row.t_over_r = crate::model::t_over_r_from_k(c.k);
+        row.at_deg = c.at_deg;
+        row.case_id = u32::try_from(c.row).ok();
+        fill(&mut row, &crown, mechanism.as_ref());
+        Ok(Some(row))
+    }
+
+    /// A scene: under a load factor find, its collapse state at λ_max (the load at the
+    /// position of the load case, else at the weakest position of its arch); otherwise its
+    /// state of largest margin when it stands, else its collapse state at K_c(μ).
+    fn scene_state(&self, id: String, at: &SceneAt<'_>) -> Result<Option<StateRow>> {
+        let position = self.lc.at_deg.or_else(|| {
+            let own = self.cases.iter().filter(|c| {
+                c.half_angle_deg == at.group.half_angle_deg
+                    && c.voussoirs == at.group.voussoirs.voussoirs()
+            });
+            weakest(own.copied()).and_then(|c| c.at_deg)
+        });
+        let Some(model) = self.model(at.group, at.k, position)? else {
+            return Ok(None);
+        };
+        let f = friction(at.mu);
+        let mut row = blank_state(self.manifest, self.lc, at.group, id);
+        row.source = "scene".into();
+        (row.scene_k, row.scene_mu, row.k, row.mu) = (at.k, f.mu(), at.k, f.mu());
+        row.t_over_r = crate::model::t_over_r_from_k(at.k);
+        row.at_deg = position;
+        if self.lc.find == Find::LoadFactor {
+            match general::load_factor_state(&model, f.angle()) {
+                Some((c, m)) => {
+                    row.state = "collapse".into();
+                    fill(&mut row, &c, m.as_ref());
+                }
+                None => row.state = "no_load_factor".into(),
+            }
+            return Ok(Some(row));
+        }
+        let settings = Settings {
+            lambda: self.lambda(),
+            ..Settings::default()
+        };
+        let report = crate::analysis::general::regime(&model, f.angle(), &settings);
+        row.regime = report.regime.map(|r| r.as_str().to_string());
+        if let Some(c) = general::largest_margin_state(&model, f.angle(), self.lambda()) {
+            row.state = "largest_margin".into();
+            fill(&mut row, &c, None);
+            return Ok(Some(row));
+        }
+        let make =
+            |k: f64| ArchModel::new(model.arch().with_k(k), *model.form(), model.load()).ok();
+        let critical =
+            crate::analysis::general::thickness_with(make, k_max(&model), None, f, &settings);
+        row.state = "no_equilibrium".into();
+        if let Some(s) = critical.found()
+            && let Some(k) = s.k
+        {
+            row.state = "collapse".into();
+            row.k = k;
+            row.t_over_r = crate::model::t_over_r_from_k(k);
+            fill(
+                &mut row,
+                &CrownForce::of(&s.state.crown, self.lambda()),
+                s.mechanism.as_ref(),
+            );
+        }
+        Ok(Some(row))
+    }
+}
+
+/// The case of least finite λ_max.
+fn weakest<'a>(cases: impl Iterator<Item = &'a LoadFactorCase>) -> Option<&'a LoadFactorCase> {
+    cases
+        .filter(|c| c.load_factor.is_some_and(f64::is_finite))
+        .min_by(|a, b| {
+            let (x, y) = (a.load_factor.unwrap_or(0.0), b.load_factor.unwrap_or(0.0));
+            x.total_cmp(&y).then(a.row.cmp(&b.row))
+        })
+}
+
+/// The cases whose collapse states are drawn: the weakest case of the load case (`weakest`:
+/// at its weakest position when a point load moves) and, for every other mechanism among its
+/// cases, the weakest case collapsing by it (`weakest_of_mechanism`).
+pub(super) fn chosen_cases<'a>(
+    cases: &[&'a LoadFactorCase],
+) -> Vec<(&'a LoadFactorCase, &'static str)> {
+    let Some(w) = weakest(cases.iter().copied()) else {
+        return Vec::new();
+    };
+    let mut out = vec![(w, "weakest")];
+    for kind in ["rotational", "mixed", "sliding"] {
+        if w.mechanism.as_deref() == Some(kind) {
+            continue;
+        }
+        let of_kind = cases
+            .iter()
+            .copied()
+            .filter(|c| c.mechanism.as_deref() == Some(kind));
+        if let Some(c) = weakest(of_kind) {
+            out.push((c, "weakest_of_mechanism"));
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn case(row: usize, lambda: f64, mech: &str) -> LoadFactorCase {
+        LoadFactorCase {
+            row,
+            load_case: "p".into(),
+            k: 1.2,
+            mu: 0.5,
+            half_angle_deg: 90.0,
+            voussoirs: None,
+            at_deg: Some(row as f64),
+            load_factor: Some(lambda),
+            mechanism: Some(mech.into()),
+        }
+    }
+
+    #[test]
+    fn the_weakest_case_and_the_weakest_of_each_other_mechanism_are_drawn() {
+        let cases = [
+            case(0, 0.5, "mixed"),
+            case(1, 0.2, "rotational"),
+            case(2, 0.3, "rotational"),
+            case(3, 0.4, "mixed"),
+            case(4, f64::INFINITY, "sliding"),
+        ];
+        let refs: Vec<&LoadFactorCase> = cases.iter().collect();
+        let chosen: Vec<(usize, &str)> = chosen_cases(&refs)
+            .into_iter()
+            .map(|(c, w)| (c.row, w))
+            .collect();
+        assert_eq!(chosen, vec![(1, "weakest"), (3, "weakest_of_mechanism")]);
+    }
+}

@@ -1,0 +1,224 @@
+//! Every drawn state is drawn on its own arch and under its own load: on a pointed arch,
+//! with vertical joints, under a point load and under a horizontal load, each row of
+//! states.parquet carries the parameters of its case, its outline is that arch's, and its
+//! line of thrust passes through its hinges (a limit state) or stays inside the masonry (a
+//! state that stands).
+
+use crate::common::{run_study, scratch};
+use archstudy::output::RunLayout;
+use archstudy::report::charts::state::geometry::of_state;
+use archstudy::store::{self, LoadFactorCase, StateRow};
+use std::path::Path;
+
+const POINTED_POINT_LOAD: &str = "\
+name: pointed-point
+arch: {shape: pointed, eccentricity: 0.2}
+grid:
+  at_deg: {values: [-60, -40, -20, 20, 40, 60]}
+  k: {values: [1.15, 1.3]}
+  mu: {values: [0.5, inf]}
+load_cases:
+  - {name: point, kind: point}
+find: load_factor
+";
+
+const VERTICAL_HORIZONTAL: &str = "\
+name: vertical-horizontal
+arch: {joints: vertical, voussoirs: 12}
+grid:
+  k: {values: [1.15, 1.3, 1.45]}
+  mu: {values: [0.6, 1.0, inf]}
+load_cases:
+  - {name: wind, kind: horizontal}
+find: load_factor
+";
+
+const POINTED_VERTICAL_STATE: &str = "\
+name: pointed-vertical
+arch: {shape: pointed, eccentricity: 0.2, joints: vertical}
+grid:
+  k: {values: [1.1, 1.3]}
+  mu: {values: [0.7, 1.6]}
+load_cases:
+  - {name: gravity, kind: self_weight}
+find: state
+scenes:
+  - {k: 1.3, mu: 1.6}
+  - {k: 1.1, mu: 0.7}
+";
+
+fn states(run: &Path) -> Vec<StateRow> {
+    store::read_states(&RunLayout::at(run).states()).expect("states.parquet")
+}
+
+fn cases(run: &Path) -> Vec<LoadFactorCase> {
+    store::read_load_factor_cases(&RunLayout::at(run).results()).expect("results.parquet")
+}
+
+fn line(run: &Path, id: &str) -> Vec<(f64, f64)> {
+    let curves = store::read_curves(&RunLayout::at(run).curves()).expect("curves.parquet");
+    curves
+        .iter()
+        .filter(|c| c.figure == format!("line_of_thrust/{id}") && c.series == "line_of_thrust")
+        .map(|c| (c.x, c.y))
+        .collect()
+}
+
+/// The offset d = e(1 + K)/2 of each half's centre from the axis.
+fn offset(s: &StateRow) -> f64 {
+    s.eccentricity * 0.5 * (1.0 + s.k)
+}
+
+/// Each case state equals its case of results.parquet: K, μ, position, λ and mechanism.
+fn assert_case_states(run: &Path, form: (&str, f64, &str), load: &str) {
+    let all = cases(run);
+    let drawn = states(run);
+    let case_states: Vec<&StateRow> = drawn.iter().filter(|s| s.source == "case").collect();
+    assert!(case_states.len() >= 2, "{drawn:#?}");
+    let weakest = all
+        .iter()
+        .filter_map(|c| c.load_factor)
+        .fold(f64::INFINITY, f64::min);
+    let mut hinges_checked = 0;
+    for s in case_states {
+        let c = &all[s.case_id.expect("case id") as usize];
+        assert_eq!((s.shape.as_str(), s.eccentricity), (form.0, form.1));
+        assert_eq!(s.joint_orientation, form.2);
+        assert_eq!(s.load, load);
+        assert_eq!(
+            (s.k, s.mu, s.at_deg),
+            (c.k, c.mu, c.at_deg),
+            "{}",
+            s.state_id
+        );
+        let (l, lc) = (s.load_factor.expect("λ"), c.load_factor.expect("λ"));
+        assert!(
+            (l - lc).abs() < 1e-9 * (1.0 + lc),
+            "{}: λ {l} vs {lc}",
+            s.state_id
+        );
+        assert_eq!(s.mechanism, c.mechanism, "{}", s.state_id);
+        // Its collapse mechanism is stored and drawn, of the same kind, meeting eq. (11).
+        let mechs = store::read_mechanisms(&RunLayout::at(run).mechanisms()).expect("mechanisms");
+        let m = mechs
+            .iter()
+            .find(|m| m.state_id == s.state_id)
+            .expect("a mechanism of the state");
+        assert_eq!(Some(&m.mechanism), s.mechanism.as_ref(), "{}", s.state_id);
+        assert!(
+            m.work_residual < 1e-6,
+            "{}: {}",
+            s.state_id,
+            m.work_residual
+        );
+        assert!(
+            run.join(format!("plots/mechanisms-{}.png", s.state_id))
+                .is_file()
+        );
+        if s.state == "weakest" {
+            assert!((lc - weakest).abs() < 1e-15, "{lc} vs {weakest}");
+        }
+        // The line of thrust passes through every hinge of the drawn arch.
+        let g = of_state(s);
+        let pts = line(run, &s.state_id);
+        for h in &g.hinges {
+            let p = h.point();
+            let gap = pts
+                .iter()
+                .map(|q| (q.0 - p.0).hypot(q.1 - p.1))
+                .fold(f64::INFINITY, f64::min);
+            assert!(gap < 1e-7, "{}: hinge {:?} {gap}", s.state_id, h.joint);
+            hinges_checked += 1;
+        }
+    }
+    assert!(hinges_checked >= 3, "{hinges_checked} hinges");
+    // One state per mechanism found among the cases.
+    let mut kinds: Vec<&str> = all.iter().filter_map(|c| c.mechanism.as_deref()).collect();
+    kinds.sort_unstable();
+    kinds.dedup();
+    let mut drawn_kinds: Vec<&str> = drawn
+        .iter()
+        .filter(|s| s.source == "case")
+        .filter_map(|s| s.mechanism.as_deref())
+        .collect();
+    drawn_kinds.sort_unstable();
+    assert_eq!(drawn_kinds, kinds);
+}
+
+#[test]
+fn pointed_arch_under_a_point_load_draws_its_weakest_case_on_the_pointed_arch() {
+    let dir = scratch("states-pointed-point");
+    let run = run_study(&dir, "pointed-point.yaml", POINTED_POINT_LOAD);
+    assert_case_states(&run, ("pointed", 0.2, "radial"), "point");
+    for s in states(&run) {
+        // The load is drawn at the extrados end of its radial joint about its half's centre.
+        let g = of_state(&s);
+        let d = offset(&s);
+        let t = s.at_deg.expect("position").to_radians();
+        let Some(archstudy::plot::state::DrawnLoad::Point { at, .. }) = g.load else {
+            panic!("{}: no point load drawn", s.state_id);
+        };
+        let want = (-d.copysign(t) + s.k * t.sin(), s.k * t.cos());
+        assert!((at.0 - want.0).abs() < 1e-12 && (at.1 - want.1).abs() < 1e-12);
+        assert!(std::fs::metadata(run.join(format!("plots/state-{}.svg", s.state_id))).is_ok());
+    }
+}
+
+#[test]
+fn vertical_joints_under_a_horizontal_load_draw_vertical_joints_and_the_load() {
+    let dir = scratch("states-vertical-horizontal");
+    let run = run_study(&dir, "vertical-horizontal.yaml", VERTICAL_HORIZONTAL);
+    assert_case_states(&run, ("circular", 0.0, "vertical"), "horizontal");
+    for s in states(&run) {
+        let g = of_state(&s);
+        assert_eq!(g.voussoir_joints.len(), 11, "{}", s.state_id);
+        for j in &g.voussoir_joints {
+            assert!((j.intrados.0 - j.extrados.0).abs() < 1e-12, "{j:?}");
+        }
+        assert!(matches!(
+            g.load,
+            Some(archstudy::plot::state::DrawnLoad::Horizontal { .. })
+        ));
+        // The line's points on the joints are stored, one per joint between voussoirs.
+        let curves = store::read_curves(&RunLayout::at(&run).curves()).expect("curves");
+        let on_joints = curves
+            .iter()
+            .filter(|c| {
+                c.figure == format!("line_of_thrust/{}", s.state_id) && c.series == "line_on_joints"
+            })
+            .count();
+        assert_eq!(on_joints, 11, "{}", s.state_id);
+    }
+}
+
+#[test]
+fn a_standing_pointed_arch_with_vertical_joints_has_its_line_inside_the_masonry() {
+    let dir = scratch("states-pointed-vertical");
+    let run = run_study(&dir, "pointed-vertical.yaml", POINTED_VERTICAL_STATE);
+    let drawn = states(&run);
+    let standing = drawn
+        .iter()
+        .find(|s| s.state == "largest_margin")
+        .expect("the scene K = 1.3, μ = 1.6 stands");
+    assert_eq!((standing.k, standing.mu), (1.3, 1.6));
+    assert_eq!(standing.regime.as_deref(), Some("stable"));
+    let d = offset(standing);
+    let pts = line(&run, &standing.state_id);
+    assert!(pts.len() > 300);
+    for (x, y) in pts {
+        // Inside the annulus of its own half, strictly.
+        let r = (x.abs() + d).hypot(y);
+        assert!(
+            r > 1.0 + 1e-3 && r < standing.k - 1e-3,
+            "({x}, {y}): r = {r}"
+        );
+    }
+    let collapse = drawn
+        .iter()
+        .find(|s| s.scene_k == 1.1)
+        .expect("the scene K = 1.1, μ = 0.7");
+    assert_eq!(collapse.state, "collapse");
+    assert!(collapse.k > 1.1, "K_c = {}", collapse.k);
+    assert_eq!(collapse.joint_orientation, "vertical");
+    assert!(!collapse.joints.sliding_angles_deg.is_empty());
+}
