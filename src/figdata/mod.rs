@@ -501,13 +501,13 @@ pub fn run(plan: &Plan, layout: &RunLayout) -> Result<FigureDataSummary> {
             critical_curves(manifest, &lc.name, &own, &mut out)?;
         }
     }
-    // Self-weight on other forms: the critical curves alone (no drawings of the arch).
-    for lc in (manifest.load_cases.iter()).filter(|l| !drawable && !l.kind.is_live()) {
+    // Self-weight on other forms: their critical curves too, from the general route.
+    for lc in (manifest.load_cases.iter()).filter(|l| !symmetric && !l.kind.is_live()) {
         let own: Vec<BifurcationRow> = (bifurcations.iter())
             .filter(|b| b.load_case == lc.name)
             .cloned()
             .collect();
-        if lc.find == crate::scene::Find::State && single_model(manifest) {
+        if lc.find == Find::State && single_model(manifest) {
             critical_curves(manifest, &lc.name, &own, &mut out)?;
         }
     }
