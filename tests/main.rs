@@ -11,6 +11,7 @@ mod damaged;
 mod hardening;
 mod loads;
 mod mechanisms;
+mod paper;
 mod report;
 mod report_arches;
 mod report_regime_map;
