@@ -496,6 +496,12 @@ impl LabelPlacer {
         if let Some(at) = self.try_place(w, h, &rings((x, y), w, h)) {
             return at;
         }
+        self.force(w, h, (x, y))
+    }
+
+    /// Takes a `w` × `h` box at `(x, y)` clamped into the bounds, free or not: for a label
+    /// that must stay where it is (a region's name inside its region).
+    pub fn force(&mut self, w: i32, h: i32, (x, y): (i32, i32)) -> (i32, i32) {
         let x = x.clamp(self.bounds.0, (self.bounds.2 - w).max(self.bounds.0));
         let y = y.clamp(self.bounds.1, (self.bounds.3 - h).max(self.bounds.1));
         self.taken.push((x, y, x + w, y + h));

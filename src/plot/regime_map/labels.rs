@@ -315,7 +315,8 @@ impl<'a, 'c, DB: DrawingBackend> Labels<'a, 'c, DB> {
                 let at = self
                     .placer
                     .try_place(w3, h3, &cands(w3, h3))
-                    .unwrap_or_else(|| self.placer.place(w3, h3, &cands(w3, h3)[..1]));
+                    // A region's name stays in its region, even on another label.
+                    .unwrap_or_else(|| self.placer.force(w3, h3, cands(w3, h3)[0]));
                 root.draw(&Text::new(
                     l1.to_string(),
                     (at.0 + w3 / 2, at.1),
