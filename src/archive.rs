@@ -28,8 +28,8 @@ use std::path::{Path, PathBuf};
 /// The files every run directory must hold (relative paths).
 pub const REQUIRED_FILES: [&str; 3] = ["manifest.yaml", "run.json", "results.parquet"];
 
-/// The files at the top of a run directory that a run writes (besides plots/STEM.svg and
-/// plots/STEM.png): nothing else is archived, and an archive holding anything else fails
+/// The files at the top of a run directory that a run writes (besides the figures
+/// plots/STEM.{svg,png,pdf} and the tables tables/STEM.{csv,tex}): nothing else is archived, and an archive holding anything else fails
 /// `verify`.
 pub const RUN_TOP_FILES: [&str; 12] = [
     "manifest.yaml",
@@ -47,19 +47,23 @@ pub const RUN_TOP_FILES: [&str; 12] = [
 ];
 
 /// Whether `rel` (relative, `/`-separated) is a file a run writes: one of
-/// [`RUN_TOP_FILES`], or a figure `plots/STEM.svg` / `plots/STEM.png` (STEM of letters,
-/// digits, `_` and `-`).
+/// [`RUN_TOP_FILES`], a figure `plots/STEM.svg`, `.png` or `.pdf`, or a table
+/// `tables/STEM.csv` or `.tex` (STEM of letters, digits, `_` and `-`).
 pub fn is_run_file(rel: &str) -> bool {
     if RUN_TOP_FILES.contains(&rel) {
         return true;
     }
-    let Some(fig) = rel.strip_prefix("plots/") else {
+    let (file, exts): (&str, &[&str]) = if let Some(f) = rel.strip_prefix("plots/") {
+        (f, &["svg", "png", "pdf"])
+    } else if let Some(t) = rel.strip_prefix("tables/") {
+        (t, &["csv", "tex"])
+    } else {
         return false;
     };
-    let Some((stem, ext)) = fig.rsplit_once('.') else {
+    let Some((stem, ext)) = file.rsplit_once('.') else {
         return false;
     };
-    matches!(ext, "svg" | "png")
+    exts.contains(&ext)
         && !stem.is_empty()
         && stem
             .chars()

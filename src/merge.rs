@@ -226,6 +226,7 @@ pub fn merge(opts: &MergeOptions) -> Result<RunSummary> {
         jobs: opts.jobs,
         progress: opts.progress.clone(),
         command_line: opts.command_line.clone(),
+        figure_width: None,
     };
     let analysed = Analysed {
         plan,

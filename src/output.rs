@@ -79,15 +79,18 @@ pub fn refuse_symlink(path: &Path) -> Result<(), UsageError> {
     Ok(())
 }
 
-/// Refuses a run directory whose plots/, report.html, report.md or any figure file is a
-/// symbolic link: re-rendering writes only inside the run directory.
+/// Refuses a run directory whose plots/, tables/, report.html, report.md or any figure or
+/// table file is a symbolic link: re-rendering writes only inside the run directory.
 pub fn refuse_symlinks_in(layout: &RunLayout) -> Result<(), UsageError> {
     refuse_symlink(&layout.plots())?;
+    refuse_symlink(&layout.tables())?;
     refuse_symlink(&layout.report_html())?;
     refuse_symlink(&layout.report_md())?;
-    if let Ok(entries) = std::fs::read_dir(layout.plots()) {
-        for e in entries.flatten() {
-            refuse_symlink(&e.path())?;
+    for dir in [layout.plots(), layout.tables()] {
+        if let Ok(entries) = std::fs::read_dir(dir) {
+            for e in entries.flatten() {
+                refuse_symlink(&e.path())?;
+            }
         }
     }
     Ok(())
@@ -107,9 +110,10 @@ fn dead_owner(file_name: &str, markers: &[&str]) -> Option<u32> {
 }
 
 /// Removes the temporary files `.FILE.tmp-PID` that processes which no longer run left in
-/// `dir` (and, for a run directory, in its plots/), e.g. after kill -9 or a full disk.
+/// `dir` (and, for a run directory, in its plots/ and tables/), e.g. after kill -9 or a full
+/// disk.
 pub fn sweep_temporaries(dir: &Path) {
-    for d in [dir.to_path_buf(), dir.join("plots")] {
+    for d in [dir.to_path_buf(), dir.join("plots"), dir.join("tables")] {
         let Ok(entries) = std::fs::read_dir(&d) else {
             continue;
         };
@@ -180,6 +184,14 @@ impl RunLayout {
     /// A figure file in plots/.
     pub fn plot(&self, stem: &str, ext: &str) -> PathBuf {
         self.plots().join(format!("{stem}.{ext}"))
+    }
+    /// tables/: every table of the reports as CSV and LaTeX.
+    pub fn tables(&self) -> PathBuf {
+        self.dir.join("tables")
+    }
+    /// A table file in tables/.
+    pub fn table(&self, stem: &str, ext: &str) -> PathBuf {
+        self.tables().join(format!("{stem}.{ext}"))
     }
     /// report.html.
     pub fn report_html(&self) -> PathBuf {

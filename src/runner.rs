@@ -3,7 +3,7 @@
 
 use crate::boundaries;
 use crate::engine::{self, CaseResult, Status};
-use crate::manifest::{self, Manifest};
+use crate::manifest::{self, FigureWidth, Manifest};
 use crate::output::{RunLayout, StagedRun, write_atomic};
 use crate::plan::{self, Plan};
 use crate::progress::{Progress, Silent, Stage};
@@ -222,6 +222,9 @@ pub struct RunOptions {
     pub progress: Arc<dyn Progress>,
     /// The command line recorded in run.json.
     pub command_line: Vec<String>,
+    /// The column width of the paper figures, replacing the manifest's `figures.width`
+    /// (recorded in run.json's resolved manifest, so `report` re-draws the same).
+    pub figure_width: Option<FigureWidth>,
 }
 
 impl RunOptions {
@@ -233,6 +236,7 @@ impl RunOptions {
             jobs: None,
             progress: Arc::new(Silent),
             command_line: Vec::new(),
+            figure_width: None,
         }
     }
 }
@@ -346,7 +350,10 @@ pub fn run_study(opts: &RunOptions) -> Result<RunSummary> {
     let t0 = Instant::now();
     let started_at = now_rfc3339();
     let progress = opts.progress.as_ref();
-    let (plan, bytes) = load_plan(&opts.study)?;
+    let (mut plan, bytes) = load_plan(&opts.study)?;
+    if let Some(w) = opts.figure_width {
+        plan.manifest.figure_width = w;
+    }
     let mut stages = StageTimings {
         plan_ms: ms(t0),
         ..Default::default()

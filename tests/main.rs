@@ -12,6 +12,7 @@ mod disk_full;
 mod hardening;
 mod loads;
 mod mechanisms;
+mod paper;
 mod report;
 mod report_arches;
 mod report_regime_map;

@@ -474,7 +474,8 @@ fn figures_are_written_as_svg_and_print_png() {
         let mut reader = dec.read_info().unwrap();
         let mut buf = vec![0; reader.output_buffer_size()];
         let info = reader.next_frame(&mut buf).unwrap();
-        assert!(info.width >= 2400, "{s}.png is {} px wide", info.width);
+        // Two columns (the default), 7.2 in at 300 dpi.
+        assert_eq!(info.width, 2160, "{s}.png is {} px wide", info.width);
         let px = &buf[..info.buffer_size()];
         let mean = px.iter().map(|&v| f64::from(v)).sum::<f64>() / px.len() as f64;
         let var = px

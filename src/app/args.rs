@@ -110,6 +110,10 @@ pub struct RunArgs {
     /// `<out>/<name>.shard-I-of-N/`; join the shards with `archstudy merge`.
     #[arg(long, value_name = "I/N")]
     pub shard: Option<String>,
+    /// Column width of the paper figures in plots/ (PDF, SVG, PNG): `single` (3.5 in) or
+    /// `double` (7.2 in); replaces the manifest's `figures.width` (default double).
+    #[arg(long, value_name = "single|double")]
+    pub figure_width: Option<String>,
 }
 
 /// `archstudy check`.
@@ -456,12 +460,26 @@ impl RunArgs {
                 "the number of threads must be at least 1",
             ));
         }
+        let figure_width = match &self.figure_width {
+            None => None,
+            Some(w) => Some(crate::manifest::FigureWidth::parse(w).ok_or_else(|| {
+                usage(
+                    "--figure-width",
+                    w,
+                    format!(
+                        "the column width must be {}",
+                        crate::manifest::FigureWidth::NAMES
+                    ),
+                )
+            })?),
+        };
         Ok(crate::runner::RunOptions {
             study: self.study.clone(),
             out: self.out.clone(),
             jobs: self.jobs,
             progress,
             command_line: std::env::args().collect(),
+            figure_width,
         })
     }
 }

@@ -15,8 +15,8 @@ pub use error::ManifestError;
 pub use parse_errors::MAX_NODES;
 pub use raw::{Number, RawVoussoirs};
 pub use types::{
-    ArchOptions, Author, AxisName, DEFAULT_BOUNDARY_TOLERANCE, GridAxis, LoadCase, LoadKind,
-    Manifest, SceneSpec,
+    ArchOptions, Author, AxisName, DEFAULT_BOUNDARY_TOLERANCE, FigureWidth, GridAxis, LoadCase,
+    LoadKind, Manifest, SceneSpec,
 };
 pub use validate::{MAX_AXIS_STEPS, MAX_GENERAL_VOUSSOIRS, MAX_K, MAX_NAME_CHARS, short_number};
 

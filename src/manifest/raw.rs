@@ -145,6 +145,13 @@ pub(super) struct RawBoundaries {
     pub(super) tolerance: Option<Spanned<f64>>,
 }
 
+/// Figure options as written.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawFigures {
+    pub(super) width: Option<Spanned<String>>,
+}
+
 /// An author of a study as written.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -170,4 +177,5 @@ pub(super) struct RawManifest {
     pub(super) find: Option<Spanned<String>>,
     pub(super) scenes: Option<Vec<Spanned<RawScene>>>,
     pub(super) boundaries: Option<RawBoundaries>,
+    pub(super) figures: Option<RawFigures>,
 }

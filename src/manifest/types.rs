@@ -205,6 +205,55 @@ pub struct Manifest {
     pub scenes: Vec<SceneSpec>,
     /// Tolerance for locating boundaries, in K and μ.
     pub boundary_tolerance: f64,
+    /// The column width the paper figures (PDF, SVG, PNG in plots/) are drawn for.
+    pub figure_width: FigureWidth,
+}
+
+/// The printed width of the paper figures: one column or the full page of a two-column
+/// journal.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum FigureWidth {
+    /// One column: 3.5 in (88.9 mm).
+    Single,
+    /// Both columns: 7.2 in (182.9 mm).
+    #[default]
+    Double,
+}
+
+impl FigureWidth {
+    /// The values a manifest or the command line may give.
+    pub const NAMES: &'static str = "single or double";
+
+    /// The width of a name (`single`, `double`).
+    pub fn parse(s: &str) -> Option<Self> {
+        match s {
+            "single" => Some(FigureWidth::Single),
+            "double" => Some(FigureWidth::Double),
+            _ => None,
+        }
+    }
+
+    /// The name.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            FigureWidth::Single => "single",
+            FigureWidth::Double => "double",
+        }
+    }
+
+    /// The printed width in inches.
+    pub fn inches(self) -> f64 {
+        match self {
+            FigureWidth::Single => 3.5,
+            FigureWidth::Double => 7.2,
+        }
+    }
+
+    /// The printed width in PostScript points (1/72 in).
+    pub fn points(self) -> f64 {
+        72.0 * self.inches()
+    }
 }
 
 /// Default tolerance for boundary location.

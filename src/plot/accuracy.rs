@@ -146,6 +146,10 @@ impl Figure for AccuracyChart {
         (1000, 500)
     }
 
+    fn panel_grid(&self) -> (usize, usize) {
+        (1, 2)
+    }
+
     fn draw<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, Shift>,
@@ -154,7 +158,7 @@ impl Figure for AccuracyChart {
         let legend = self.legend();
         let upper = style::above_legend(root, ctx, &legend)?;
         let upper = style::title(&upper, ctx, &self.title)?;
-        let areas = upper.split_evenly((1, 2));
+        let areas = upper.split_evenly(ctx.panel_grid((1, 2)));
         let by_n: Vec<(String, Vec<(f64, f64)>)> = self
             .series
             .iter()

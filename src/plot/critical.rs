@@ -200,6 +200,10 @@ impl Figure for CriticalChart {
         }
     }
 
+    fn panel_grid(&self) -> (usize, usize) {
+        (1, self.panels.len().max(1))
+    }
+
     fn draw<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, Shift>,

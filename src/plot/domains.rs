@@ -89,8 +89,11 @@ impl Figure for DomainsChart {
         let upper = style::above_legend(root, ctx, &legend)?;
         let w = ((0.0, self.alpha_deg), (0.0, y_top(self)));
         let ((x0, x1), (y0, y1)) = w;
-        let mut chart = ChartBuilder::on(&upper)
-            .caption(&self.title, ctx.font(17.0))
+        let mut builder = ChartBuilder::on(&upper);
+        if ctx.titles {
+            builder.caption(&self.title, ctx.font(17.0));
+        }
+        let mut chart = builder
             .margin(ctx.px(10.0))
             .x_label_area_size(ctx.px(50.0))
             .y_label_area_size(ctx.px(72.0))

@@ -128,17 +128,14 @@ fn draw_panel<DB: DrawingBackend>(
     let log = p.log_y;
     let fy = |v: &f64| {
         if log {
-            let y = 10f64.powf(*v);
-            let d = if y >= 10.0 {
-                0
-            } else if y >= 1.0 {
-                1
-            } else if y >= 0.01 {
-                2
+            // Powers of ten only, typeset as 10 with a superscript exponent; the ticks
+            // between them stay unlabelled.
+            let e = v.round();
+            if (v - e).abs() < 1e-9 {
+                format!("1e{}", e as i32)
             } else {
-                3
-            };
-            format!("{y:.d$}")
+                String::new()
+            }
         } else {
             format!("{:.*}", decimals_for(y1 - y0), v)
         }
@@ -218,6 +215,10 @@ impl Figure for LinesChart {
         } else {
             (820, 540)
         }
+    }
+
+    fn panel_grid(&self) -> (usize, usize) {
+        (1, self.panels.len().max(1))
     }
 
     fn draw<DB: DrawingBackend>(

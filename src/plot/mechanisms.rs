@@ -89,13 +89,30 @@ impl Frame {
 /// The result of drawing on a backend.
 type Drawn<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
-/// Draws the figure into a drawing area.
-fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, fig: &MechanismFigure) -> Drawn<DB> {
+/// Draws the figure into a drawing area; the text in the fonts of `ctx` (a figure of the
+/// report), or sized to the area (a figure of its own).
+fn draw<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    fig: &MechanismFigure,
+    ctx: Option<&super::PlotContext>,
+) -> Drawn<DB> {
     root.fill(&WHITE)?;
     let (w, h) = root.dim_in_pixel();
     let (w, h) = (f64::from(w), f64::from(h));
-    let text = font_ready();
-    let title_h = if text { 0.11 * h } else { 0.0 };
+    let text = ctx.is_some() || font_ready();
+    let fonts = match ctx {
+        Some(c) => (c.font(13.5), c.font(12.5).color(&GROUND)),
+        None => (
+            (FONT, (0.045 * h).max(12.0)).into_font().color(&BLACK),
+            (FONT, (0.032 * h).max(10.0)).into_font().color(&GROUND),
+        ),
+    };
+    let title_h = match ctx {
+        None if text => 0.11 * h,
+        None => 0.0,
+        // Two lines of text and a gap.
+        Some(c) => f64::from(c.px(44.0)).max(0.11 * h),
+    };
     let d = &fig.drawing;
     let mut b = d.bounds();
     // Room for the ground hatching below the springings and for the arrows.
@@ -114,23 +131,22 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, fig: &MechanismFigure
         frame,
         drawing: d,
         size: (b[1] - b[0]).max(b[3] - b[2]),
+        px: ctx.map_or(1.0, |c| c.scale),
     };
     p.draw_supports()?;
     p.draw_blocks()?;
     p.draw_slides()?;
-    p.draw_hinges((0.012 * w.min(h)).max(3.0) as i32)?;
+    p.draw_hinges((0.012 * w.min(h)).max(3.0 * p.px) as i32)?;
     if text {
-        let big = (0.045 * h).max(12.0);
-        let small = (0.032 * h).max(10.0);
         root.draw(&Text::new(
             fig.title.clone(),
-            (margin as i32, (0.2 * title_h) as i32),
-            (FONT, big).into_font().color(&BLACK),
+            (margin as i32, (0.12 * title_h) as i32),
+            fonts.0,
         ))?;
         root.draw(&Text::new(
             fig.subtitle.clone(),
-            (margin as i32, (0.62 * title_h) as i32),
-            (FONT, small).into_font().color(&GROUND),
+            (margin as i32, (0.56 * title_h) as i32),
+            fonts.1,
         ))?;
     }
     Ok(())
@@ -143,9 +159,16 @@ struct Panel<'a, DB: DrawingBackend> {
     frame: Frame,
     drawing: &'a MechanismDrawing,
     size: f64,
+    /// Device pixels per design pixel.
+    px: f64,
 }
 
 impl<DB: DrawingBackend> Panel<'_, DB> {
+    /// A line width or radius of `n` design pixels in device pixels.
+    fn w(&self, n: f64) -> u32 {
+        (n * self.px).round().max(1.0) as u32
+    }
+
     /// Supports: a ground line along each springing joint, hatched on the ground side.
     fn draw_supports(&self) -> Drawn<DB> {
         let (root, frame, size) = (self.root, &self.frame, self.size);
@@ -160,7 +183,7 @@ impl<DB: DrawingBackend> Panel<'_, DB> {
             let z = [e[0] + ext * t[0], e[1] + ext * t[1]];
             root.draw(&PathElement::new(
                 vec![frame.px(a), frame.px(z)],
-                GROUND.stroke_width(2),
+                GROUND.stroke_width(self.w(2.0)),
             ))?;
             let ticks = 8;
             let tick = 0.1 * (z[0] - a[0]).hypot(z[1] - a[1]);
@@ -173,7 +196,7 @@ impl<DB: DrawingBackend> Panel<'_, DB> {
                 ];
                 root.draw(&PathElement::new(
                     vec![frame.px(p), frame.px(q)],
-                    GROUND.stroke_width(1),
+                    GROUND.stroke_width(self.w(1.0)),
                 ))?;
             }
         }
@@ -187,9 +210,9 @@ impl<DB: DrawingBackend> Panel<'_, DB> {
         for o in &d.outlines {
             root.draw(&DashedPathElement::new(
                 frame.path(&o.original, true),
-                6,
-                4,
-                ORIGINAL.stroke_width(1),
+                self.w(6.0),
+                self.w(4.0),
+                ORIGINAL.stroke_width(self.w(1.0)),
             ))?;
         }
         for o in d.outlines.iter().filter(|o| o.fixed) {
@@ -199,7 +222,7 @@ impl<DB: DrawingBackend> Panel<'_, DB> {
             ))?;
             root.draw(&PathElement::new(
                 frame.path(&o.original, true),
-                GROUND.stroke_width(1),
+                GROUND.stroke_width(self.w(1.0)),
             ))?;
         }
         for o in d.outlines.iter().filter(|o| !o.fixed) {
@@ -209,13 +232,13 @@ impl<DB: DrawingBackend> Panel<'_, DB> {
             ))?;
             root.draw(&PathElement::new(
                 frame.path(&o.displaced, true),
-                BLOCK_EDGE.stroke_width(2),
+                BLOCK_EDGE.stroke_width(self.w(2.0)),
             ))?;
         }
         for [i, e] in &d.voussoir_joints {
             root.draw(&PathElement::new(
                 vec![frame.px(*i), frame.px(*e)],
-                BLOCK_EDGE.stroke_width(1),
+                BLOCK_EDGE.stroke_width(self.w(1.0)),
             ))?;
         }
         Ok(())
@@ -232,11 +255,26 @@ impl<DB: DrawingBackend> Panel<'_, DB> {
                 Some(Sense::Inward) => -1.0,
                 None => 0.0,
             };
-            let len = 0.16 * size;
+            // The arrow spans 70 % of the joint (so it stays inside the masonry), at least
+            // 12 pixels, centred on the joint's middle.
+            let (lo, hi) = joint_extent(
+                self.drawing.outlines.iter().map(|o| o.original.as_slice()),
+                s.centre,
+                s.along,
+            )
+            .unwrap_or((-0.08 * size, 0.08 * size));
+            let len = (0.7 * (hi - lo)).max(12.0 * self.px / frame.scale);
+            let mid = [
+                s.centre[0] + 0.5 * (lo + hi) * s.along[0],
+                s.centre[1] + 0.5 * (lo + hi) * s.along[1],
+            ];
             // Crown side: left of the joint for θ ≥ 0, i.e. against the normal (cos θ, −sin θ).
             let nrm = [s.along[1], -s.along[0]];
-            let off = 0.045 * size * s.crown_side;
-            let c = [s.centre[0] - off * nrm[0], s.centre[1] - off * nrm[1]];
+            let off = (0.045 * size)
+                .min(0.5 * (hi - lo))
+                .max(6.0 * self.px / frame.scale)
+                * s.crown_side;
+            let c = [mid[0] - off * nrm[0], mid[1] - off * nrm[1]];
             let (t0, t1) = if dir == 0.0 {
                 (c, c)
             } else {
@@ -253,7 +291,7 @@ impl<DB: DrawingBackend> Panel<'_, DB> {
             };
             root.draw(&PathElement::new(
                 vec![frame.px(t0), frame.px(t1)],
-                SLIDE.stroke_width(3),
+                SLIDE.stroke_width(self.w(2.0)),
             ))?;
             if dir != 0.0 {
                 let head = 0.35 * len;
@@ -264,12 +302,16 @@ impl<DB: DrawingBackend> Panel<'_, DB> {
                     let q = [t1[0] + head * back[0], t1[1] + head * back[1]];
                     root.draw(&PathElement::new(
                         vec![frame.px(t1), frame.px(q)],
-                        SLIDE.stroke_width(3),
+                        SLIDE.stroke_width(self.w(2.0)),
                     ))?;
                 }
             }
             // The joint itself, drawn on the arch.
-            root.draw(&Circle::new(frame.px(s.centre), 3, SLIDE.filled()))?;
+            root.draw(&Circle::new(
+                frame.px(s.centre),
+                self.w(3.0),
+                SLIDE.filled(),
+            ))?;
         }
         Ok(())
     }
@@ -282,14 +324,50 @@ impl<DB: DrawingBackend> Panel<'_, DB> {
             let at = self.frame.px(hm.displaced);
             if hm.relative_rotation.abs() > MOTION_TOL {
                 root.draw(&Circle::new(at, r, HINGE.filled()))?;
-                root.draw(&Circle::new(at, r, BLACK.stroke_width(1)))?;
+                root.draw(&Circle::new(at, r, BLACK.stroke_width(self.w(1.0))))?;
             } else {
                 root.draw(&Circle::new(at, r, WHITE.filled()))?;
-                root.draw(&Circle::new(at, r, ORIGINAL.stroke_width(2)))?;
+                root.draw(&Circle::new(at, r, ORIGINAL.stroke_width(self.w(2.0))))?;
             }
         }
         Ok(())
     }
+}
+
+/// Where the line through `centre` along `along` leaves the arch on either side: the
+/// parameters (negative, positive) of the nearest crossings with the blocks' outlines, the
+/// ends of the joint through `centre`. Edges along the line (the joint's own faces) are
+/// skipped.
+fn joint_extent<'a>(
+    outlines: impl Iterator<Item = &'a [Point]>,
+    centre: Point,
+    along: [f64; 2],
+) -> Option<(f64, f64)> {
+    let cross = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
+    let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+    for o in outlines {
+        let n = o.len();
+        for i in 0..n {
+            let (p, q) = (o[i], o[(i + 1) % n]);
+            let e = [q[0] - p[0], q[1] - p[1]];
+            let den = cross(along, e);
+            if den.abs() <= 1e-9 * e[0].hypot(e[1]) {
+                continue;
+            }
+            let pc = [p[0] - centre[0], p[1] - centre[1]];
+            let t = cross(pc, e) / den;
+            let u = cross(pc, along) / den;
+            if !(-1e-9..=1.0 + 1e-9).contains(&u) {
+                continue;
+            }
+            if t > 1e-9 {
+                hi = hi.min(t);
+            } else if t < -1e-9 {
+                lo = lo.max(t);
+            }
+        }
+    }
+    (lo.is_finite() && hi.is_finite()).then_some((lo, hi))
 }
 
 /// Mechanisms side by side (e.g. the non-associative mechanisms at a bifurcation and the
@@ -318,14 +396,18 @@ impl super::Figure for MechanismPanels {
         (PANEL_SIZE.0 * cols as u32, PANEL_SIZE.1 * rows as u32)
     }
 
+    fn panel_grid(&self) -> (usize, usize) {
+        self.grid()
+    }
+
     fn draw<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, Shift>,
-        _ctx: &super::PlotContext,
+        ctx: &super::PlotContext,
     ) -> super::DrawResult<(), DB> {
-        let areas = root.split_evenly(self.grid());
+        let areas = root.split_evenly(ctx.panel_grid(self.grid()));
         for (a, f) in areas.iter().zip(&self.panels) {
-            draw(a, f)?;
+            draw(a, f, Some(ctx))?;
         }
         Ok(())
     }
@@ -340,11 +422,11 @@ pub fn render_mechanism(path: &Path, size: (u32, u32), fig: &MechanismFigure) ->
     let err = |e: String| anyhow!("cannot draw {}: {e}", path.display());
     if svg {
         let root = SVGBackend::new(path, size).into_drawing_area();
-        draw(&root, fig).map_err(|e| err(e.to_string()))?;
+        draw(&root, fig, None).map_err(|e| err(e.to_string()))?;
         root.present().map_err(|e| err(e.to_string()))?;
     } else {
         let root = BitMapBackend::new(path, size).into_drawing_area();
-        draw(&root, fig).map_err(|e| err(e.to_string()))?;
+        draw(&root, fig, None).map_err(|e| err(e.to_string()))?;
         root.present().map_err(|e| err(e.to_string()))?;
     }
     Ok(())

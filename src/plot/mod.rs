@@ -4,18 +4,24 @@
 //! a print-resolution PNG); the caller decides where they go.
 //!
 //! Text uses DejaVu Sans, bundled with the binary and registered under the generic family
-//! `sans-serif`: PNG text never depends on the system's fonts, and the SVG names only the
-//! generic family, so a browser always has a font for it.
+//! `sans-serif`: PNG text never depends on the system's fonts, and the SVG names DejaVu Sans
+//! with the generic family as fallback, so every viewer has a font for it. Symbols are
+//! typeset in the SVG ([`paper::typeset`]): K_c with a subscript, H^r with a superscript.
+//!
+//! [`Format::Paper`] draws a figure for print at a column width ([`paper`]); its PDF and
+//! PNG are converted from that SVG.
 
 pub mod accuracy;
 pub mod critical;
 pub mod domains;
 pub mod lines;
 pub mod mechanisms;
+pub mod paper;
 pub mod regime_map;
 pub mod state;
 mod style;
 
+use crate::manifest::FigureWidth;
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
@@ -27,15 +33,18 @@ pub use style::LegendItem;
 pub enum Format {
     /// SVG, at the design size (for inlining in the HTML report).
     Svg,
-    /// PNG, at [`PNG_SCALE`] times the design size with a 300 dpi tag (for papers).
+    /// PNG, at [`PNG_SCALE`] times the design size with a 300 dpi tag.
     Png,
+    /// SVG for print at a column width: no title (the caption carries it), text at 8–9 pt
+    /// of the printed size, the size in inches ([`paper`]).
+    Paper(FigureWidth),
 }
 
 impl Format {
     /// The file extension.
     pub fn extension(self) -> &'static str {
         match self {
-            Format::Svg => "svg",
+            Format::Svg | Format::Paper(_) => "svg",
             Format::Png => "png",
         }
     }
@@ -55,6 +64,13 @@ pub struct PlotContext {
     pub size: (u32, u32),
     /// Device pixels per design pixel.
     pub scale: f64,
+    /// Whether the figure's title is drawn (not in paper figures, whose caption has it).
+    pub titles: bool,
+    /// The smallest and largest font size in design pixels, when fonts are held to a
+    /// printed size (paper figures).
+    pub font_range: Option<(f64, f64)>,
+    /// Columns of panels, when a paper figure has room for fewer than its design.
+    pub panel_columns: Option<usize>,
 }
 
 impl PlotContext {
@@ -63,11 +79,29 @@ impl PlotContext {
         let scale = match format {
             Format::Svg => 1.0,
             Format::Png => PNG_SCALE,
+            Format::Paper(_) => paper::PAPER_SCALE,
         };
+        let paper = matches!(format, Format::Paper(_));
         PlotContext {
             format,
             size,
             scale,
+            titles: !paper,
+            font_range: paper.then(paper::font_range),
+            panel_columns: None,
+        }
+    }
+
+    /// The grid (rows, columns) of panels designed as `grid`, in this figure.
+    pub fn panel_grid(&self, grid: (usize, usize)) -> (usize, usize) {
+        paper::panel_grid(grid, self.panel_columns)
+    }
+
+    /// A font size in design pixels held to the printed range of paper figures.
+    fn font_size(&self, size: f64) -> f64 {
+        match self.font_range {
+            Some((lo, hi)) => size.clamp(lo, hi),
+            None => size,
         }
     }
 
@@ -91,12 +125,12 @@ impl PlotContext {
 
     /// A font of `size` design pixels.
     pub fn font(&self, size: f64) -> TextStyle<'static> {
-        style::font(size * self.scale)
+        style::font(self.font_size(size) * self.scale)
     }
 
     /// A bold or italic font of `size` design pixels.
     pub fn font_with(&self, size: f64, st: plotters::style::FontStyle) -> TextStyle<'static> {
-        style::font_with(size * self.scale, st)
+        style::font_with(self.font_size(size) * self.scale, st)
     }
 }
 
@@ -115,6 +149,11 @@ pub struct PlotError(pub String);
 pub trait Figure {
     /// Design size in pixels (width, height).
     fn size(&self) -> (u32, u32);
+    /// The panels as designed, (rows, columns); a paper figure narrower than the design
+    /// stacks them in fewer columns ([`PlotContext::panel_grid`]).
+    fn panel_grid(&self) -> (usize, usize) {
+        (1, 1)
+    }
     /// Draws the figure on `root` (the whole canvas, already filled white).
     fn draw<DB: DrawingBackend>(
         &self,
@@ -130,10 +169,20 @@ fn err<E: std::fmt::Display>(e: E) -> PlotError {
 /// Renders a figure to the bytes of an SVG or PNG file.
 pub fn render<F: Figure>(fig: &F, format: Format) -> Result<Vec<u8>, PlotError> {
     style::register_fonts();
-    let ctx = PlotContext::new(format, fig.size());
+    let layout = match format {
+        Format::Paper(width) => paper::paper_layout(fig.size(), fig.panel_grid(), width),
+        Format::Svg | Format::Png => paper::PaperLayout {
+            size: fig.size(),
+            panel_columns: None,
+        },
+    };
+    let ctx = PlotContext {
+        panel_columns: layout.panel_columns,
+        ..PlotContext::new(format, layout.size)
+    };
     let (w, h) = ctx.pixels();
     match format {
-        Format::Svg => {
+        Format::Svg | Format::Paper(_) => {
             let mut text = String::new();
             {
                 let root = SVGBackend::with_string(&mut text, (w, h)).into_drawing_area();
@@ -141,7 +190,15 @@ pub fn render<F: Figure>(fig: &F, format: Format) -> Result<Vec<u8>, PlotError> 
                 fig.draw(&root, &ctx).map_err(err)?;
                 root.present().map_err(err)?;
             }
-            Ok(text.into_bytes())
+            Ok(match format {
+                Format::Paper(width) => paper::set_print_size(
+                    &paper::single_face(&paper::typeset(&text, paper::min_script_size())),
+                    (w, h),
+                    width,
+                ),
+                _ => paper::typeset(&text, 0.0),
+            }
+            .into_bytes())
         }
         Format::Png => {
             let mut rgb = vec![0u8; 3 * w as usize * h as usize];
@@ -151,20 +208,20 @@ pub fn render<F: Figure>(fig: &F, format: Format) -> Result<Vec<u8>, PlotError> 
                 fig.draw(&root, &ctx).map_err(err)?;
                 root.present().map_err(err)?;
             }
-            encode_png(&rgb, w, h)
+            encode_png(&rgb, w, h, PNG_DPI)
         }
     }
 }
 
-/// Encodes an RGB buffer as PNG with a [`PNG_DPI`] physical-size tag.
-fn encode_png(rgb: &[u8], w: u32, h: u32) -> Result<Vec<u8>, PlotError> {
+/// Encodes an RGB buffer as PNG with a physical-size tag of `dpi` dots per inch.
+fn encode_png(rgb: &[u8], w: u32, h: u32, dpi: f64) -> Result<Vec<u8>, PlotError> {
     let mut out = Vec::new();
     {
         let mut enc = png::Encoder::new(&mut out, w, h);
         enc.set_color(png::ColorType::Rgb);
         enc.set_depth(png::BitDepth::Eight);
         enc.set_compression(png::Compression::Default);
-        let ppm = (PNG_DPI / 0.0254).round() as u32;
+        let ppm = (dpi / 0.0254).round() as u32;
         enc.set_pixel_dims(Some(png::PixelDimensions {
             xppu: ppm,
             yppu: ppm,

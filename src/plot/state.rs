@@ -220,14 +220,17 @@ impl StateDrawing {
         ctx: &PlotContext,
     ) -> DrawResult<i32, DB> {
         let (w, _) = ctx.pixels();
-        let title_font = ctx.font(17.0).pos(Pos::new(HPos::Center, VPos::Top));
-        upper.draw(&Text::new(
-            self.title.clone(),
-            (w as i32 / 2, ctx.px(10.0)),
-            title_font,
-        ))?;
+        let mut y = ctx.px(10.0);
+        if ctx.titles {
+            let title_font = ctx.font(17.0).pos(Pos::new(HPos::Center, VPos::Top));
+            upper.draw(&Text::new(
+                self.title.clone(),
+                (w as i32 / 2, y),
+                title_font,
+            ))?;
+            y = ctx.px(36.0);
+        }
         let sub_font = ctx.font(13.5).pos(Pos::new(HPos::Center, VPos::Top));
-        let mut y = ctx.px(36.0);
         for line in &self.subtitle {
             upper.draw(&Text::new(
                 line.clone(),
@@ -337,7 +340,9 @@ impl StateDrawing {
             let m = j.middle();
             let c = (m.0 + off * s.crown_side.0, m.1 + off * s.crown_side.1);
             let dir = if s.outward { 1.0 } else { -1.0 };
-            let len = 0.6 * thick;
+            // Half the thickness, centred on the joint: the arrow stays inside the masonry
+            // and clear of a hinge at either face, however thin the arch.
+            let len = 0.5 * thick;
             let n = j.along();
             let a0 = (c.0 - dir * 0.5 * len * n.0, c.1 - dir * 0.5 * len * n.1);
             let a1 = (c.0 + dir * 0.5 * len * n.0, c.1 + dir * 0.5 * len * n.1);

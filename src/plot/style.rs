@@ -270,7 +270,7 @@ fn draw_mark<DB: DrawingBackend>(
             ))?;
             area.draw(&Rectangle::new(
                 [p(x + 3.0, y - 8.0), p(x + LEGEND_SAMPLE - 3.0, y + 8.0)],
-                palette::GREY.stroke_width(1),
+                palette::GREY.stroke_width(ctx.upx(1.0).max(1)),
             ))?;
         }
         Mark::Dot(c) => dot(area, ctx, p(x + LEGEND_SAMPLE / 2.0, y), 5.0, *c)?,
@@ -481,31 +481,52 @@ impl LabelPlacer {
         b.0 >= self.bounds.0 && b.1 >= self.bounds.1 && b.2 <= self.bounds.2 && b.3 <= self.bounds.3
     }
 
-    /// The top-left corner for a `w` × `h` box among `candidates` (top-left corners), or the
-    /// first candidate clamped into the bounds when none is free.
+    /// The top-left corner for a `w` × `h` box among `candidates` (top-left corners); when
+    /// every candidate is blocked, the free position nearest the first candidate (searched
+    /// on rings around it, out to three box sizes); when there is none, the first candidate
+    /// clamped into the bounds.
     pub fn place(&mut self, w: i32, h: i32, candidates: &[(i32, i32)]) -> (i32, i32) {
-        let fits = |b: &PixelBox| {
-            b.0 >= self.bounds.0
-                && b.1 >= self.bounds.1
-                && b.2 <= self.bounds.2
-                && b.3 <= self.bounds.3
-        };
-        let chosen = candidates
-            .iter()
-            .map(|&(x, y)| (x, y, x + w, y + h))
-            .find(|b| fits(b) && !self.taken.iter().any(|t| overlaps(t, b)));
-        let b = chosen.unwrap_or_else(|| {
-            let (x, y) = candidates
-                .first()
-                .copied()
-                .unwrap_or((self.bounds.0, self.bounds.1));
-            let x = x.clamp(self.bounds.0, (self.bounds.2 - w).max(self.bounds.0));
-            let y = y.clamp(self.bounds.1, (self.bounds.3 - h).max(self.bounds.1));
-            (x, y, x + w, y + h)
-        });
-        self.taken.push(b);
-        (b.0, b.1)
+        if let Some(at) = self.try_place(w, h, candidates) {
+            return at;
+        }
+        let (x, y) = candidates
+            .first()
+            .copied()
+            .unwrap_or((self.bounds.0, self.bounds.1));
+        if let Some(at) = self.try_place(w, h, &rings((x, y), w, h)) {
+            return at;
+        }
+        self.force(w, h, (x, y))
     }
+
+    /// Takes a `w` × `h` box at `(x, y)` clamped into the bounds, free or not: for a label
+    /// that must stay where it is (a region's name inside its region).
+    pub fn force(&mut self, w: i32, h: i32, (x, y): (i32, i32)) -> (i32, i32) {
+        let x = x.clamp(self.bounds.0, (self.bounds.2 - w).max(self.bounds.0));
+        let y = y.clamp(self.bounds.1, (self.bounds.3 - h).max(self.bounds.1));
+        self.taken.push((x, y, x + w, y + h));
+        (x, y)
+    }
+}
+
+/// Positions on rings around `(x, y)`, nearest first: steps of a quarter of the box's
+/// smaller side, out to three times its larger side, 16 directions a ring.
+fn rings((x, y): (i32, i32), w: i32, h: i32) -> Vec<(i32, i32)> {
+    let step = (w.min(h) / 4).max(1);
+    let reach = 3 * w.max(h);
+    let mut out = Vec::new();
+    let mut r = step;
+    while r <= reach {
+        for k in 0..16 {
+            let a = f64::from(k) * std::f64::consts::PI / 8.0;
+            out.push((
+                x + (f64::from(r) * a.cos()).round() as i32,
+                y + (f64::from(r) * a.sin()).round() as i32,
+            ));
+        }
+        r += step;
+    }
+    out
 }
 
 /// Size in device pixels of lines of text in `font`.
@@ -540,7 +561,7 @@ pub fn draw_text_block<DB: DrawingBackend>(
         ))?;
         area.draw(&Rectangle::new(
             [(x - pad, y - pad), (x + w + pad, y + h + pad)],
-            c.stroke_width(1),
+            c.stroke_width(ctx.upx(1.0).max(1)),
         ))?;
     }
     let f = font.pos(Pos::new(HPos::Left, VPos::Top));
@@ -560,7 +581,8 @@ pub fn decimals_for(span: f64) -> usize {
 }
 
 /// Draws the legend along the bottom and the title at the top of `root`, and returns `n`
-/// side-by-side areas for the panels of a chart between them.
+/// side-by-side areas for the panels of a chart between them (stacked when a paper figure
+/// is too narrow for them side by side).
 pub fn panel_areas<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     ctx: &PlotContext,
@@ -570,15 +592,19 @@ pub fn panel_areas<DB: DrawingBackend>(
 ) -> DrawResult<Vec<DrawingArea<DB, Shift>>, DB> {
     let upper = above_legend(root, ctx, legend)?;
     let upper = title(&upper, ctx, heading)?;
-    Ok(upper.split_evenly((1, n.max(1))))
+    Ok(upper.split_evenly(ctx.panel_grid((1, n.max(1)))))
 }
 
-/// Draws a title centred at the top of `area` and returns the area below it.
+/// Draws a title centred at the top of `area` and returns the area below it; a figure
+/// without titles (for print: its caption has it) keeps the whole area.
 pub fn title<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     ctx: &PlotContext,
     text: &str,
 ) -> Result<DrawingArea<DB, Shift>, DrawingAreaErrorKind<DB::ErrorType>> {
+    if !ctx.titles {
+        return Ok(area.margin(ctx.px(6.0), 0, 0, 0));
+    }
     let (w, _) = area.dim_in_pixel();
     let f = ctx.font(17.0).pos(Pos::new(HPos::Center, VPos::Top));
     area.draw(&Text::new(
@@ -631,5 +657,17 @@ mod tests {
         let mut p = LabelPlacer::new((0, 0, 100, 100));
         p.block((0, 0, 50, 50));
         assert_eq!(p.place(10, 10, &[(10, 10), (60, 10)]), (60, 10));
+        // Every candidate blocked: the nearest free place around the first, not on top.
+        let at = p.place(10, 10, &[(20, 20)]);
+        assert!(
+            !overlaps(&(at.0, at.1, at.0 + 10, at.1 + 10), &(0, 0, 50, 50)),
+            "{at:?}"
+        );
+        assert!(
+            !overlaps(&(at.0, at.1, at.0 + 10, at.1 + 10), &(60, 10, 70, 20)),
+            "{at:?}"
+        );
+        let d = f64::from(at.0 - 20).hypot(f64::from(at.1 - 20));
+        assert!(d <= 45.0, "{at:?} is {d} px away");
     }
 }

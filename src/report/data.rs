@@ -88,6 +88,20 @@ pub struct ManifestView {
     pub scenes: Vec<SceneView>,
     /// Boundary tolerance.
     pub boundary_tolerance: f64,
+    /// Column width of the paper figures (`single`, `double`); runs written before the
+    /// option have none and are drawn at the default.
+    #[serde(default)]
+    pub figure_width: Option<String>,
+}
+
+impl ManifestView {
+    /// The column width of the paper figures.
+    pub fn figure_width(&self) -> crate::manifest::FigureWidth {
+        self.figure_width
+            .as_deref()
+            .and_then(crate::manifest::FigureWidth::parse)
+            .unwrap_or_default()
+    }
 }
 
 impl ManifestView {

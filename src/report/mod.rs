@@ -1,5 +1,6 @@
-//! The reports of a run: figures (plots/*.svg, plots/*.png), report.html (self-contained,
-//! figures inlined) and report.md (figures linked as PNGs). Everything is built from the
+//! The reports of a run: figures for print (plots/*.pdf, plots/*.svg, plots/*.png at a
+//! column width), report.html (self-contained, screen figures inlined), report.md (figures
+//! linked as PNGs) and every table as CSV and LaTeX (tables/). Everything is built from the
 //! stored files of the run directory ([`data::load`]); nothing is recomputed. Templates are
 //! embedded and rendered in strict mode; the view model holds formatted text only.
 
@@ -16,7 +17,7 @@ pub mod view;
 pub use charts as figures;
 
 use crate::output::{RunLayout, write_atomic};
-use crate::plot::Format;
+use crate::plot::{self, Format};
 use anyhow::{Context, Result};
 use charts::FigureSpec;
 use data::RunData;
@@ -37,24 +38,28 @@ pub struct DrawnFigures {
     pub svgs: Vec<String>,
 }
 
-/// Draws every figure of a run and writes plots/STEM.svg and plots/STEM.png.
+/// Draws every figure of a run: writes the paper figures plots/STEM.svg, plots/STEM.pdf and
+/// plots/STEM.png at the manifest's column width, and returns the screen SVGs to inline.
 pub fn draw_figures(data: &RunData, layout: &RunLayout) -> Result<DrawnFigures> {
     let dir = layout.plots();
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let specs = charts::build(data);
-    // Figures are independent: render them (SVG and print PNG) on all cores, in order.
+    let width = data.manifest.figure_width();
+    // Figures are independent: render them (screen SVG, paper SVG, PDF, PNG) on all cores,
+    // in order.
     let svgs = specs
         .par_iter()
         .map(|f| -> Result<String> {
-            let svg = f
-                .render(Format::Svg)
-                .with_context(|| format!("figure {}", f.stem))?;
-            write_atomic(&layout.plot(&f.stem, Format::Svg.extension()), &svg)?;
-            let png = f
-                .render(Format::Png)
-                .with_context(|| format!("figure {}", f.stem))?;
-            write_atomic(&layout.plot(&f.stem, Format::Png.extension()), &png)?;
-            Ok(inline_svg(&String::from_utf8_lossy(&svg), &f.title))
+            let context = || format!("figure {}", f.stem);
+            let paper = f.render(Format::Paper(width)).with_context(context)?;
+            write_atomic(&layout.plot(&f.stem, "svg"), &paper)?;
+            let paper = String::from_utf8_lossy(&paper);
+            let pdf = plot::paper::svg_to_pdf(&paper).with_context(context)?;
+            write_atomic(&layout.plot(&f.stem, "pdf"), &pdf)?;
+            let png = plot::paper::svg_to_png(&paper).with_context(context)?;
+            write_atomic(&layout.plot(&f.stem, "png"), &png)?;
+            let screen = f.render(Format::Svg).with_context(context)?;
+            Ok(inline_svg(&String::from_utf8_lossy(&screen), &f.title))
         })
         .collect::<Result<Vec<_>>>()?;
     Ok(DrawnFigures { specs, svgs })
@@ -144,12 +149,37 @@ pub fn markdown(view: &view::ReportView) -> Result<String> {
     Ok(s)
 }
 
-/// Writes report.html and report.md for drawn figures.
+/// Writes report.html and report.md for drawn figures, and every table of them as CSV and
+/// LaTeX in tables/.
 pub fn write_reports(data: &RunData, figs: &DrawnFigures, layout: &RunLayout) -> Result<()> {
-    let v = view::build(data, &figs.specs, &figs.svgs);
+    let mut v = view::build(data, &figs.specs, &figs.svgs);
+    v.tables = write_tables(&v, layout)?;
     write_atomic(&layout.report_html(), html(&v)?.as_bytes())?;
     write_atomic(&layout.report_md(), markdown(&v)?.as_bytes())?;
     Ok(())
+}
+
+/// Writes tables/STEM.csv and tables/STEM.tex for every table of a report; returns their
+/// paths for the reports' links.
+pub fn write_tables(
+    v: &view::ReportView,
+    layout: &RunLayout,
+) -> Result<Vec<tables::export::TableFiles>> {
+    let dir = layout.tables();
+    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let mut files = Vec::new();
+    for t in tables::export::tables(v) {
+        write_atomic(
+            &layout.table(&t.stem, "csv"),
+            tables::export::csv(&t).as_bytes(),
+        )?;
+        write_atomic(
+            &layout.table(&t.stem, "tex"),
+            tables::export::latex(&t).as_bytes(),
+        )?;
+        files.push(t.files());
+    }
+    Ok(files)
 }
 
 /// What re-rendering a run produced.

@@ -70,6 +70,8 @@ pub struct ReportView {
     pub stages: Vec<Item>,
     /// Files of the run directory and what they hold.
     pub files: Vec<Item>,
+    /// Every table above as CSV and LaTeX in tables/.
+    pub tables: Vec<super::tables::export::TableFiles>,
 }
 
 /// Builds the view model.
@@ -106,5 +108,6 @@ pub fn build(data: &RunData, figs: &[FigureSpec], svgs: &[String]) -> ReportView
         reproducibility: provenance::reproducibility(data),
         stages: provenance::stages(data),
         files: provenance::files(data),
+        tables: Vec::new(),
     }
 }

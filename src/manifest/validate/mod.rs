@@ -13,8 +13,8 @@ pub use grid::MAX_AXIS_STEPS;
 pub use limits::{MAX_GENERAL_VOUSSOIRS, MAX_K, MAX_NAME_CHARS, short_number};
 
 use super::error::ManifestError;
-use super::raw::{RawBoundaries, RawManifest, RawScene};
-use super::types::{DEFAULT_BOUNDARY_TOLERANCE, Manifest, SceneSpec};
+use super::raw::{RawBoundaries, RawFigures, RawManifest, RawScene};
+use super::types::{DEFAULT_BOUNDARY_TOLERANCE, FigureWidth, Manifest, SceneSpec};
 use crate::scene::Find;
 use serde_saphyr::{Location, Spanned};
 use std::path::Path;
@@ -73,6 +73,7 @@ pub(super) fn manifest(raw: RawManifest, path: &Path) -> Result<Manifest, Manife
     load_checks::check_loads(&raw, &arch, &grid, &load_cases, cx)?;
     let scenes = validate_scenes(raw.scenes.as_deref().unwrap_or(&[]), cx)?;
     let boundary_tolerance = boundary_tolerance(raw.boundaries.as_ref(), cx)?;
+    let figure_width = figure_width(raw.figures.as_ref(), cx)?;
     limits::check_limits(&raw, &arch, &grid, &load_cases, &scenes, cx)?;
     Ok(Manifest {
         name: raw.name.value,
@@ -86,7 +87,26 @@ pub(super) fn manifest(raw: RawManifest, path: &Path) -> Result<Manifest, Manife
         find,
         scenes,
         boundary_tolerance,
+        figure_width,
     })
+}
+
+/// The column width of the paper figures: `single` or `double` (the default).
+fn figure_width(raw: Option<&RawFigures>, cx: &Ctx) -> Result<FigureWidth, ManifestError> {
+    match raw.and_then(|f| f.width.as_ref()) {
+        None => Ok(FigureWidth::default()),
+        Some(w) => FigureWidth::parse(&w.value).ok_or_else(|| {
+            cx.err(
+                Some(w.referenced),
+                "figures.width",
+                format!(
+                    "value {:?} is not allowed: use {}",
+                    w.value,
+                    FigureWidth::NAMES
+                ),
+            )
+        }),
+    }
 }
 
 /// The study name names the run directory: letters, digits, `_` and `-` only.

@@ -191,7 +191,10 @@ impl<'a, 'c, DB: DrawingBackend> Labels<'a, 'c, DB> {
         let ctx = self.ctx;
         let ann_font = ctx.font(12.5);
         for (b, p) in self.map.bifurcations.iter().zip(&self.pts) {
-            let (bw, bh) = style::text_block_size(&ann_font, &b.lines, 1.25);
+            let (tw, th) = style::text_block_size(&ann_font, &b.lines, 1.25);
+            // The box is drawn with a padding round the text: the placer keeps it all free.
+            let pad = ctx.px(4.0);
+            let (bw, bh) = (tw + 2 * pad, th + 2 * pad);
             let g = ctx.px(14.0);
             let at = self.placer.place(
                 bw,
@@ -211,9 +214,10 @@ impl<'a, 'c, DB: DrawingBackend> Labels<'a, 'c, DB> {
             let cy = if at.1 > p.1 { at.1 } else { at.1 + bh };
             root.draw(&PathElement::new(
                 vec![*p, (cx, cy)],
-                palette::INK.stroke_width(1),
+                palette::INK.stroke_width(ctx.upx(1.0).max(1)),
             ))?;
-            style::draw_text_block(root, ctx, &ann_font, &b.lines, at, Some(palette::GREY))?;
+            let text_at = (at.0 + pad, at.1 + pad);
+            style::draw_text_block(root, ctx, &ann_font, &b.lines, text_at, Some(palette::GREY))?;
         }
         for p in &self.pts {
             style::dot(root, ctx, *p, 5.5, palette::INK)?;
@@ -311,7 +315,8 @@ impl<'a, 'c, DB: DrawingBackend> Labels<'a, 'c, DB> {
                 let at = self
                     .placer
                     .try_place(w3, h3, &cands(w3, h3))
-                    .unwrap_or_else(|| self.placer.place(w3, h3, &cands(w3, h3)[..1]));
+                    // A region's name stays in its region, even on another label.
+                    .unwrap_or_else(|| self.placer.force(w3, h3, cands(w3, h3)[0]));
                 root.draw(&Text::new(
                     l1.to_string(),
                     (at.0 + w3 / 2, at.1),

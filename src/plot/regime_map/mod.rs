@@ -146,6 +146,11 @@ impl Figure for RegimeMapPanels {
         (680 * cols as u32, 560 * rows as u32)
     }
 
+    fn panel_grid(&self) -> (usize, usize) {
+        let cols = self.columns();
+        (self.maps.len().div_ceil(cols).max(1), cols)
+    }
+
     fn draw<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, Shift>,
@@ -161,7 +166,8 @@ impl Figure for RegimeMapPanels {
             }
         }
         let upper = style::above_legend(root, ctx, &legend)?;
-        for (area, map) in upper.split_evenly((rows, cols)).iter().zip(&self.maps) {
+        let grid = ctx.panel_grid((rows, cols));
+        for (area, map) in upper.split_evenly(grid).iter().zip(&self.maps) {
             map.draw_in(root, area, ctx, false)?;
         }
         Ok(())
@@ -201,8 +207,11 @@ impl RegimeMap {
         } else {
             0.0
         };
-        let mut chart = ChartBuilder::on(&upper)
-            .caption(&self.title, ctx.font(17.0))
+        let mut builder = ChartBuilder::on(&upper);
+        if ctx.titles {
+            builder.caption(&self.title, ctx.font(17.0));
+        }
+        let mut chart = builder
             .margin(ctx.px(10.0))
             .margin_right(ctx.px(86.0 + strip))
             .x_label_area_size(ctx.px(50.0))

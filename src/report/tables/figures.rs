@@ -16,6 +16,8 @@ pub struct FigureView {
     pub png: String,
     /// Relative path of the SVG.
     pub svg_path: String,
+    /// Relative path of the PDF.
+    pub pdf: String,
     /// The SVG markup, inlined in the HTML report.
     pub svg: String,
     /// Anchor id.
@@ -33,6 +35,7 @@ pub fn figure_views(figs: &[FigureSpec], svgs: &[String]) -> Vec<FigureView> {
             caption: f.caption.clone(),
             png: format!("plots/{}.png", f.stem),
             svg_path: format!("plots/{}.svg", f.stem),
+            pdf: format!("plots/{}.pdf", f.stem),
             svg: svg.clone(),
             anchor: format!("fig-{}", f.stem),
         })

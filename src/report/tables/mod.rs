@@ -4,6 +4,7 @@
 pub mod accuracy;
 pub mod boundaries;
 pub mod convergence;
+pub mod export;
 pub mod figures;
 pub mod key_results;
 pub mod mechanisms;

@@ -72,6 +72,13 @@ pub fn files(data: &RunData) -> Vec<Item> {
         "run.json, manifest.yaml",
         "provenance: the resolved manifest, versions, timings; the manifest as given",
     ));
-    v.push(item("plots/", "every figure as SVG and as PNG (300 dpi)"));
+    v.push(item(
+        "plots/",
+        "every figure for print at the column width: PDF (fonts embedded), SVG and PNG (300 dpi)",
+    ));
+    v.push(item(
+        "tables/",
+        "every table of this report as CSV and as a LaTeX booktabs table",
+    ));
     v
 }
