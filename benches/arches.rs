@@ -5,9 +5,17 @@
 //! the general three-unknown route on the same scene (its regime from the feasibility of the
 //! rotational rows, the sliding rows and all rows), so the ratio of the two medians in one
 //! run is the speed-up of the route taken over the general LP.
+//!
+//! `load_factor` times the largest load factor λ_max of the semicircle (K = 1.3): the
+//! continuum under a horizontal load (μ = 0.6) and under a point load at 30° (μ = ∞), and
+//! 64 voussoirs under the horizontal load, whose programme (4·65 + 1 rows in F_x, F_y, M₀,
+//! λ) is also solved by the dedicated LP alone and by clarabel (setup and solve), for their
+//! ratio.
 
 use archstudy::analysis::forms::ArchModel;
-use archstudy::analysis::general::{self, Settings};
+use archstudy::analysis::general::{self, LinearRows, OBJECTIVE, RowSet, Settings};
+use archstudy::analysis::lp;
+use archstudy::analysis::statics::ArchGeometry;
 use archstudy::model::{
     Arch, ArchForm, Discretisation, Friction, JointOrientation, Load, Shape, WeightModel,
 };
@@ -120,5 +128,86 @@ mod voussoirs {
     #[divan::bench(args = LOADS)]
     fn general(b: Bencher, l: &str) {
         bench_general(b, &scene_of(CIRCULAR, Discretisation::Voussoirs(64), l));
+    }
+}
+
+mod load_factor {
+    use super::*;
+
+    /// The semicircle (K = 1.3) under self-weight and a live load.
+    fn loaded(joints: Discretisation, load: Load) -> ArchModel {
+        let arch = Arch::new(1.3, 90.0, WeightModel::Annular, joints).expect("a valid arch");
+        ArchModel::new(arch, CIRCULAR, load).expect("a valid form")
+    }
+
+    /// μ = 0.6 as a friction angle.
+    fn phi() -> f64 {
+        0.6f64.atan()
+    }
+
+    /// The load-factor programme of 64 voussoirs under a horizontal load, μ = 0.6.
+    fn programme_64() -> LinearRows {
+        let g = loaded(Discretisation::Voussoirs(64), Load::Horizontal);
+        let thetas = g.discrete_joints().unwrap_or_default();
+        LinearRows::load_factor(&g, &thetas, phi(), RowSet::All)
+    }
+
+    /// The whole analysis of the continuum (exchange method), horizontal load, μ = 0.6.
+    #[divan::bench]
+    fn continuum_horizontal(bencher: Bencher) {
+        let g = loaded(Discretisation::Continuum, Load::Horizontal);
+        bencher.bench(|| general::load_factor(black_box(&g), phi(), &Settings::default()).lambda);
+    }
+
+    /// The whole analysis of the continuum, point load at 30°, μ = ∞.
+    #[divan::bench]
+    fn continuum_point_30(bencher: Bencher) {
+        let g = loaded(Discretisation::Continuum, Load::Point { at_deg: 30.0 });
+        let phi = std::f64::consts::FRAC_PI_2;
+        bencher.bench(|| general::load_factor(black_box(&g), phi, &Settings::default()).lambda);
+    }
+
+    /// The whole analysis of 64 voussoirs: rows, programme and the mechanism's rows.
+    #[divan::bench]
+    fn voussoirs_64(bencher: Bencher) {
+        let g = loaded(Discretisation::Voussoirs(64), Load::Horizontal);
+        bencher.bench(|| general::load_factor(black_box(&g), phi(), &Settings::default()).lambda);
+    }
+
+    /// The dedicated LP on the 64-voussoir programme.
+    #[divan::bench]
+    fn lp_64_dedicated(bencher: Bencher) {
+        let rows = programme_64();
+        let settings = lp::Settings::for_rows(rows.a.len());
+        bencher.bench(|| {
+            lp::maximise(
+                black_box(&OBJECTIVE),
+                black_box(&rows.a),
+                &rows.b,
+                &settings,
+            )
+        });
+    }
+
+    /// clarabel (setup and solve) on the same programme.
+    #[divan::bench]
+    fn lp_64_clarabel(bencher: Bencher) {
+        use clarabel::algebra::CscMatrix;
+        use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT};
+        let rows = programme_64();
+        let p = CscMatrix::<f64>::zeros((4, 4));
+        let q = OBJECTIVE.map(|c| -c);
+        let a = CscMatrix::from(rows.a.iter());
+        let cones = [NonnegativeConeT(rows.b.len())];
+        bencher.bench(|| {
+            let settings = DefaultSettingsBuilder::default()
+                .verbose(false)
+                .build()
+                .expect("valid settings");
+            let mut solver = DefaultSolver::new(&p, &q, &a, black_box(&rows.b), &cones, settings)
+                .expect("a well-formed problem");
+            solver.solve();
+            solver.solution.x[3]
+        });
     }
 }

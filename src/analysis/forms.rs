@@ -339,7 +339,12 @@ impl ArchModel {
 
     fn ends(&self, j: &HalfJoint) -> (Point, Point) {
         let (si, ci) = j.psi_i.sin_cos();
-        let (se, ce) = j.psi_e.sin_cos();
+        // Radial joints have both ends at one angle: one sine and cosine.
+        let (se, ce) = if j.psi_e == j.psi_i {
+            (si, ci)
+        } else {
+            j.psi_e.sin_cos()
+        };
         let k = self.arch.k;
         ([-self.d + si, ci], [-self.d + k * se, k * ce])
     }

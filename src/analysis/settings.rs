@@ -87,6 +87,14 @@ pub struct GeneralSettings {
     pub tol_joint_search: f64,
     /// Smallest half-angle, radians, that scales `tol_joint_search` (default 1e-3).
     pub joint_search_min_span: f64,
+    /// A sampled local maximum of a joint's violation is refined unless even a generous
+    /// bound on its rise between the neighbouring samples leaves it below −`tol_refine`
+    /// (default 1e-6; keep it well above `tol_active`, so no active joint goes unrefined).
+    pub tol_refine: f64,
+    /// The refinement of a most violated joint stops when a short parabolic step changes
+    /// the violation by no more than this (relative, default 1e-15; keep it well below
+    /// `tol_exchange`): rounding then hides where the maximum lies any closer.
+    pub tol_refine_flat: f64,
     /// Upper bound τ_cap of the margin, in units of x (default 1).
     pub margin_cap: f64,
     /// A margin ≥ −`tol_margin` counts as feasible: limit states are admissible
@@ -132,6 +140,8 @@ impl GeneralSettings {
         exchange_maxima: 4,
         tol_joint_search: 1e-10,
         joint_search_min_span: 1e-3,
+        tol_refine: 1e-6,
+        tol_refine_flat: 1e-15,
         margin_cap: 1.0,
         tol_margin: 1e-12,
         tol_active: 1e-9,

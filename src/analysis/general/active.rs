@@ -3,6 +3,7 @@
 
 use super::problem::{Problem, Solved};
 use super::rows::{Objective, lp_row, norm3};
+use super::working_set::maximise_on_working_set;
 use super::{ActiveRow, Settings};
 use crate::analysis::kinematics::ActiveJoint;
 use crate::analysis::lp;
@@ -18,7 +19,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
     /// optimal states leave slack. With the fourth unknown fixed at its optimum, a row is
     /// kept iff the largest distance x can take from its plane over the optimal face is
     /// within `tol_active` (one small programme per active row, over the programme's rows
-    /// and the active ones). A joint without normal force (a support that lifts off) holds
+    /// and the active ones, solved on a working set that starts from the active rows). A joint without normal force (a support that lifts off) holds
     /// its rows with 0 = 0 but neither hinges nor slides: it is open, and left out.
     pub(super) fn keep_necessary(&self, s: &mut Solved, settings: &Settings) {
         let t = s.z[3];
@@ -28,7 +29,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
         let relax = s.max_violation.max(0.0) + settings.tol_necessary_relax * scale;
         let mut a3: Vec<[f64; 3]> = Vec::with_capacity(s.rows.a.len() + s.active.len());
         let mut b3: Vec<f64> = Vec::with_capacity(a3.capacity());
-        let mut push = |a: [f64; 4], b: f64| {
+        let push = |a3: &mut Vec<[f64; 3]>, b3: &mut Vec<f64>, a: [f64; 4], b: f64| {
             let n = norm3(&[a[0], a[1], a[2]]);
             if n > 0.0 {
                 a3.push([a[0], a[1], a[2]]);
@@ -36,17 +37,19 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
             }
         };
         for (a, b) in s.rows.a.iter().zip(&s.rows.b) {
-            push(*a, *b);
+            push(&mut a3, &mut b3, *a, *b);
         }
         let active: Vec<([f64; 4], f64)> = s
             .active_joints
             .iter()
             .map(|j| lp_row(&self.row(j.theta, j.condition), self.objective))
             .collect();
+        let first_active = a3.len();
         for (a, b) in &active {
-            push(*a, *b);
+            push(&mut a3, &mut b3, *a, *b);
         }
-        let lp_settings = settings.lp.scaled_to(a3.len());
+        // The optimal face is pinned by the active rows: start from them.
+        let start: Vec<usize> = (first_active..a3.len()).collect();
         let lambda = match self.objective {
             Objective::Margin { lambda, .. } => lambda,
             Objective::LoadFactor => t,
@@ -55,7 +58,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
         for ((a, b), j) in active.iter().zip(&s.active_joints) {
             let n = norm3(&[a[0], a[1], a[2]]);
             let c = [-a[0] / n, -a[1] / n, -a[2] / n];
-            let necessary = match lp::maximise(&c, &a3, &b3, &lp_settings) {
+            let necessary = match maximise_on_working_set(&c, &a3, &b3, &start, &settings.lp) {
                 Ok(sol) if sol.status == lp::Status::Optimal => {
                     // Largest distance from the plane (t fixed) over the optimal face.
                     let d = (b - a[3] * t) / n + sol.objective;

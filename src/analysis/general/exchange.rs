@@ -2,150 +2,30 @@
 //! most violated joint of each condition by sampling and a 1-D maximisation, add it, repeat.
 
 use super::problem::{Problem, Solved};
-use super::rows::{JointRow, LinearRows, violation};
+use super::rows::{JointRow, LinearRows};
+use super::samples::Candidate;
 use super::{ActiveRow, Outcome, Settings};
 use crate::analysis::lp;
-use crate::analysis::roots::maximise_1d;
-use crate::analysis::statics::{ArchGeometry, Condition, Row, joint_rows};
-
-/// A joint where a row is (nearly) most violated.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Candidate {
-    theta: f64,
-    condition: Condition,
-    violation: f64,
-}
+use crate::analysis::statics::ArchGeometry;
 
 impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
-    /// The refined local maxima of the violation of each condition at z over every family
-    /// of joints ([`ArchGeometry::families`]), and the violations at the isolated joints.
-    pub(super) fn scan(
-        &self,
-        z: &[f64; 4],
-        homogeneous: bool,
-        settings: &Settings,
-    ) -> Vec<Candidate> {
-        let families = self.geom.families();
-        let total: f64 = families.iter().map(|f| (f[1] - f[0]).max(0.0)).sum();
-        let samples = settings.exchange_samples.max(2);
-        let mut out = Vec::new();
-        let mut points = self.geom.isolated_joints();
-        for &[lo, hi] in &families {
-            if hi > lo && total > 0.0 {
-                let n = ((samples as f64 * (hi - lo) / total).ceil() as usize).max(2);
-                let family = Sampling { lo, hi, n };
-                self.scan_family(family, z, homogeneous, settings, &mut out);
-            } else {
-                points.push(lo);
-            }
-        }
-        for t in points {
-            let rows = joint_rows(self.geom, t, self.phi);
-            for (ci, condition) in Condition::ALL.into_iter().enumerate() {
-                if self.set.includes(condition) {
-                    out.push(Candidate {
-                        theta: t,
-                        condition,
-                        violation: violation(&rows[ci], self.objective, z, homogeneous),
-                    });
-                }
-            }
-        }
-        out
-    }
-
-    /// The refined local maxima over [lo, hi] (n sampling intervals) of the violation of each
-    /// condition at z.
-    pub(super) fn scan_family(
-        &self,
-        family: Sampling,
-        z: &[f64; 4],
-        homogeneous: bool,
-        settings: &Settings,
-        out: &mut Vec<Candidate>,
-    ) {
-        let Sampling { lo, hi, n } = family;
-        let alpha = self.geom.half_angle();
-        let step = (hi - lo) / n as f64;
-        let thetas: Vec<f64> = (0..=n)
-            .map(|i| if i == n { hi } else { lo + step * i as f64 })
-            .collect();
-        let samples: Vec<[Row; 4]> = thetas
-            .iter()
-            .map(|&t| joint_rows(self.geom, t, self.phi))
-            .collect();
-        for condition in self.conditions() {
-            let ci = Condition::ALL
-                .iter()
-                .position(|c| *c == condition)
-                .unwrap_or(0);
-            let v: Vec<f64> = samples
-                .iter()
-                .map(|r| violation(&r[ci], self.objective, z, homogeneous))
-                .collect();
-            let mut maxima: Vec<usize> = (0..=n)
-                .filter(|&i| (i == 0 || v[i] >= v[i - 1]) && (i == n || v[i] > v[i + 1]))
-                .collect();
-            maxima.sort_by(|&i, &j| v[j].total_cmp(&v[i]));
-            maxima.truncate(settings.exchange_maxima.max(1));
-            for i in maxima {
-                let a = thetas[i.saturating_sub(1)];
-                let b = thetas[(i + 1).min(n)];
-                let f = |t: f64| violation(&self.row(t, condition), self.objective, z, homogeneous);
-                let (mut t, mut fv) = maximise_1d(
-                    f,
-                    a,
-                    b,
-                    settings.tol_joint_search * alpha.max(settings.joint_search_min_span),
-                );
-                // Brent never evaluates the ends of its bracket: the sample may be better.
-                if v[i] >= fv {
-                    (t, fv) = (thetas[i], v[i]);
-                }
-                out.push(Candidate {
-                    theta: t,
-                    condition,
-                    violation: fv,
-                });
-            }
-        }
-    }
-
-    /// The rows of the first exchange step: `exchange_initial_joints` joints spread over the
-    /// families in proportion to their length (ends included), and the isolated joints.
-    fn initial_rows(&self, settings: &Settings) -> LinearRows {
-        let n0 = settings.exchange_initial_joints.max(2);
-        let mut rows = LinearRows::new(self.objective);
-        let families = self.geom.families();
-        let total: f64 = families.iter().map(|f| (f[1] - f[0]).max(0.0)).sum();
-        for &[lo, hi] in &families {
-            if hi > lo && total > 0.0 {
-                let n = ((n0 as f64 * (hi - lo) / total).ceil() as usize).max(2);
-                for i in 0..n {
-                    let t = if i + 1 == n {
-                        hi
-                    } else {
-                        lo + (hi - lo) * i as f64 / (n - 1) as f64
-                    };
-                    rows.push_joint(self.geom, t, self.phi, self.set, self.objective);
-                }
-            } else {
-                rows.push_joint(self.geom, lo, self.phi, self.set, self.objective);
-            }
-        }
-        for t in self.geom.isolated_joints() {
-            rows.push_joint(self.geom, t, self.phi, self.set, self.objective);
-        }
-        rows
-    }
-
     /// The exchange method for a continuum: solve, scan for violated joints, add them, repeat.
+    ///
+    /// After the first step the programme is solved on a working set (the previous step's
+    /// basic rows, the rows just added and the auxiliary rows, with every row its answer
+    /// violates): the same optimum as the whole programme, from a programme of a dozen rows.
+    /// A step that finds only rows already present violated is solved again on all rows.
     pub(super) fn solve_continuum(&self, settings: &Settings) -> Solved {
-        let mut rows = self.initial_rows(settings);
+        let samples = self.samples(settings);
+        let mut rows = samples.initial_rows(settings, self.set, self.objective);
         let mut iterations = 0;
+        let mut start: Option<Vec<usize>> = None;
         loop {
             iterations += 1;
-            let sol = self.lp(&rows, settings);
+            let sol = match &start {
+                None => self.lp(&rows, settings),
+                Some(set) => self.lp_on(&rows, set, settings),
+            };
             let (z, homogeneous) = match sol.status {
                 lp::Status::Optimal => (sol.x, false),
                 lp::Status::Unbounded => (sol.ray, true),
@@ -154,7 +34,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
                 }
                 s => return Solved::without_state(Outcome::Failed(s), sol.x, rows, iterations),
             };
-            let candidates = self.scan(&z, homogeneous, settings);
+            let candidates = self.scan(&samples, &z, homogeneous, settings);
             let step = Step {
                 z,
                 homogeneous,
@@ -171,10 +51,18 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
             if iterations >= settings.max_exchange_iterations {
                 return self.finish(step, Outcome::NotConverged, rows, settings);
             }
+            let before = rows.joints.len();
             if self.add_violated(&mut rows, &step.candidates, tol) == 0 {
+                if start.take().is_some() {
+                    // Every violated joint is a row already, and the working set's optimum
+                    // leaves it violated within the solver's tolerance: settle it on all
+                    // the rows at once before calling the exchange stalled.
+                    continue;
+                }
                 let outcome = stalled_outcome(&step, settings);
                 return self.finish(step, outcome, rows, settings);
             }
+            start = Some(next_working_set(&sol.basis, before, &rows));
         }
     }
 
@@ -242,17 +130,6 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
     }
 }
 
-/// A family of joints [lo, hi] sampled at n intervals.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Sampling {
-    /// First joint, radians.
-    lo: f64,
-    /// Last joint, radians.
-    hi: f64,
-    /// Sampling intervals.
-    n: usize,
-}
-
 /// One exchange step: the programme's solution and the most violated joints there.
 struct Step {
     /// z = (x, t), or the ray when the programme is unbounded.
@@ -265,6 +142,27 @@ struct Step {
     max_violation: f64,
     /// Exchange steps so far.
     iterations: usize,
+}
+
+/// The rows to start the next step's programme from: the basic rows of this step (the
+/// auxiliary rows after the `before` joint rows moved down by the rows added since), the
+/// rows added and the auxiliary rows.
+fn next_working_set<const D: usize>(
+    basis: &[Option<usize>; D],
+    before: usize,
+    rows: &LinearRows,
+) -> Vec<usize> {
+    let joints = rows.joints.len();
+    let added = joints - before;
+    let mut set: Vec<usize> = basis
+        .iter()
+        .flatten()
+        .map(|&k| if k >= before { k + added } else { k })
+        .chain(before..rows.a.len())
+        .collect();
+    set.sort_unstable();
+    set.dedup();
+    set
 }
 
 /// Solved, or unbounded when the step's point is a ray.

@@ -16,7 +16,11 @@
 //! semi-infinite family, solved by an exchange (cutting-plane) method: solve with a few
 //! joints, find the most violated joint of each condition over [−α, α] by sampling and a
 //! 1-D maximisation, add it, repeat until no joint is violated by more than a relative
-//! tolerance. Critical values are roots of the margin in K or φ (Brent), as in
+//! tolerance. The rows of the sampled joints are built once and re-priced at every step;
+//! only the local maxima that may come near a violation are refined, by Brent's method
+//! started from the samples around them; after the first step each programme is solved on
+//! a working set of its rows (the previous basis and the new cuts), which gives the same
+//! optimum as all of them. Critical values are roots of the margin in K or φ (Brent), as in
 //! [`super::symmetric`], which this module reproduces by an independent route.
 
 mod active;
@@ -25,9 +29,12 @@ mod exchange;
 mod load_factor;
 mod margin;
 mod problem;
+mod refine;
 mod rows;
+mod samples;
 #[cfg(test)]
 mod tests;
+mod working_set;
 
 pub use active::{mechanism_of, pattern_of_rows};
 pub use critical::{Critical, LimitState, friction, sliding_threshold, thickness, thickness_with};

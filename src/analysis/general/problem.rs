@@ -2,6 +2,7 @@
 //! finite set of joints: the discrete programme, the active rows and the solver call.
 
 use super::rows::{JointRow, LinearRows, OBJECTIVE, Objective, norm3};
+use super::working_set::maximise_on_working_set;
 use super::{ActiveRow, Outcome, RowSet, Settings};
 use crate::analysis::lp;
 use crate::analysis::statics::{ArchGeometry, Condition, Row, joint_rows};
@@ -49,6 +50,20 @@ impl Solved {
     }
 }
 
+/// The answer of a programme the solver refused (malformed rows: not expected).
+fn failed() -> lp::Solution<4> {
+    lp::Solution {
+        status: lp::Status::NumericalFailure,
+        x: [0.0; 4],
+        objective: 0.0,
+        basis: [None; 4],
+        duals: [0.0; 4],
+        ray: [0.0; 4],
+        max_violation: 0.0,
+        iterations: 0,
+    }
+}
+
 impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
     pub(super) fn conditions(&self) -> impl Iterator<Item = Condition> + '_ {
         Condition::ALL.into_iter().filter(|c| self.set.includes(*c))
@@ -68,16 +83,21 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
         let s = settings.lp.scaled_to(rows.a.len());
         match lp::maximise(&OBJECTIVE, &rows.a, &rows.b, &s) {
             Ok(sol) => sol,
-            Err(_) => lp::Solution {
-                status: lp::Status::NumericalFailure,
-                x: [0.0; 4],
-                objective: 0.0,
-                basis: [None; 4],
-                duals: [0.0; 4],
-                ray: [0.0; 4],
-                max_violation: 0.0,
-                iterations: 0,
-            },
+            Err(_) => failed(),
+        }
+    }
+
+    /// [`Problem::lp`] solved on a working set of the rows, starting from `start`: the same
+    /// optimum (see [`maximise_on_working_set`]).
+    pub(super) fn lp_on(
+        &self,
+        rows: &LinearRows,
+        start: &[usize],
+        settings: &Settings,
+    ) -> lp::Solution<4> {
+        match maximise_on_working_set(&OBJECTIVE, &rows.a, &rows.b, start, &settings.lp) {
+            Ok(sol) => sol,
+            Err(_) => failed(),
         }
     }
 

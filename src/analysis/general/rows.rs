@@ -85,14 +85,23 @@ impl LinearRows {
 
     pub(super) fn push_row(&mut self, r: &Row, objective: Objective) {
         let (a, b) = lp_row(r, objective);
+        self.push_lp_row(
+            a,
+            b,
+            JointRow {
+                theta: r.theta,
+                condition: r.condition,
+            },
+        );
+    }
+
+    /// Adds the programme row a·z ≤ b of a joint row.
+    pub(super) fn push_lp_row(&mut self, a: [f64; 4], b: f64, joint: JointRow) {
         // Joint rows come first: insert before the auxiliary rows.
         let at = self.joints.len();
         self.a.insert(at, a);
         self.b.insert(at, b);
-        self.joints.push(JointRow {
-            theta: r.theta,
-            condition: r.condition,
-        });
+        self.joints.push(joint);
     }
 
     /// The margin programme at the given joints: rows a·x + τ|a| ≤ b − a_λ λ, and τ ≤ cap.
