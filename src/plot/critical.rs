@@ -33,6 +33,9 @@ pub struct CriticalPanel {
     pub bifurcations: Vec<PointMark>,
     /// The paper's printed values.
     pub paper: Vec<PointMark>,
+    /// The top of the y axis when the curve rises beyond the range the study covers (it
+    /// then runs off the top of the panel); `None` fits the axis to the curve.
+    pub y_max: Option<f64>,
 }
 
 /// What the critical-curves figure shows.
@@ -71,6 +74,7 @@ fn panel_ranges(p: &CriticalPanel) -> Option<((f64, f64), (f64, f64))> {
     let ys = p.curve.iter().map(|q| q.1).chain(marks().map(|m| m.y));
     let (x0, x1) = range(all_x).or_else(|| range(xs))?;
     let (y0, y1) = range(ys)?;
+    let y1 = p.y_max.filter(|&m| m > y0).map_or(y1, |m| y1.min(m));
     let pad = 0.08 * (y1 - y0);
     Some(((x0, x1), (y0 - pad, y1 + pad)))
 }
@@ -240,5 +244,46 @@ impl CriticalChart {
             ));
         }
         items
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn panel(y_max: Option<f64>) -> CriticalPanel {
+        CriticalPanel {
+            title: String::new(),
+            x_desc: String::new(),
+            y_desc: String::new(),
+            // K_c(μ) of a pointed arch: 8.4 at low friction, 1.07 beyond the bifurcations.
+            curve: vec![
+                (0.15, 8.4),
+                (0.25, 5.9),
+                (0.26, 1.15),
+                (0.32, 1.07),
+                (0.8, 1.07),
+            ],
+            bifurcations: vec![PointMark {
+                x: 0.26,
+                y: 1.15,
+                label: String::new(),
+            }],
+            paper: Vec::new(),
+            y_max,
+        }
+    }
+
+    #[test]
+    fn the_y_axis_stops_at_the_studys_range_and_is_fitted_otherwise() {
+        let ((x0, x1), (y0, y1)) = panel_ranges(&panel(Some(1.4))).unwrap();
+        assert_eq!((x0, x1), (0.15, 0.8));
+        let pad = 0.08 * (1.4 - 1.07);
+        assert!((y0 - (1.07 - pad)).abs() < 1e-12 && (y1 - (1.4 + pad)).abs() < 1e-12);
+        let (_, (_, y1)) = panel_ranges(&panel(None)).unwrap();
+        assert!((y1 - (8.4 + 0.08 * (8.4 - 1.07))).abs() < 1e-12);
+        // A bound below the whole curve is ignored rather than emptying the panel.
+        let (_, (_, y1)) = panel_ranges(&panel(Some(1.0))).unwrap();
+        assert!(y1 > 8.4);
     }
 }

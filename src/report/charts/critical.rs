@@ -13,12 +13,35 @@ const CRITICAL_CAPTION: &str = "The collapse thickness K_c(μ) (the smallest K a
 pub fn figure(data: &RunData, lc: &LoadCaseFigure) -> Option<FigureSpec> {
     let on = &lc.title_suffix;
     let c = critical(data, lc.name, on)?;
+    let mut caption = CRITICAL_CAPTION.to_string();
+    if let Some(note) = c.panels.first().and_then(off_the_top) {
+        caption.push(' ');
+        caption.push_str(&note);
+    }
     Some(FigureSpec {
         stem: format!("critical-curves{}", lc.stem_suffix),
         title: format!("Critical curves{on}"),
-        caption: CRITICAL_CAPTION.into(),
+        caption,
         chart: Chart::Critical(c),
     })
+}
+
+/// Where panel (a)'s K_c(μ) leaves the top of its axis (the study's largest K), in words.
+fn off_the_top(p: &CriticalPanel) -> Option<String> {
+    let top = p.y_max?;
+    let beyond: Vec<f64> = (p.curve.iter())
+        .filter(|q| q.1.is_finite() && q.1 > top)
+        .map(|q| q.0)
+        .collect();
+    let (lo, hi) = (beyond.first()?, beyond.last()?);
+    let highest = (p.curve.iter())
+        .map(|q| q.1)
+        .filter(|y| y.is_finite())
+        .fold(f64::NEG_INFINITY, f64::max);
+    Some(format!(
+        "Panel (a) stops at the study's largest K, {top:.3}: K_c(μ) rises beyond it for μ from \
+         {lo:.3} to {hi:.3}, up to {highest:.3}."
+    ))
 }
 
 fn critical(data: &RunData, lc: &str, on: &str) -> Option<CriticalChart> {
@@ -33,7 +56,15 @@ fn critical(data: &RunData, lc: &str, on: &str) -> Option<CriticalChart> {
     let (a, b) = curves(data, lc);
     let mut panels = Vec::new();
     if let Some(a) = a {
-        panels.push(marks.panel(Axes::COLLAPSE_THICKNESS, a));
+        let mut panel = marks.panel(Axes::COLLAPSE_THICKNESS, a);
+        // A state study covers a range of K: K_c(μ) above it is off the map too.
+        if data.manifest.find_of(lc) == "state" {
+            panel.y_max = (data.results.iter())
+                .filter(|r| &*r.load_case == lc)
+                .filter_map(|r| r.k.filter(|k| k.is_finite()))
+                .reduce(f64::max);
+        }
+        panels.push(panel);
     }
     if let Some(b) = b {
         panels.push(marks.panel(Axes::CRITICAL_FRICTION, b));
@@ -165,6 +196,7 @@ impl Marks {
             } else {
                 Vec::new()
             },
+            y_max: None,
         }
     }
 }
