@@ -511,6 +511,11 @@ impl LabelPlacer {
 
 /// Positions on rings around `(x, y)`, nearest first: steps of a quarter of the box's
 /// smaller side, out to three times its larger side, 16 directions a ring.
+pub fn rings_around((x, y): (i32, i32), w: i32, h: i32) -> Vec<(i32, i32)> {
+    rings((x, y), w, h)
+}
+
+/// Positions on rings around a point ([`rings_around`]).
 fn rings((x, y): (i32, i32), w: i32, h: i32) -> Vec<(i32, i32)> {
     let step = (w.min(h) / 4).max(1);
     let reach = 3 * w.max(h);

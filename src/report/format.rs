@@ -17,7 +17,14 @@ pub fn num(v: Option<f64>, d: usize) -> String {
                 "−∞".into()
             }
         }
-        Some(x) => format!("{x:.d$}"),
+        Some(x) => {
+            let s = format!("{x:.d$}");
+            // A value that rounds to zero is shown as 0, never as −0.
+            match s.strip_prefix('-') {
+                Some(rest) if rest.bytes().all(|b| b == b'0' || b == b'.') => rest.to_string(),
+                _ => s,
+            }
+        }
     }
 }
 
@@ -117,6 +124,14 @@ pub fn quantile(sorted: &[f64], q: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_value_that_rounds_to_zero_has_no_sign() {
+        assert_eq!(num(Some(-1e-12), 4), "0.0000");
+        assert_eq!(num(Some(-0.0), 2), "0.00");
+        assert_eq!(num(Some(-0.00005), 4), "-0.0001");
+        assert_eq!(num(Some(-2.5), 1), "-2.5");
+    }
 
     #[test]
     fn joints_fold_symmetric_pairs() {

@@ -191,15 +191,15 @@ impl<'a, 'c, DB: DrawingBackend> Labels<'a, 'c, DB> {
         let ctx = self.ctx;
         let ann_font = ctx.font(12.5);
         for (b, p) in self.map.bifurcations.iter().zip(&self.pts) {
-            let (tw, th) = style::text_block_size(&ann_font, &b.lines, 1.25);
             // The box is drawn with a padding round the text: the placer keeps it all free.
             let pad = ctx.px(4.0);
-            let (bw, bh) = (tw + 2 * pad, th + 2 * pad);
             let g = ctx.px(14.0);
-            let at = self.placer.place(
-                bw,
-                bh,
-                &[
+            let box_of = |lines: &[String]| {
+                let (tw, th) = style::text_block_size(&ann_font, lines, 1.25);
+                (tw + 2 * pad, th + 2 * pad)
+            };
+            let near = |(bw, bh): (i32, i32)| {
+                let mut c = vec![
                     (p.0 + g, p.1 + g),
                     (p.0 + g, p.1 - g - bh),
                     (p.0 + g, p.1 - bh / 2),
@@ -207,8 +207,20 @@ impl<'a, 'c, DB: DrawingBackend> Labels<'a, 'c, DB> {
                     (p.0 - g - bw, p.1 - g - bh),
                     (p.0 + 3 * g, p.1 + 3 * g),
                     (p.0 + 3 * g, p.1 - 3 * g - bh),
-                ],
-            );
+                ];
+                c.extend(style::rings_around(c[0], bw, bh));
+                c
+            };
+            // The full box where it fits; else the values on one line; else that line forced.
+            let compact = std::slice::from_ref(&b.compact);
+            let (full, short) = (box_of(&b.lines), box_of(compact));
+            let (lines, (bw, bh), at) = match self.placer.try_place(full.0, full.1, &near(full)) {
+                Some(at) => (&b.lines[..], full, at),
+                None => {
+                    let at = self.placer.place(short.0, short.1, &near(short));
+                    (compact, short, at)
+                }
+            };
             // Leader line from the marker to the nearest corner of the box.
             let cx = if at.0 > p.0 { at.0 } else { at.0 + bw };
             let cy = if at.1 > p.1 { at.1 } else { at.1 + bh };
@@ -217,7 +229,7 @@ impl<'a, 'c, DB: DrawingBackend> Labels<'a, 'c, DB> {
                 palette::INK.stroke_width(ctx.upx(1.0).max(1)),
             ))?;
             let text_at = (at.0 + pad, at.1 + pad);
-            style::draw_text_block(root, ctx, &ann_font, &b.lines, text_at, Some(palette::GREY))?;
+            style::draw_text_block(root, ctx, &ann_font, lines, text_at, Some(palette::GREY))?;
         }
         for p in &self.pts {
             style::dot(root, ctx, *p, 5.5, palette::INK)?;
@@ -245,20 +257,21 @@ impl<'a, 'c, DB: DrawingBackend> Labels<'a, 'c, DB> {
             let color = palette::mechanism(&seg.mechanism);
             let (tw, th) = style::text_block_size(&seg_font, std::slice::from_ref(&text), 1.0);
             let g = ctx.px(8.0);
-            let at = self.placer.place(
-                tw,
-                th,
-                &[
-                    (mid.0 - tw / 2, mid.1 - g - th),
-                    (mid.0 + g, mid.1 - th / 2),
-                    (mid.0 + g, mid.1 - g - th),
-                    (mid.0 - tw / 2, mid.1 + g),
-                    (mid.0 - g - tw, mid.1 - th / 2),
-                    (mid.0 + g, mid.1 + g),
-                    (mid.0 - tw / 2, mid.1 - 3 * g - th),
-                    (mid.0 + 3 * g, mid.1 - th / 2),
-                ],
-            );
+            let mut near = vec![
+                (mid.0 - tw / 2, mid.1 - g - th),
+                (mid.0 + g, mid.1 - th / 2),
+                (mid.0 + g, mid.1 - g - th),
+                (mid.0 - tw / 2, mid.1 + g),
+                (mid.0 - g - tw, mid.1 - th / 2),
+                (mid.0 + g, mid.1 + g),
+                (mid.0 - tw / 2, mid.1 - 3 * g - th),
+                (mid.0 + 3 * g, mid.1 - th / 2),
+            ];
+            near.extend(style::rings_around(near[0], tw, th));
+            // Where no place is free the legend's line style names the segment.
+            let Some(at) = self.placer.try_place(tw, th, &near) else {
+                continue;
+            };
             root.draw(&Text::new(
                 text,
                 at,
@@ -311,18 +324,15 @@ impl<'a, 'c, DB: DrawingBackend> Labels<'a, 'c, DB> {
                     (at.0 + w1 / 2, at.1),
                     reg_font.pos(top),
                 ))?;
-            } else {
-                let at = self
-                    .placer
-                    .try_place(w3, h3, &cands(w3, h3))
-                    // A region's name stays in its region, even on another label.
-                    .unwrap_or_else(|| self.placer.force(w3, h3, cands(w3, h3)[0]));
+            } else if let Some(at) = self.placer.try_place(w3, h3, &cands(w3, h3)) {
                 root.draw(&Text::new(
                     l1.to_string(),
                     (at.0 + w3 / 2, at.1),
                     small.pos(top),
                 ))?;
             }
+            // A region with no free place for its name is named by the colour legend alone:
+            // a name over another label reads as neither.
         }
         Ok(())
     }

@@ -28,6 +28,9 @@ pub struct BifurcationMark {
     pub k: f64,
     /// Annotation, one string per line (already formatted).
     pub lines: Vec<String>,
+    /// The point's number, drawn instead of the box where the box finds no free place (a
+    /// map at single-column width); the caption lists the numbered values.
+    pub compact: String,
 }
 
 /// A located regime change on a grid line.

@@ -11,7 +11,7 @@ use crate::store::{BoundaryRow, ResultRow};
 use std::collections::{BTreeMap, HashMap};
 use std::sync::Arc;
 
-const REGIME_CAPTION: &str = "Regimes over the friction coefficient μ (horizontal) and the thickness ratio K = R/r (left axis; t/R_c on the right axis). Stable: an admissible state exists (Hʳ ∩ Hˢ ≠ ∅). Rotational: no line of thrust fits in the arch whatever the friction (Hʳ = ∅). Sliding: no thrust satisfies Coulomb's law at every joint whatever the thickness (Hˢ = ∅). Mixed: both domains exist but are disjoint. The thick line is the collapse curve through the located boundary points, coloured and labelled by the collapse mechanism (hinges only, hinges and sliding joints, sliding joints only); dots mark the bifurcations where two mechanisms coexist, with their values. Dashed lines are the other regime boundaries.";
+const REGIME_CAPTION: &str = "Regimes over the friction coefficient μ (horizontal) and the thickness ratio K = R/r (left axis; t/R_c on the right axis). Stable: an admissible state exists (Hʳ ∩ Hˢ ≠ ∅). Rotational: no line of thrust fits in the arch whatever the friction (Hʳ = ∅). Sliding: no thrust satisfies Coulomb's law at every joint (Hˢ = ∅; on a circular arch with radial joints whatever the thickness). Mixed: both domains exist but are disjoint. The thick line is the collapse curve through the located boundary points, coloured and labelled by the collapse mechanism (hinges only, hinges and sliding joints, sliding joints only); dots mark the bifurcations where two mechanisms coexist, with their values. Dashed lines are the other regime boundaries.";
 
 const REGIONS_NOTE: &str = " Between grid points the regions are bounded by straight lines between the located boundary points.";
 
@@ -32,6 +32,13 @@ pub fn figure(data: &RunData, lc: &LoadCaseFigure) -> Option<FigureSpec> {
         caption.push_str(" The strip at the right, apart from the μ axis, is μ = ∞.");
     }
     caption.push_str(REGIONS_NOTE);
+    if !map.bifurcations.is_empty() {
+        // The values stay readable where a narrow map shows only the points' numbers.
+        let listed: Vec<String> = (map.bifurcations.iter())
+            .map(|b| format!("{}, {}: {}", b.compact, b.lines[0], b.lines[1..].join(", ")))
+            .collect();
+        caption.push_str(&format!(" Bifurcations: {}.", listed.join("; ")));
+    }
     Some(FigureSpec {
         stem: format!("regime-map{}", lc.stem_suffix),
         title: format!("Regime map{on}"),
@@ -170,7 +177,8 @@ pub fn regime_map_of(
         .collect();
     let bifurcations = bifs
         .iter()
-        .map(|b| BifurcationMark {
+        .enumerate()
+        .map(|(n, b)| BifurcationMark {
             mu: b.mu,
             k: b.k,
             lines: vec![
@@ -178,6 +186,7 @@ pub fn regime_map_of(
                 format!("μ = {}", short(b.mu)),
                 format!("K = {}  (t/R_c = {})", short(b.k), short(b.t_over_r)),
             ],
+            compact: (n + 1).to_string(),
         })
         .collect();
     Some(RegimeMap {
