@@ -6,7 +6,7 @@
 use super::curves::Samples;
 use crate::analysis::forms::ArchModel;
 use crate::analysis::general::{self, CrownState, Outcome, Settings};
-use crate::analysis::statics::ArchGeometry;
+use crate::analysis::statics::{ArchGeometry, Condition, joint_rows};
 use crate::model::{Arch, ArchForm, Discretisation, JointOrientation, Load, Shape, WeightModel};
 use crate::store::StateRow;
 use anyhow::{Context, Result, anyhow};
@@ -94,6 +94,44 @@ pub fn joint_parameter(model: &ArchModel, angle_deg: f64) -> f64 {
         alpha.next_up().copysign(t)
     } else {
         t
+    }
+}
+
+/// The joint parameter of a hinge or sliding joint stored at `angle_deg` in a state row, for
+/// the rows of `conditions`. On a vertical-joint arch |angle| = α names two sections: the
+/// vertical section through the intrados springing (θ = ±α) and the radial support just
+/// beyond it; the one meant is the one whose rows the state's crown force brings nearest to
+/// equality (its rows are active there). Elsewhere as [`joint_parameter`].
+pub fn active_joint_parameter(
+    model: &ArchModel,
+    s: &StateRow,
+    angle_deg: f64,
+    conditions: &[Condition],
+) -> f64 {
+    let support = joint_parameter(model, angle_deg);
+    let alpha = model.arch().half_angle;
+    let vertical = model.form().joints == JointOrientation::Vertical;
+    let (Some(f), true) = (CrownForce::of_row(s), vertical && support.abs() > alpha) else {
+        return support;
+    };
+    let section = alpha.copysign(support);
+    let phi = s.mu.atan();
+    // How far the state is from equality on the given rows of a joint, over |a|.
+    let slack = |theta: f64| {
+        joint_rows(model, theta, phi)
+            .iter()
+            .filter(|r| conditions.contains(&r.condition))
+            .map(|r| {
+                let used = r.a[0] * f.fx + r.a[1] * f.fy + r.a[2] * f.m0 + r.a_lambda * f.lambda;
+                let n = (r.a[0] * r.a[0] + r.a[1] * r.a[1] + r.a[2] * r.a[2]).sqrt();
+                (r.b - used).abs() / n.max(f64::MIN_POSITIVE)
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    if slack(section) < slack(support) {
+        section
+    } else {
+        support
     }
 }
 

@@ -5,8 +5,11 @@
 //! and the live load at its point.
 
 use crate::analysis::forms::ArchModel;
+use crate::analysis::statics::Condition;
 use crate::analysis::statics::{ArchGeometry, Joint};
-use crate::figdata::general::{joint_parameter as parameter, model_of_state};
+use crate::figdata::general::{
+    active_joint_parameter, joint_parameter as parameter, model_of_state,
+};
 use crate::plot::state::{DrawnHinge, DrawnJoint, DrawnLoad, DrawnSlide, DrawnSupport, Xy};
 use crate::report::format::short;
 use crate::store::StateRow;
@@ -141,9 +144,17 @@ pub fn of_state(s: &StateRow) -> StateGeometry {
         .hinge_angles_deg
         .iter()
         .zip(&s.joints.hinge_faces)
-        .map(|(&a, f)| DrawnHinge {
-            joint: drawn(&model, &model.joint(parameter(&model, a))),
-            extrados: f == "extrados",
+        .map(|(&a, f)| {
+            let face = if f == "extrados" {
+                Condition::Extrados
+            } else {
+                Condition::Intrados
+            };
+            let theta = active_joint_parameter(&model, s, a, &[face]);
+            DrawnHinge {
+                joint: drawn(&model, &model.joint(theta)),
+                extrados: f == "extrados",
+            }
         })
         .collect();
     let sliding = s
@@ -152,7 +163,8 @@ pub fn of_state(s: &StateRow) -> StateGeometry {
         .iter()
         .zip(&s.joints.sliding_senses)
         .map(|(&a, sense)| {
-            let j = model.joint(parameter(&model, a));
+            let slides = [Condition::SlideOutward, Condition::SlideInward];
+            let j = model.joint(active_joint_parameter(&model, s, a, &slides));
             let n = j.normal();
             // The normal points from the left part into the right one: the crown lies to the
             // left of a joint of the right half.
@@ -198,6 +210,60 @@ mod tests {
 
     fn near(p: Xy, q: Xy) -> bool {
         (p.0 - q.0).abs() < 1e-12 && (p.1 - q.1).abs() < 1e-12
+    }
+
+    #[test]
+    fn a_vertical_joint_arch_slides_on_its_vertical_sections_and_hinges_at_its_supports() {
+        // The critical friction at K = 1.1158 (the rotational/mixed bifurcation): sliding at
+        // ±90° and hinges at ±90° extrados, where 90° names both the vertical section x = ±1
+        // and the radial support beyond it.
+        use crate::model::{
+            Arch, ArchForm, Discretisation, Friction, JointOrientation, Load, Shape, WeightModel,
+        };
+        use crate::scene::{self, Find, Scene};
+        let k = 1.1158;
+        let arch = Arch::new(k, 90.0, WeightModel::Annular, Discretisation::Continuum).unwrap();
+        let sol = scene::solve(&Scene {
+            arch,
+            friction: Friction::new(f64::INFINITY).unwrap(),
+            find: Find::Friction,
+            form: ArchForm {
+                shape: Shape::Circular,
+                joints: JointOrientation::Vertical,
+            },
+            load: Load::SelfWeight,
+            lambda: 0.0,
+        });
+        let mut r = row(k, 0.0, "vertical", "self_weight", None);
+        r.voussoirs = None;
+        r.mu = sol.mu_crit.unwrap();
+        r.load_factor = None;
+        r.thrust_over_half_weight = sol.thrust_over_half_weight;
+        r.crown_moment = sol.crown_moment;
+        r.crown_shear = sol.crown_shear;
+        r.joints.hinge_angles_deg = sol.hinges.iter().map(|h| h.angle_deg).collect();
+        r.joints.hinge_faces = sol.hinges.iter().map(|h| h.face.as_str().into()).collect();
+        r.joints.sliding_angles_deg = sol.sliding_joints.iter().map(|j| j.angle_deg).collect();
+        r.joints.sliding_senses = (sol.sliding_joints.iter())
+            .map(|j| j.sense.as_str().into())
+            .collect();
+        assert_eq!(r.joints.sliding_angles_deg, vec![-90.0, 90.0]);
+        let g = of_state(&r);
+        for slide in &g.sliding {
+            let j = &slide.joint;
+            assert!((j.intrados.0.abs() - 1.0).abs() < 1e-12, "{j:?}");
+            assert!(
+                (j.extrados.0 - j.intrados.0).abs() < 1e-12,
+                "not vertical: {j:?}"
+            );
+        }
+        let springing_hinges = (g.hinges.iter())
+            .filter(|h| h.joint.intrados.1.abs() < 1e-12)
+            .count();
+        assert_eq!(springing_hinges, 2, "{:?}", g.hinges);
+        for h in g.hinges.iter().filter(|h| h.joint.intrados.1.abs() < 1e-12) {
+            assert!((h.joint.extrados.0.abs() - k).abs() < 1e-12, "{h:?}");
+        }
     }
 
     #[test]
