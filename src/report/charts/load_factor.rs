@@ -225,7 +225,18 @@ fn lambda_curves(
         stem: format!("load-factor{stem}"),
         title: format!("Collapse load factor λ{}{on}{at}", lc.title_suffix),
         caption: format!(
-            "The largest load factor λ of the live load at which the arch still stands (λ_max, from results.parquet), against the thickness K for up to {MAX_LINES} values of μ (left) and against the friction coefficient for up to {MAX_LINES} values of K (right; μ = ∞ is the left panel's line of that name). Each point is one case, coloured by its collapse mechanism at λ_max; a gap is a case where λ is unbounded or the arch does not stand under its own weight."
+            "The largest load factor λ of the live load at which the arch still stands (λ_max, from results.parquet), {}. Each point is one case, coloured by its collapse mechanism at λ_max; a gap is a case where λ is unbounded or the arch does not stand under its own weight.",
+            match (ks.len() > 1, finite_mus.len() > 1) {
+                (true, true) => format!(
+                    "against the thickness K for up to {MAX_LINES} values of μ (left) and against the friction coefficient for up to {MAX_LINES} values of K (right; μ = ∞ is the left panel's line of that name)"
+                ),
+                (true, false) => format!(
+                    "against the thickness K for up to {MAX_LINES} values of μ (the study has λ at fewer than two finite μ, so no panel against μ)"
+                ),
+                _ => format!(
+                    "against the friction coefficient for up to {MAX_LINES} values of K (the study has λ at a single K, so no panel against K)"
+                ),
+            }
         ),
         chart: Chart::Lines(LinesChart {
             title: format!("Collapse load factor λ{on}{at}"),
