@@ -191,13 +191,16 @@ fn draw_points<DB: DrawingBackend>(
         let c = chart.backend_coord(&(last.x, p.y_of(last.y)));
         let (tw, th) = style::text_block_size(&font, std::slice::from_ref(&l.label), 1.0);
         let g = ctx.px(6.0);
+        // Only right of the end: a label left of it reads as naming another line's point.
         let cands = [
             (c.0 + g, c.1 - th / 2),
             (c.0 + g, c.1 - th - g),
             (c.0 + g, c.1 + g),
-            (c.0 - tw - g, c.1 - th - g),
         ];
-        let at = placer.place(tw, th, &cands);
+        // Where no place near its end is free the legend's grey sample names the line.
+        let Some(at) = placer.try_place(tw, th, &cands) else {
+            continue;
+        };
         root.draw(&Text::new(
             l.label.clone(),
             at,
@@ -244,10 +247,30 @@ impl LinesChart {
                 .flat_map(|l| &l.points)
                 .any(|q| q.mechanism == m && q.y.is_finite())
         };
-        ["rotational", "mixed", "sliding"]
+        let mut items: Vec<LegendItem> = ["rotational", "mixed", "sliding"]
             .into_iter()
             .filter(|m| present(m))
             .map(|m| LegendItem::new(format!("{m} collapse"), Mark::Dot(palette::mechanism(m))))
-            .collect()
+            .collect();
+        // Each line's shade of grey, when every panel draws the same lines (an influence line
+        // against angle and x/L); otherwise each line is named at its end.
+        let labels = |p: &LinePanel| p.lines.iter().map(|l| l.label.clone()).collect::<Vec<_>>();
+        let shared = self
+            .panels
+            .windows(2)
+            .all(|w| labels(&w[0]) == labels(&w[1]));
+        if let Some(p) = self.panels.first().filter(|_| shared) {
+            items.extend(p.lines.iter().enumerate().map(|(i, l)| {
+                LegendItem::new(
+                    l.label.clone(),
+                    Mark::Line {
+                        color: LINE_GREYS[i % LINE_GREYS.len()],
+                        width: 2.4,
+                        dashed: false,
+                    },
+                )
+            }));
+        }
+        items
     }
 }

@@ -295,7 +295,7 @@ fn influence_line(
         } else {
             "load position θ from the crown, degrees".into()
         },
-        y_desc: "λ_max (multiples of the weight, log scale when it spans decades)".into(),
+        y_desc: "λ_max (multiples of the weight)".into(),
         log_y: wide(&chosen.iter().map(|&c| line(c, as_xl)).collect::<Vec<_>>()),
         lines: chosen.iter().map(|&c| line(c, as_xl)).collect(),
     };
