@@ -107,7 +107,7 @@ fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     root: &DrawingArea<DB, Shift>,
     ctx: &PlotContext,
-    p: &LinePanel,
+    (p, named_in_legend): (&LinePanel, bool),
 ) -> DrawResult<(), DB> {
     let Some(((x0, x1), (y0, y1))) = panel_window(p) else {
         area.draw(&Text::new(
@@ -161,7 +161,7 @@ fn draw_panel<DB: DrawingBackend>(
             chart.draw_series(LineSeries::new(piece, grey.stroke_width(ctx.upx(1.6))))?;
         }
     }
-    draw_points(root, &chart, ctx, p)
+    draw_points(root, &chart, ctx, (p, named_in_legend))
 }
 
 /// The points, in their mechanism's colour (small when there are many), and each line's
@@ -170,7 +170,7 @@ fn draw_points<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     chart: &XyChart<DB>,
     ctx: &PlotContext,
-    p: &LinePanel,
+    (p, named_in_legend): (&LinePanel, bool),
 ) -> DrawResult<(), DB> {
     let count: usize = p.lines.iter().map(|l| l.points.len()).sum();
     let r = if count > 400 { 1.8 } else { 3.2 };
@@ -183,6 +183,7 @@ fn draw_points<DB: DrawingBackend>(
     }
     let (xr, yr) = chart.plotting_area().get_pixel_range();
     let mut placer = LabelPlacer::new((xr.start, yr.start, xr.end + ctx.px(68.0), yr.end));
+
     let font = ctx.font(11.5);
     for l in &p.lines {
         let Some(last) = l.points.iter().rev().find(|q| p.y_of(q.y).is_finite()) else {
@@ -197,9 +198,12 @@ fn draw_points<DB: DrawingBackend>(
             (c.0 + g, c.1 - th - g),
             (c.0 + g, c.1 + g),
         ];
-        // Where no place near its end is free the legend's grey sample names the line.
-        let Some(at) = placer.try_place(tw, th, &cands) else {
-            continue;
+        // Where no place right of its end is free, a line the legend names goes unlabelled;
+        // any other line takes the nearest free place.
+        let at = match placer.try_place(tw, th, &cands) {
+            Some(at) => at,
+            None if named_in_legend => continue,
+            None => placer.place(tw, th, &cands),
         };
         root.draw(&Text::new(
             l.label.clone(),
@@ -231,13 +235,22 @@ impl Figure for LinesChart {
     ) -> DrawResult<(), DB> {
         let areas = style::panel_areas(root, ctx, &self.legend(), &self.title, self.panels.len())?;
         for (a, p) in areas.iter().zip(&self.panels) {
-            draw_panel(a, root, ctx, p)?;
+            draw_panel(a, root, ctx, (p, self.shared_lines()))?;
         }
         Ok(())
     }
 }
 
 impl LinesChart {
+    /// True when every panel draws the same lines (same labels, same order): the legend
+    /// then names each line's shade.
+    fn shared_lines(&self) -> bool {
+        let labels = |p: &LinePanel| p.lines.iter().map(|l| l.label.clone()).collect::<Vec<_>>();
+        self.panels
+            .windows(2)
+            .all(|w| labels(&w[0]) == labels(&w[1]))
+    }
+
     /// The mechanisms present, in a fixed order.
     fn legend(&self) -> Vec<LegendItem> {
         let present = |m: &str| {
@@ -254,12 +267,7 @@ impl LinesChart {
             .collect();
         // Each line's shade of grey, when every panel draws the same lines (an influence line
         // against angle and x/L); otherwise each line is named at its end.
-        let labels = |p: &LinePanel| p.lines.iter().map(|l| l.label.clone()).collect::<Vec<_>>();
-        let shared = self
-            .panels
-            .windows(2)
-            .all(|w| labels(&w[0]) == labels(&w[1]));
-        if let Some(p) = self.panels.first().filter(|_| shared) {
+        if let Some(p) = self.panels.first().filter(|_| self.shared_lines()) {
             items.extend(p.lines.iter().enumerate().map(|(i, l)| {
                 LegendItem::new(
                     l.label.clone(),
