@@ -325,6 +325,25 @@ impl ArchForm {
         };
         2.0 * reach / e - 1.0
     }
+
+    /// Largest K at which the form exists at half-angle α (radians) and a point load of
+    /// `load` still sits at a joint: a pointed arch's first joint ψ₁ = asin(e(1 + K)/2)
+    /// moves away from the crown as K grows, so a load at a ≠ 0 needs e(1 + K)/2 ≤ sin|a|.
+    pub fn max_k_with_load(&self, half_angle: f64, load: Load) -> f64 {
+        let k = self.max_k(half_angle);
+        let e = self.shape.eccentricity();
+        match load {
+            Load::Point { at_deg } if at_deg != 0.0 && e > 0.0 => {
+                let s = at_deg
+                    .to_radians()
+                    .abs()
+                    .min(std::f64::consts::FRAC_PI_2)
+                    .sin();
+                k.min(2.0 * s / e - 1.0)
+            }
+            _ => k,
+        }
+    }
 }
 
 /// The live part of a load case, scaled by the load factor λ (docs/mechanics.md §1: load factors are

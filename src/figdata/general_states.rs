@@ -9,7 +9,7 @@ use crate::analysis::Mechanism;
 use crate::analysis::forms::ArchModel;
 use crate::analysis::general::Settings;
 use crate::manifest::{LoadCase, Manifest};
-use crate::model::{Friction, Load, Shape};
+use crate::model::Friction;
 use crate::scene::Find;
 use crate::store::{BifurcationGroup, BifurcationRow, LoadFactorCase, MechanismRow, StateRow};
 use anyhow::Result;
@@ -44,25 +44,6 @@ fn fill(row: &mut StateRow, c: &CrownForce, mechanism: Option<&Mechanism>) {
         row.mechanism = Some(m.kind.as_str().into());
         row.joints = joint_lists(&m.hinges, &m.sliding_joints);
     }
-}
-
-/// The largest K at which the form exists and a point load still sits at a joint (as the
-/// scene's own search: a pointed arch's first joint moves away from the crown as K grows).
-fn k_max(model: &ArchModel) -> f64 {
-    let mut k = model.form().max_k(model.arch().half_angle);
-    if let (Shape::Pointed { eccentricity }, Load::Point { at_deg }) =
-        (model.form().shape, model.load())
-        && at_deg != 0.0
-        && eccentricity > 0.0
-    {
-        let s = at_deg
-            .to_radians()
-            .abs()
-            .min(std::f64::consts::FRAC_PI_2)
-            .sin();
-        k = k.min(2.0 * s / eccentricity - 1.0);
-    }
-    k
 }
 
 impl LoadCaseStates<'_> {
@@ -224,8 +205,15 @@ impl LoadCaseStates<'_> {
         }
         let make =
             |k: f64| ArchModel::new(model.arch().with_k(k), *model.form(), model.load()).ok();
-        let critical =
-            crate::analysis::general::thickness_with(make, k_max(&model), None, f, &settings);
+        let critical = crate::analysis::general::thickness_with(
+            make,
+            model
+                .form()
+                .max_k_with_load(model.arch().half_angle, model.load()),
+            None,
+            f,
+            &settings,
+        );
         row.state = "no_equilibrium".into();
         if let Some(s) = critical.found()
             && let Some(k) = s.k

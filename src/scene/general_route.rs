@@ -12,26 +12,6 @@ use crate::analysis::kinematics::{
     FlowRule, LimitState, ModeStatus, VelocityField, mechanism_modes, work_equation,
 };
 use crate::analysis::{Mechanism, MechanismKind};
-use crate::model::{Load, Shape};
-
-/// The largest K at which the scene's form exists and a point load still sits at a joint
-/// (a pointed arch's first joint ψ₁ = asin(e(1 + K)/2) moves away from the crown as K grows).
-fn k_max(scene: &Scene) -> f64 {
-    let mut k = scene.form.max_k(scene.arch.half_angle);
-    if let (Shape::Pointed { eccentricity }, Load::Point { at_deg }) =
-        (scene.form.shape, scene.load)
-        && at_deg != 0.0
-        && eccentricity > 0.0
-    {
-        let s = at_deg
-            .to_radians()
-            .abs()
-            .min(std::f64::consts::FRAC_PI_2)
-            .sin();
-        k = k.min(2.0 * s / eccentricity - 1.0);
-    }
-    k
-}
 
 /// Records a limit state: mechanism, crown force and moment (m = −M₀, the crown joint lying
 /// on x = 0), hinges and sliding joints.
@@ -142,7 +122,15 @@ fn shared_apex_value(scene: &Scene, settings: &Settings) -> Option<f64> {
     let model = make(scene.arch.k)?;
     match scene.find {
         Find::Thickness => {
-            let c = general::thickness_with(make, k_max(scene), None, scene.friction, settings);
+            let c = general::thickness_with(
+                make,
+                scene
+                    .form
+                    .max_k_with_load(scene.arch.half_angle, scene.load),
+                None,
+                scene.friction,
+                settings,
+            );
             c.found()?.k
         }
         Find::Friction => Some(general::friction(&model, settings).found()?.mu),
@@ -182,7 +170,15 @@ fn solve_one(scene: &Scene, out: &mut Solution) {
         let circular_radial = scene.form.joints == crate::model::JointOrientation::Radial
             && scene.form.shape.eccentricity() == 0.0;
         let reference = circular_radial.then_some(scene.arch.k);
-        let c = general::thickness_with(make, k_max(scene), reference, scene.friction, &settings);
+        let c = general::thickness_with(
+            make,
+            scene
+                .form
+                .max_k_with_load(scene.arch.half_angle, scene.load),
+            reference,
+            scene.friction,
+            &settings,
+        );
         if let Some(s) = set_critical(out, &c)
             && let Some(k) = s.k
         {
