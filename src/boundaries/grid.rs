@@ -111,3 +111,12 @@ where
         (0..grid.ks.len()).into_par_iter().map(column).collect();
     rows.into_iter().chain(cols).flatten().collect()
 }
+
+/// The regime of every cell, μ row by μ row (`None` where the case failed or is missing).
+pub(crate) fn regimes(grid: &Grid, results: &[CaseResult]) -> Vec<Option<crate::analysis::Regime>> {
+    let (nk, nmu) = (grid.ks.len(), grid.mus.len());
+    (0..nmu)
+        .flat_map(|j| (0..nk).map(move |i| (i, j)))
+        .map(|(i, j)| ok_result(results, grid, i, j).and_then(|r| r.solution.regime()))
+        .collect()
+}

@@ -19,7 +19,7 @@
 //! stands just above its own sliding threshold.
 
 use super::bifurcation::{Kind, merge_coincident, record};
-use super::grid::{Grid, ok_result};
+use super::grid::Grid;
 use super::probe::root;
 use super::state_grid::{Crossing, crossings, h_r_nonempty, h_s_nonempty};
 use super::{Bifurcation, BoundaryPoint, Counter, EdgeAxis};
@@ -135,12 +135,7 @@ struct Refiner<'a> {
 impl<'a> Refiner<'a> {
     fn new(grid: &'a Grid, results: &[CaseResult], tol: f64, counter: &'a Counter) -> Self {
         let (nk, nmu) = (grid.ks.len(), grid.mus.len());
-        let mut regimes = Vec::with_capacity(nk * nmu);
-        for j in 0..nmu {
-            for i in 0..nk {
-                regimes.push(ok_result(results, grid, i, j).and_then(|r| r.solution.regime()));
-            }
-        }
+        let regimes = super::grid::regimes(grid, results);
         let settings = Settings {
             lambda: grid.scene.lambda,
             ..Settings::default()

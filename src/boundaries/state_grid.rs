@@ -8,7 +8,7 @@
 //! collapse curve, located per edge.
 
 use super::bifurcation::{self, Landmarks, slack};
-use super::grid::{Grid, ok_result};
+use super::grid::Grid;
 use super::probe::{Probe, root, rotational_margin, sliding_margin, stable_margin};
 use super::{Bifurcation, BoundaryPoint, Counter, EdgeAxis};
 use crate::analysis::symmetric::{Critical, CriticalState, RotationalDomain, SlidingDomain};
@@ -115,12 +115,7 @@ struct GridRefiner<'a> {
 impl<'a> GridRefiner<'a> {
     fn new(grid: &'a Grid, results: &[CaseResult], tol: f64, counter: &'a Counter) -> Self {
         let (nk, nmu) = (grid.ks.len(), grid.mus.len());
-        let mut regimes = Vec::with_capacity(nk * nmu);
-        for j in 0..nmu {
-            for i in 0..nk {
-                regimes.push(ok_result(results, grid, i, j).and_then(|r| r.solution.regime()));
-            }
-        }
+        let regimes = super::grid::regimes(grid, results);
         let mut g = GridRefiner {
             grid,
             lm: Landmarks::new(Probe::new(grid.arch, counter)),
