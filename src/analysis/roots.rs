@@ -132,16 +132,74 @@ pub fn argmax_concave<D: FnMut(f64) -> f64>(mut slope: D, lo: f64, hi: f64, tol:
     brent_with_values(&mut slope, lo, slo, hi, shi, tol).unwrap_or(0.5 * (lo + hi))
 }
 
+/// The golden section's smaller fraction, 1 − 1/φ.
+const CGOLD: f64 = 0.381_966_011_250_105_1;
+
 /// Brent's method for a local maximum of `f` on [a, b] (golden section with parabolic
 /// steps), to an absolute tolerance `tol` in the argument. Returns (argmax, max).
 pub fn maximise_1d<F: FnMut(f64) -> f64>(mut f: F, a: f64, b: f64, tol: f64) -> (f64, f64) {
-    const CGOLD: f64 = 0.381_966_011_250_105_1;
-    let (mut a, mut b) = (a.min(b), a.max(b));
-    let mut x = a + CGOLD * (b - a);
-    let (mut w, mut v) = (x, x);
-    let mut fx = -f(x);
-    let (mut fw, mut fv) = (fx, fx);
-    let (mut d, mut e): (f64, f64) = (0.0, 0.0);
+    let (a, b) = (a.min(b), a.max(b));
+    let x = a + CGOLD * (b - a);
+    let first = (x, f(x));
+    let start = MaxBracket {
+        a,
+        b,
+        x: first,
+        w: first,
+        v: first,
+        step: 0.0,
+    };
+    maximise_from(f, start, tol, None)
+}
+
+/// The state [`maximise_from`] starts from: the bracket [a, b] of a local maximum, the best
+/// point x seen so far with its value, the second best w and the third v, and the length of
+/// the step before last (0 for a fresh start; the bracket's length lets the first parabolic
+/// step through x, w and v be taken as long as it stays inside the bracket).
+#[derive(Debug, Clone, Copy)]
+pub struct MaxBracket {
+    /// Lower end of the bracket.
+    pub a: f64,
+    /// Upper end of the bracket.
+    pub b: f64,
+    /// The best point and its value; a ≤ x ≤ b.
+    pub x: (f64, f64),
+    /// The second best point and its value.
+    pub w: (f64, f64),
+    /// The third best point and its value.
+    pub v: (f64, f64),
+    /// The length of the step before last.
+    pub step: f64,
+}
+
+/// An early stop of [`maximise_from`] for a smooth maximum known only to the rounding of its
+/// value: a parabolic step shorter than `local` that changes the value by no more than `flat`
+/// (or is shorter than the argument tolerance) ends the search, since near a smooth maximum
+/// the parabola's vertex is the maximum and shrinking the bracket around it as well would cost
+/// a dozen values that only rounding tells apart.
+#[derive(Debug, Clone, Copy)]
+pub struct FlatStop {
+    /// Length below which a parabolic step counts as a local one.
+    pub local: f64,
+    /// Change of the value a local step must exceed for the search to go on.
+    pub flat: f64,
+}
+
+/// Brent's method for a local maximum from a bracket whose points are known (Numerical
+/// Recipes' "brent", maximising), to an absolute tolerance `tol` in the argument, and with
+/// `stop` also after a local parabolic step that no longer changes the value. Returns
+/// (argmax, max); the value is never below the start's best.
+pub fn maximise_from<F: FnMut(f64) -> f64>(
+    mut f: F,
+    start: MaxBracket,
+    tol: f64,
+    stop: Option<FlatStop>,
+) -> (f64, f64) {
+    let MaxBracket { mut a, mut b, .. } = start;
+    let (mut x, mut fx) = start.x;
+    let (mut w, mut fw) = start.w;
+    let (mut v, mut fv) = start.v;
+    let (mut d, mut e): (f64, f64) = (start.step, start.step);
     for _ in 0..MAX_MAXIMISE_STEPS {
         let xm = 0.5 * (a + b);
         let tol1 = tol + REL_ARG_TOL * x.abs();
@@ -151,8 +209,9 @@ pub fn maximise_1d<F: FnMut(f64) -> f64>(mut f: F, a: f64, b: f64, tol: f64) -> 
         }
         let mut golden = true;
         if e.abs() > tol1 {
-            let r = (x - w) * (fx - fv);
-            let mut q = (x - v) * (fx - fw);
+            // The vertex of the parabola through x, w, v.
+            let r = (x - w) * (fv - fx);
+            let mut q = (x - v) * (fw - fx);
             let mut p = (x - v) * q - (x - w) * r;
             q = 2.0 * (q - r);
             if q > 0.0 {
@@ -179,11 +238,14 @@ pub fn maximise_1d<F: FnMut(f64) -> f64>(mut f: F, a: f64, b: f64, tol: f64) -> 
         } else {
             x + tol1.copysign(d)
         };
-        let fu = -f(u);
+        let fu = f(u);
         if fu.is_nan() {
             break;
         }
-        if fu <= fx {
+        let converged = stop.is_some_and(|s| {
+            !golden && (d.abs() < tol1 || (d.abs() < s.local && (fu - fx).abs() <= s.flat))
+        });
+        if fu >= fx {
             if u >= x {
                 a = x;
             } else {
@@ -197,16 +259,19 @@ pub fn maximise_1d<F: FnMut(f64) -> f64>(mut f: F, a: f64, b: f64, tol: f64) -> 
             } else {
                 b = u;
             }
-            if fu <= fw || w == x {
+            if fu >= fw || w == x {
                 (v, w) = (w, u);
                 (fv, fw) = (fw, fu);
-            } else if fu <= fv || v == x || v == w {
+            } else if fu >= fv || v == x || v == w {
                 v = u;
                 fv = fu;
             }
         }
+        if converged {
+            break;
+        }
     }
-    (x, -fx)
+    (x, fx)
 }
 
 #[cfg(test)]

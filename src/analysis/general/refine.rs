@@ -2,14 +2,8 @@
 //! from the samples around it, whose values are already known, stopped once the violation
 //! no longer changes above its rounding.
 
-/// Largest number of steps of one refinement; it converges in far fewer, this only bounds
-/// a pathological function.
-const MAX_STEPS: usize = 200;
-/// Relative tolerance on the argument added to the absolute one: about the spacing of
-/// doubles near the argument.
-const REL_ARG_TOL: f64 = 1e-15;
-/// The golden section's smaller fraction, 1 − 1/φ.
-const CGOLD: f64 = 0.381_966_011_250_105_1;
+use crate::analysis::roots::{FlatStop, MaxBracket, maximise_from};
+
 /// A parabolic step counts as a local one (eligible to stop on a flat value) when it is
 /// shorter than this fraction of the first bracket.
 const LOCAL_STEP: f64 = 1e-3;
@@ -39,17 +33,16 @@ pub(super) fn refine_interior<F: FnMut(f64) -> f64>(
 ) -> Point {
     let [lo, mid, hi] = pts;
     let (w, v) = if lo.1 >= hi.1 { (lo, hi) } else { (hi, lo) };
-    brent(
-        f,
-        Bracket {
-            a: lo.0,
-            b: hi.0,
-            x: mid,
-            w,
-            v,
-        },
-        tol,
-    )
+    let (a, b) = (lo.0, hi.0);
+    let start = MaxBracket {
+        a,
+        b,
+        x: mid,
+        w,
+        v,
+        step: b - a,
+    };
+    brent(f, start, tol)
 }
 
 /// The local maximum of `f` next to a sample `end` at the end of a family that is at least
@@ -68,113 +61,27 @@ pub(super) fn refine_end<F: FnMut(f64) -> f64>(
     if !(inside.1 > end.1 + tol.flat) {
         return end;
     }
-    brent(
-        f,
-        Bracket {
-            a: end.0.min(next.0),
-            b: end.0.max(next.0),
-            x: inside,
-            w: end,
-            v: next,
-        },
-        tol,
-    )
+    let (a, b) = (end.0.min(next.0), end.0.max(next.0));
+    let start = MaxBracket {
+        a,
+        b,
+        x: inside,
+        w: end,
+        v: next,
+        step: b - a,
+    };
+    brent(f, start, tol)
 }
 
-/// Brent's state: the bracket [a, b], the best point x, the second best w and the third v.
-struct Bracket {
-    a: f64,
-    b: f64,
-    x: Point,
-    w: Point,
-    v: Point,
-}
-
-/// Brent's method for a maximum from a bracket whose points are known (Numerical Recipes'
-/// "brent", maximising). Besides the bracket shrinking to the argument tolerance, it stops
-/// after a local parabolic step that puts the vertex within the argument tolerance or
-/// changes the value by no more than `tol.flat`: near a smooth maximum the parabola's vertex
-/// is the maximum, and shrinking the bracket around it as well would cost a dozen values
-/// that only rounding tells apart.
-fn brent<F: FnMut(f64) -> f64>(mut f: F, start: Bracket, tol: Tolerance) -> Point {
-    let Bracket { mut a, mut b, .. } = start;
-    let (mut x, mut fx) = start.x;
-    let (mut w, mut fw) = start.w;
-    let (mut v, mut fv) = start.v;
-    let local = LOCAL_STEP * (b - a);
-    // The first parabolic step is accepted as long as it stays inside the bracket.
-    let (mut d, mut e): (f64, f64) = (b - a, b - a);
-    for _ in 0..MAX_STEPS {
-        let xm = 0.5 * (a + b);
-        let tol1 = tol.arg + REL_ARG_TOL * x.abs();
-        let tol2 = 2.0 * tol1;
-        if (x - xm).abs() <= tol2 - 0.5 * (b - a) {
-            break;
-        }
-        let mut golden = true;
-        if e.abs() > tol1 {
-            // The vertex of the parabola through x, w, v.
-            let r = (x - w) * (fv - fx);
-            let mut q = (x - v) * (fw - fx);
-            let mut p = (x - v) * q - (x - w) * r;
-            q = 2.0 * (q - r);
-            if q > 0.0 {
-                p = -p;
-            }
-            q = q.abs();
-            let etemp = e;
-            if !(p.abs() >= (0.5 * q * etemp).abs() || p <= q * (a - x) || p >= q * (b - x)) {
-                e = d;
-                d = p / q;
-                let u = x + d;
-                if u - a < tol2 || b - u < tol2 {
-                    d = tol1.copysign(xm - x);
-                }
-                golden = false;
-            }
-        }
-        if golden {
-            e = if x >= xm { a - x } else { b - x };
-            d = CGOLD * e;
-        }
-        let u = if d.abs() >= tol1 {
-            x + d
-        } else {
-            x + tol1.copysign(d)
-        };
-        let fu = f(u);
-        if fu.is_nan() {
-            break;
-        }
-        let converged =
-            !golden && (d.abs() < tol1 || (d.abs() < local && (fu - fx).abs() <= tol.flat));
-        if fu >= fx {
-            if u >= x {
-                a = x;
-            } else {
-                b = x;
-            }
-            (v, w, x) = (w, x, u);
-            (fv, fw, fx) = (fw, fx, fu);
-        } else {
-            if u < x {
-                a = u;
-            } else {
-                b = u;
-            }
-            if fu >= fw || w == x {
-                (v, w) = (w, u);
-                (fv, fw) = (fw, fu);
-            } else if fu >= fv || v == x || v == w {
-                v = u;
-                fv = fu;
-            }
-        }
-        if converged {
-            break;
-        }
-    }
-    (x, fx)
+/// Brent's method from a bracket whose points are known ([`maximise_from`]), stopped as well
+/// after a local parabolic step (shorter than [`LOCAL_STEP`] of the first bracket) that
+/// changes the value by no more than `tol.flat`.
+fn brent<F: FnMut(f64) -> f64>(f: F, start: MaxBracket, tol: Tolerance) -> Point {
+    let stop = FlatStop {
+        local: LOCAL_STEP * (start.b - start.a),
+        flat: tol.flat,
+    };
+    maximise_from(f, start, tol.arg, Some(stop))
 }
 
 #[cfg(test)]
