@@ -102,3 +102,71 @@ fn only_an_apex_load_on_a_pointed_arch_reports_the_free_split() {
     s.load = Load::Point { at_deg: 30.0 };
     assert_eq!(scene::solve(&s).critical_apex_shared, None);
 }
+
+/// results.parquet stores `mechanism_admissible` and `critical_apex_shared` where the route
+/// computes them, null otherwise: a friction study with the apex scene (both filled; the free
+/// split 0.0380245 beside μ_c = 0.0773289) and a load 20° off the apex (no split: null), and
+/// a state study, whose find computes neither (the columns are left out). The merge path reads
+/// both back.
+#[test]
+fn results_parquet_stores_admissibility_and_the_free_split() {
+    use archstudy::{engine, manifest, plan, progress, store};
+    use std::path::Path;
+    let studies = [
+        "name: apex
+arch: {shape: pointed, eccentricity: 0.1213, half_angle_deg: 45.37}
+grid:
+  k: {values: [1.340132]}
+load_cases:
+  - {name: apex, kind: point, at_deg: 0, lambda: 0.166277}
+  - {name: off, kind: point, at_deg: 20, lambda: 0.166277}
+find: friction
+",
+        "name: plain
+grid:
+  k: {values: [1.2]}
+  mu: {values: [0.4]}
+",
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("results.parquet");
+    for (i, text) in studies.into_iter().enumerate() {
+        let m = manifest::parse(text, Path::new("s.yaml")).unwrap();
+        let plan = plan::build(m).unwrap();
+        let rows = engine::run(&plan, &progress::Silent);
+        store::write_parquet(&mut store::results_frame(&plan, &rows).unwrap(), &path).unwrap();
+        let df = store::read_parquet(&path).unwrap();
+        if i == 1 {
+            for name in ["mechanism_admissible", "critical_apex_shared"] {
+                assert!(df.column(name).is_err(), "a state study stores {name}");
+            }
+            continue;
+        }
+        let admissible = df.column("mechanism_admissible").unwrap();
+        let admissible: Vec<Option<bool>> = admissible.bool().unwrap().iter().collect();
+        let shared = store::f64_column(&df, "critical_apex_shared").unwrap();
+        let mu = store::f64_column(&df, "mu_crit").unwrap();
+        assert_eq!(admissible, vec![Some(true), Some(true)]);
+        approx::assert_abs_diff_eq!(mu[0].unwrap(), 0.0773289, epsilon = 1e-6);
+        approx::assert_abs_diff_eq!(shared[0].unwrap(), 0.0380245, epsilon = 1e-6);
+        assert_eq!(shared[1], None);
+        // Read back into the engine's rows (a merge): both fields as solved.
+        let back = store::read_case_results(&plan, &path).unwrap();
+        for (a, b) in rows.iter().zip(&back) {
+            assert_eq!(
+                (
+                    a.solution.mechanism_admissible,
+                    a.solution.critical_apex_shared
+                ),
+                (
+                    b.solution.mechanism_admissible,
+                    b.solution.critical_apex_shared
+                )
+            );
+        }
+        for name in ["mechanism_admissible", "critical_apex_shared"] {
+            let (_, meaning) = store::column_doc(name).unwrap();
+            assert!(!meaning.is_empty(), "{name}");
+        }
+    }
+}

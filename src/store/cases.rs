@@ -130,7 +130,7 @@ fn same(column: &str, stored: Option<&String>, planned: &'static str) -> Result<
 }
 
 /// The answer columns of results.parquet that hold one float, each with its field.
-const ANSWER_F64: [&str; 22] = [
+const ANSWER_F64: [&str; 23] = [
     "thrust_r_min",
     "thrust_r_max",
     "thrust_s_min",
@@ -145,6 +145,7 @@ const ANSWER_F64: [&str; 22] = [
     "work_loads",
     "work_friction",
     "work_residual",
+    "critical_apex_shared",
     "k_c_rotational",
     "mu_rotational_mixed",
     "mu_min",
@@ -172,6 +173,7 @@ fn answer_f64<'s>(s: &'s mut Solution, column: &str) -> Option<&'s mut Option<f6
         "work_loads" => &mut s.work_loads,
         "work_friction" => &mut s.work_friction,
         "work_residual" => &mut s.work_residual,
+        "critical_apex_shared" => &mut s.critical_apex_shared,
         "k_c_rotational" => &mut s.k_c_rotational,
         "mu_rotational_mixed" => &mut s.mu_rotational_mixed,
         "mu_min" => &mut s.mu_min,
@@ -195,6 +197,7 @@ struct Stored {
     num: std::collections::HashMap<&'static str, Vec<Option<f64>>>,
     lists: std::collections::HashMap<&'static str, AnglesAndNames>,
     unbounded: Vec<Option<bool>>,
+    admissible: Vec<Option<bool>>,
 }
 
 /// The string columns read into a [`Stored`].
@@ -259,6 +262,11 @@ impl Stored {
             lists,
             unbounded: if c.has("load_factor_unbounded") {
                 bool_column(df, "load_factor_unbounded")?
+            } else {
+                vec![None; c.rows]
+            },
+            admissible: if c.has("mechanism_admissible") {
+                bool_column(df, "mechanism_admissible")?
             } else {
                 vec![None; c.rows]
             },
@@ -331,6 +339,7 @@ impl Stored {
             hinges_max: self.hinges("hinges_max_angles_deg", "hinges_max_faces", i)?,
             load_factor_unbounded: self.unbounded[i].unwrap_or(false),
             mechanism_dof: self.n("mechanism_dof", i).map(|v| v as u32),
+            mechanism_admissible: self.admissible[i],
             solve_time_us: self.n("solve_time_us", i).unwrap_or(0.0),
             ..planned
         };
@@ -436,12 +445,9 @@ mod tests {
             assert_eq!(back.len(), rows.len(), "{text}");
             for (a, b) in rows.iter().zip(&back) {
                 let mut a_sol = a.solution.clone();
-                // Not stored: the sliding joints of the thrust find's extreme states, and the
-                // answers only `solve --json` gives (admissibility, the shared apex split).
+                // Not stored: the sliding joints of the thrust find's extreme states.
                 a_sol.sliding_joints_min.clear();
                 a_sol.sliding_joints_max.clear();
-                a_sol.mechanism_admissible = None;
-                a_sol.critical_apex_shared = None;
                 assert_eq!(format!("{a_sol:?}"), format!("{:?}", b.solution), "{text}");
                 assert_eq!(
                     (a.case_id, a.load_case, a.status, &a.message),

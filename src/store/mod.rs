@@ -115,6 +115,17 @@ impl TableBuilder {
         self
     }
 
+    /// A nullable Boolean column.
+    pub fn opt_bool(mut self, name: &str, v: Vec<Option<bool>>) -> Self {
+        if v.iter().all(Option::is_none) {
+            self.columns
+                .push(Column::full_null(name.into(), v.len(), &DataType::Boolean));
+            return self;
+        }
+        self.columns.push(Column::new(name.into(), v));
+        self
+    }
+
     /// A List(Float64) column.
     pub fn list_f64(mut self, name: &str, v: Vec<Vec<f64>>) -> Self {
         let values: usize = v.iter().map(Vec::len).sum();

@@ -31,6 +31,7 @@ enum Spec<'a> {
     OptF64(&'static str, Vec<Option<f64>>, Get<'a, Option<f64>>),
     OptU32(&'static str, Vec<Option<u32>>, Get<'a, Option<u32>>),
     Bool(&'static str, Vec<bool>, Get<'a, bool>),
+    OptBool(&'static str, Vec<Option<bool>>, Get<'a, Option<bool>>),
     Str(&'static str, Vec<&'a str>, Get<'a, &'a str>),
     OptStr(&'static str, Vec<Option<&'a str>>, Get<'a, Option<&'a str>>),
     ListF64(&'static str, Vec<Vec<f64>>, Get<'a, Vec<f64>>),
@@ -49,6 +50,7 @@ impl<'a> Spec<'a> {
             | Spec::OptF64(n, ..)
             | Spec::OptU32(n, ..)
             | Spec::Bool(n, ..)
+            | Spec::OptBool(n, ..)
             | Spec::Str(n, ..)
             | Spec::OptStr(n, ..)
             | Spec::ListF64(n, ..)
@@ -63,6 +65,7 @@ impl<'a> Spec<'a> {
             Spec::OptF64(_, v, _) => v.reserve(n),
             Spec::OptU32(_, v, _) => v.reserve(n),
             Spec::Bool(_, v, _) => v.reserve(n),
+            Spec::OptBool(_, v, _) => v.reserve(n),
             Spec::Str(_, v, _) => v.reserve(n),
             Spec::OptStr(_, v, _) => v.reserve(n),
             Spec::ListF64(_, v, _) => v.reserve(n),
@@ -77,6 +80,7 @@ impl<'a> Spec<'a> {
             Spec::OptF64(_, v, g) => v.push(g(r)),
             Spec::OptU32(_, v, g) => v.push(g(r)),
             Spec::Bool(_, v, g) => v.push(g(r)),
+            Spec::OptBool(_, v, g) => v.push(g(r)),
             Spec::Str(_, v, g) => v.push(g(r)),
             Spec::OptStr(_, v, g) => v.push(g(r)),
             Spec::ListF64(_, v, g) => v.push(g(r)),
@@ -91,6 +95,7 @@ impl<'a> Spec<'a> {
             Spec::OptF64(n, v, _) => t.opt_f64(n, v),
             Spec::OptU32(n, v, _) => t.opt_u32(n, v),
             Spec::Bool(n, v, _) => t.bool(n, v),
+            Spec::OptBool(n, v, _) => t.opt_bool(n, v),
             Spec::Str(n, v, _) => t.str(n, v),
             Spec::OptStr(n, v, _) => t.opt_str(n, v),
             Spec::ListF64(n, v, _) => t.list_f64(n, v),
@@ -112,6 +117,7 @@ column!(f64_col, F64, f64);
 column!(opt_f64, OptF64, Option<f64>);
 column!(opt_u32, OptU32, Option<u32>);
 column!(bool_col, Bool, bool);
+column!(opt_bool, OptBool, Option<bool>);
 column!(str_col, Str, &'a str);
 column!(opt_str, OptStr, Option<&'a str>);
 column!(list_f64, ListF64, Vec<f64>);
@@ -163,7 +169,9 @@ pub fn filled_by(column: &str) -> Option<&'static [Find]> {
         | "work_loads"
         | "work_friction"
         | "work_residual"
-        | "mechanism_dof" => &[Thickness, Friction, LoadFactor],
+        | "mechanism_dof"
+        | "mechanism_admissible"
+        | "critical_apex_shared" => &[Thickness, Friction, LoadFactor],
         "k_c_rotational" | "mu_rotational_mixed" | "mu_min" | "k_mixed_sliding" => &[Thresholds],
         "thrust_min"
         | "thrust_max"
@@ -267,6 +275,8 @@ fn answer_columns<'a>() -> Vec<Spec<'a>> {
         opt_f64("work_friction", move |r| s(r).work_friction),
         opt_f64("work_residual", move |r| s(r).work_residual),
         opt_u32("mechanism_dof", move |r| s(r).mechanism_dof),
+        opt_bool("mechanism_admissible", move |r| s(r).mechanism_admissible),
+        opt_f64("critical_apex_shared", move |r| s(r).critical_apex_shared),
         opt_f64("k_c_rotational", move |r| s(r).k_c_rotational),
         opt_f64("mu_rotational_mixed", move |r| s(r).mu_rotational_mixed),
         opt_f64("mu_min", move |r| s(r).mu_min),

@@ -201,6 +201,16 @@ const COLUMN_DOCS: &[(&str, &str, &str)] = &[
         "",
         "degrees of freedom of the blocks between the active joints",
     ),
+    (
+        "mechanism_admissible",
+        "",
+        "true when the collapse mechanism obeys every flow rule (its work equation then checks the state)",
+    ),
+    (
+        "critical_apex_shared",
+        "",
+        "the find's critical value (μ_c, K_c or λ_max) with an apex load of a pointed arch shared freely between the halves",
+    ),
     ("k_c_rotational", "R/r", "collapse thickness at μ = ∞"),
     (
         "mu_rotational_mixed",
