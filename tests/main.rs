@@ -2,6 +2,7 @@
 //! binary.
 
 mod apex;
+mod apex_oracle;
 mod architecture;
 mod archive;
 mod boundaries;
