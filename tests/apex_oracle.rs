@@ -513,8 +513,8 @@ fn free_split_and_keystone_limit_are_one_value() {
 /// (|T| and |T − P| within μN, so H ≥ λ/μ with T = P/2) while the halves slide outward on
 /// their springings (H ≤ (1 + λ)·cot(α − φ), tan φ = μ), all over W_half. So μ_c is the
 /// positive root of (1 + λ) sin α μ² + (1 + 2λ) cos α μ − λ sin α = 0, whatever the
-/// eccentricity, thickness and voussoir count: 0.1147321, the value an independent
-/// programme reported for "the whole load on one half".
+/// eccentricity, thickness and voussoir count: 0.1147321, the 0.11473 reported for this scene
+/// by a programme meant to put the whole load on one half that kept a joint on each side of it.
 #[test]
 fn load_on_a_sliver_between_two_crown_joints_gives_0_11473() {
     let (s, c) = ALPHA.to_radians().sin_cos();
