@@ -126,20 +126,15 @@ fn draw_panel<DB: DrawingBackend>(
         .build_cartesian_2d(x0..x1, y0..y1)?;
     let fx = |v: &f64| format!("{:.*}", decimals_for(x1 - x0), v);
     let log = p.log_y;
+    // A logarithmic axis is ticked by `style::log_ticks`, not at plotters' key points.
     let fy = |v: &f64| {
         if log {
-            // Powers of ten only, typeset as 10 with a superscript exponent; the ticks
-            // between them stay unlabelled.
-            let e = v.round();
-            if (v - e).abs() < 1e-9 {
-                format!("1e{}", e as i32)
-            } else {
-                String::new()
-            }
+            String::new()
         } else {
             format!("{:.*}", decimals_for(y1 - y0), v)
         }
     };
+    let tick = ctx.px(5.0);
     chart
         .configure_mesh()
         .x_desc(p.x_desc.clone())
@@ -150,10 +145,23 @@ fn draw_panel<DB: DrawingBackend>(
         .y_labels(7)
         .label_style(ctx.font(12.5))
         .axis_desc_style(ctx.font(13.5))
-        .set_all_tick_mark_size(ctx.px(5.0))
+        .set_tick_mark_size(LabelAreaPosition::Bottom, tick)
+        .set_tick_mark_size(LabelAreaPosition::Left, if log { 0 } else { tick })
         .light_line_style(TRANSPARENT)
-        .bold_line_style(BLACK.mix(0.08).stroke_width(1))
+        .bold_line_style(if log {
+            TRANSPARENT.stroke_width(1)
+        } else {
+            BLACK.mix(0.08).stroke_width(1)
+        })
         .draw()?;
+    if log {
+        let ticks: Vec<(i32, String)> = style::log_ticks(10f64.powf(y0), 10f64.powf(y1))
+            .into_iter()
+            .map(|(v, label)| (chart.backend_coord(&(x0, v.log10())).1, label))
+            .collect();
+        let plot = chart.plotting_area().get_pixel_range();
+        style::draw_ticks(root, ctx, plot, style::AxisSide::Left, &ticks)?;
+    }
     for (i, l) in p.lines.iter().enumerate() {
         let grey = LINE_GREYS[i % LINE_GREYS.len()];
         let pts: Vec<(f64, f64)> = l.points.iter().map(|q| (q.x, p.y_of(q.y))).collect();
