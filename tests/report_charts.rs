@@ -4,6 +4,7 @@
 
 use crate::common::{run_study, scratch};
 use archstudy::output::RunLayout;
+use archstudy::report::{charts, data};
 use archstudy::store;
 
 /// A horizontal body force over K and μ (with μ = ∞): the collapse mechanism changes over
@@ -67,4 +68,162 @@ fn boundaries_section_only_where_boundaries_were_located() {
         .filter_map(|l| l.split('|').nth(5)?.trim().parse::<usize>().ok())
         .sum();
     assert_eq!(counted, rows.len(), "{section}");
+}
+
+/// The λ map the report draws for a run.
+fn lambda_map(run: &std::path::Path) -> archstudy::plot::lambda_map::LambdaMap {
+    let data = data::load(&RunLayout::at(run)).expect("the run loads");
+    charts::build(&data)
+        .into_iter()
+        .find_map(|f| match f.chart {
+            charts::Chart::LambdaMap(m) => Some(m),
+            _ => None,
+        })
+        .expect("a λ map")
+}
+
+#[test]
+fn lambda_map_draws_the_stored_load_factors_and_the_located_mechanism_changes() {
+    let run = run_study(&scratch("lambda-map"), "horizontal.yaml", HORIZONTAL_MAP);
+    let layout = RunLayout::at(&run);
+    let map = lambda_map(&run);
+    let cases = store::read_load_factor_cases(&layout.results()).expect("results.parquet");
+    let bifs = store::read_bifurcations(&layout.bifurcations()).expect("bifurcations.parquet");
+    // Reduced to the figure's resolution, not to the grid's.
+    assert_eq!((map.nx, map.ny), charts::lambda_map::RASTER);
+    assert_eq!(map.lambda.len(), map.nx * map.ny);
+    let ((mu0, mu1), (k0, k1)) = map.window;
+    for (v, e) in [(mu0, 0.3), (mu1, 1.0), (k0, 1.1), (k1, 1.6)] {
+        assert!((v - e).abs() < 1e-12, "{:?}", map.window);
+    }
+    let finite: Vec<&store::LoadFactorCase> = cases.iter().filter(|c| c.mu.is_finite()).collect();
+    let at = |mu: f64, k: f64| {
+        finite
+            .iter()
+            .find(|c| (c.mu - mu).abs() < 1e-12 && (c.k - k).abs() < 1e-12)
+            .expect("a case at a grid point")
+    };
+    let mus = [0.3, 0.35, 0.4, 0.5, 0.6, 0.8, 1.0];
+    let ks: Vec<f64> = (0..11).map(|j| 1.1 + 0.05 * f64::from(j)).collect();
+    // Every raster cell's λ lies between the stored λ of the four grid points round it,
+    // and equals their bilinear mean computed here from the rows.
+    let mut checked = 0;
+    for j in 0..map.ny {
+        for i in 0..map.nx {
+            let mu = mu0 + (mu1 - mu0) * (i as f64 + 0.5) / map.nx as f64;
+            let k = k0 + (k1 - k0) * (j as f64 + 0.5) / map.ny as f64;
+            let a = mus.partition_point(|&m| m <= mu).clamp(1, mus.len() - 1) - 1;
+            let b = ks
+                .partition_point(|&g| g <= k + 1e-12)
+                .clamp(1, ks.len() - 1)
+                - 1;
+            let corner = |ii: usize, jj: usize| at(mus[ii], ks[jj]).load_factor;
+            let c = [
+                corner(a, b),
+                corner(a + 1, b),
+                corner(a, b + 1),
+                corner(a + 1, b + 1),
+            ];
+            let Some(c) = c.into_iter().collect::<Option<Vec<f64>>>() else {
+                continue;
+            };
+            let (s, t) = (
+                (mu - mus[a]) / (mus[a + 1] - mus[a]),
+                (k - ks[b]) / (ks[b + 1] - ks[b]),
+            );
+            let expected = c[0] * (1.0 - s) * (1.0 - t)
+                + c[1] * s * (1.0 - t)
+                + c[2] * (1.0 - s) * t
+                + c[3] * s * t;
+            let drawn = map.lambda[j * map.nx + i];
+            assert!(
+                (drawn - expected).abs() <= 1e-9 * expected.abs().max(1e-3),
+                "cell ({i}, {j}) at μ = {mu}, K = {k}: {drawn} against {expected}"
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked > map.nx * map.ny / 2, "{checked} cells checked");
+    // The scale spans the stored values, 0.0295 to 0.859: a factor of 29, under the 30 at
+    // which the scale turns logarithmic.
+    let stored: Vec<f64> = cases.iter().filter_map(|c| c.load_factor).collect();
+    let lo = stored.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = stored.iter().copied().fold(0.0, f64::max);
+    assert_eq!(map.lambda_range, (lo, hi));
+    assert!((hi / lo - 29.18).abs() < 0.01, "λ from {lo} to {hi}");
+    assert!(!map.log, "λ from {lo} to {hi} on a logarithmic scale");
+    // The mechanism drawn at a grid point is the stored case's, away from the located
+    // changes (two raster cells).
+    let (cx, cy) = ((mu1 - mu0) / map.nx as f64, (k1 - k0) / map.ny as f64);
+    let mut compared = 0;
+    for c in &finite {
+        let near = bifs.iter().any(|b| {
+            b.mu.is_finite() && ((b.mu - c.mu) / cx).abs() < 2.0 && ((b.k - c.k) / cy).abs() < 2.0
+        });
+        let Some(m) = c.mechanism.as_deref() else {
+            continue;
+        };
+        if near {
+            continue;
+        }
+        let i = (((c.mu - mu0) / cx) as usize).min(map.nx - 1);
+        let j = (((c.k - k0) / cy) as usize).min(map.ny - 1);
+        let drawn = map.mechanism[j * map.nx + i].map(|x| map.mechanisms[x as usize].as_str());
+        assert_eq!(drawn, Some(m), "μ = {}, K = {}", c.mu, c.k);
+        compared += 1;
+    }
+    assert!(compared >= 50, "{compared} of 77 grid points compared");
+    // Every vertex of a drawn boundary is a located change, and every pair of mechanisms
+    // with located changes at finite μ on two neighbouring grid lines is outlined.
+    let located = |p: &(f64, f64)| bifs.iter().any(|b| b.mu == p.0 && b.k == p.1);
+    assert!(!map.boundaries.is_empty());
+    for line in &map.boundaries {
+        assert!(line.iter().all(located), "{line:?}");
+    }
+    let on_lines: usize = map.boundaries.iter().map(Vec::len).sum();
+    let at_finite = bifs.iter().filter(|b| b.mu.is_finite()).count();
+    assert!(
+        on_lines * 10 >= at_finite * 8,
+        "{on_lines} of {at_finite} located changes drawn"
+    );
+    // μ = ∞ is its own strip, with the stored λ at its ends.
+    let strip = map.infinite.as_ref().expect("a μ = ∞ strip");
+    let inf = |k: f64| {
+        cases
+            .iter()
+            .find(|c| c.mu.is_infinite() && (c.k - k).abs() < 1e-12)
+            .expect("a case at μ = ∞")
+            .load_factor
+    };
+    // K = 1.1 lies below K_c = 1.1136 of the semicircle: no state stands, no λ; the cells
+    // between it and K = 1.15 take the λ of K = 1.15.
+    assert_eq!(inf(1.1), None);
+    let (Some(l155), Some(l160), Some(l115)) = (inf(1.55), inf(1.6), inf(1.15)) else {
+        panic!("λ at μ = ∞ for K = 1.15, 1.55 and 1.6");
+    };
+    assert!(
+        (strip.lambda[0] - l115).abs() < 1e-12,
+        "{}",
+        strip.lambda[0]
+    );
+    let half = 0.5 / map.ny as f64 * 0.5 / 0.05;
+    let expect_last = l160 - (l160 - l155) * half;
+    let last = strip.lambda[map.ny - 1];
+    assert!(
+        (last - expect_last).abs() < 1e-9,
+        "{last} against {expect_last}"
+    );
+}
+
+#[test]
+fn lambda_map_only_where_k_and_mu_have_several_values() {
+    let few = HORIZONTAL_MAP.replace(
+        "mu: {values: [0.3, 0.35, 0.4, 0.5, 0.6, 0.8, 1.0, inf]}",
+        "mu: {values: [0.4, 0.6, inf]}",
+    );
+    let run = run_study(&scratch("lambda-map-few"), "horizontal.yaml", &few);
+    let data = data::load(&RunLayout::at(&run)).expect("the run loads");
+    let figures = charts::build(&data);
+    assert!(figures.iter().any(|f| f.stem == "load-factor"));
+    assert!(!figures.iter().any(|f| f.stem.starts_with("lambda-map")));
 }
