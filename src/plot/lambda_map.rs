@@ -415,3 +415,39 @@ impl LambdaMap {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn map(log: bool, range: (f64, f64)) -> LambdaMap {
+        LambdaMap {
+            title: String::new(),
+            window: ((0.0, 1.0), (1.0, 2.0)),
+            nx: 1,
+            ny: 1,
+            lambda: vec![0.5],
+            mechanism: vec![None],
+            mechanisms: Vec::new(),
+            boundaries: Vec::new(),
+            lambda_range: range,
+            log,
+            infinite: None,
+        }
+    }
+
+    #[test]
+    fn colour_scale_places_lambda_by_its_logarithm_or_linearly() {
+        let m = map(true, (0.01, 1.0));
+        assert!((m.scale_position(0.1) - 0.5).abs() < 1e-12);
+        assert!((m.scale_position(10f64.powf(-1.5)) - 0.25).abs() < 1e-12);
+        // Below the scale: its lowest colour.
+        assert_eq!(m.scale_position(1e-4), 0.0);
+        assert_eq!(m.color(1e-4), m.color(0.01));
+        assert_eq!(m.color(1.0), RGBColor(253, 231, 37));
+        assert_eq!(m.color(f64::NAN), NO_VALUE);
+        let m = map(false, (0.2, 0.6));
+        assert!((m.scale_position(0.3) - 0.25).abs() < 1e-12);
+        assert_eq!(m.color(0.2), RGBColor(68, 1, 84));
+    }
+}

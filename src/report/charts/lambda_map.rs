@@ -25,6 +25,10 @@ pub const RASTER: (usize, usize) = (240, 200);
 /// Above this ratio of the largest to the smallest λ, the colour scale is logarithmic.
 const LOG_RATIO: f64 = 30.0;
 
+/// A logarithmic colour scale spans at most this ratio below the largest λ; smaller values
+/// take its lowest colour.
+const LOG_SPAN: f64 = 100.0;
+
 /// The index of `x` in the increasing grid `v`, within a relative tolerance.
 fn grid_index(v: &[f64], x: f64) -> Option<usize> {
     let i = v.partition_point(|&g| g < x);
@@ -86,8 +90,12 @@ pub fn figures(data: &RunData, lc: &LoadCaseFigure) -> Vec<FigureSpec> {
             continue;
         };
         let mut caption = format!(
-            "The collapse load factor λ_max of every case (results.parquet) as a colour over the friction coefficient μ and the thickness ratio K, bilinear between the grid points and drawn at the figure's resolution; {} colour scale.",
-            if map.log { "a logarithmic" } else { "a linear" }
+            "The collapse load factor λ_max of every case (results.parquet) as a colour over the friction coefficient μ and the thickness ratio K, bilinear between the grid points and drawn at the figure's resolution; {}.",
+            if map.log {
+                "a logarithmic colour scale over two decades below the largest λ (smaller values take its lowest colour)"
+            } else {
+                "a linear colour scale"
+            }
         );
         caption.push_str(" Thin lines with a white edge join the located changes of the collapse mechanism on neighbouring grid lines (bifurcations.parquet); each region bounded by them is named by its collapse mechanism at λ_max (hinges only, hinges and sliding joints, sliding joints only).");
         if map.infinite.is_some() {
@@ -225,6 +233,10 @@ pub fn lambda_map(
             .map(|c| c.1)
             .collect(),
     });
+    let log = lo > 0.0 && hi > LOG_RATIO * lo;
+    // λ falls to 0 at the collapse curve: a few cells next to it would stretch a logarithmic
+    // scale over decades that the rest of the map does not use.
+    let lo = if log { lo.max(hi / LOG_SPAN) } else { lo };
     Some(LambdaMap {
         title,
         window: ((mu0, mu1), (k0, k1)),
@@ -235,7 +247,7 @@ pub fn lambda_map(
         mechanisms,
         boundaries: boundaries(&g, &changes),
         lambda_range: (lo, hi),
-        log: lo > 0.0 && hi > LOG_RATIO * lo,
+        log,
         infinite,
     })
 }
