@@ -227,3 +227,98 @@ fn lambda_map_only_where_k_and_mu_have_several_values() {
     assert!(figures.iter().any(|f| f.stem == "load-factor"));
     assert!(!figures.iter().any(|f| f.stem.starts_with("lambda-map")));
 }
+
+const HALF_ANGLES: &str = "\
+name: segmental
+grid:
+  half_angle_deg: {values: [70, 80, 90]}
+  k: {from: 1.01, to: 1.4, steps: 14}
+  mu: {from: 0.15, to: 0.8, steps: 14}
+load_cases:
+  - {name: gravity, kind: self_weight}
+find: state
+";
+
+#[test]
+fn regime_map_panels_name_their_arch_and_the_caption_lists_their_bifurcations() {
+    let run = run_study(&scratch("panels-alpha"), "segmental.yaml", HALF_ANGLES);
+    let data = data::load(&RunLayout::at(&run)).expect("the run loads");
+    let figure = charts::build(&data)
+        .into_iter()
+        .find(|f| f.stem == "regime-maps")
+        .expect("regime maps by half-angle");
+    // The paper figure has no title, but each panel is named by its α.
+    let svg = figure
+        .render(archstudy::plot::Format::Paper(
+            archstudy::manifest::FigureWidth::Double,
+        ))
+        .expect("drawn");
+    let svg = String::from_utf8(svg).expect("SVG text");
+    for alpha in ["α = 70°", "α = 80°", "α = 90°"] {
+        assert_eq!(svg.matches(alpha).count(), 1, "{alpha} in the paper figure");
+    }
+    // Every bifurcation of bifurcations.parquet is listed under its own panel, with μ and K
+    // to four decimals (numbered on the map where its values find no place).
+    let bifs: Vec<(f64, f64, f64)> = data
+        .bifurcations
+        .iter()
+        .flatten()
+        .zip(&data.bifurcation_groups)
+        .map(|(b, g)| (g.half_angle_deg.expect("α"), b.mu, b.k))
+        .collect();
+    assert!(bifs.len() >= 4, "{bifs:?}");
+    let listed = figure
+        .caption
+        .split(" Bifurcations by panel: ")
+        .nth(1)
+        .expect("bifurcations in the caption");
+    for (alpha, mu, k) in bifs {
+        let panel = listed
+            .split(". ")
+            .find(|p| p.starts_with(&format!("α = {alpha}°:")))
+            .unwrap_or_else(|| panic!("no panel α = {alpha}° in {listed}"));
+        let (mu, k) = (format!("μ = {mu:.4}"), format!("K = {k:.4}"));
+        assert!(
+            panel.contains(&mu) && panel.contains(&k),
+            "{mu}, {k} not in {panel}"
+        );
+    }
+}
+
+#[test]
+fn mechanism_panels_explain_their_orange_joint_dots() {
+    let run = run_study(&scratch("mechanism-dots"), "state.yaml", STATE_MAP);
+    let data = data::load(&RunLayout::at(&run)).expect("the run loads");
+    let figures = charts::build(&data);
+    let mut seen = 0;
+    for f in &figures {
+        let charts::Chart::Mechanisms(m) = &f.chart else {
+            continue;
+        };
+        // One orange dot per sliding joint of the limit state in every panel, an arrow at
+        // those that slip in the panel's mechanism: the caption says so.
+        let slides: usize = m.panels.iter().map(|p| p.drawing.slides.len()).sum();
+        let still = (m.panels.iter().flat_map(|p| &p.drawing.slides))
+            .filter(|s| s.sense.is_none())
+            .count();
+        let svg = String::from_utf8(f.render(archstudy::plot::Format::Svg).expect("drawn"))
+            .expect("SVG text");
+        let orange = svg.matches("fill=\"#E67800\"").count();
+        assert_eq!(orange, slides, "{}", f.stem);
+        assert!(
+            f.caption
+                .contains("an orange dot at the middle of the joint"),
+            "{}",
+            f.caption
+        );
+        if still > 0 {
+            assert!(
+                f.caption.contains("a dot without an arrow"),
+                "{}",
+                f.caption
+            );
+        }
+        seen += slides;
+    }
+    assert!(seen >= 2, "{seen} sliding joints drawn");
+}
