@@ -322,3 +322,57 @@ fn mechanism_panels_explain_their_orange_joint_dots() {
     }
     assert!(seen >= 2, "{seen} sliding joints drawn");
 }
+
+#[test]
+fn voussoir_study_overlays_the_collapse_curve_of_every_count() {
+    use archstudy::model::{Arch, Discretisation, Friction, WeightModel};
+    use archstudy::scene::{self, Find, Scene};
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("studies/voussoirs.yaml");
+    let text = std::fs::read_to_string(path).expect("studies/voussoirs.yaml");
+    let run = run_study(&scratch("voussoir-curves"), "voussoirs.yaml", &text);
+    let data = data::load(&RunLayout::at(&run)).expect("the run loads");
+    let figure = charts::build(&data)
+        .into_iter()
+        .find(|f| f.stem == "collapse-curves")
+        .expect("the collapse curves by voussoir count");
+    let charts::Chart::Lines(chart) = &figure.chart else {
+        panic!("a line chart");
+    };
+    let lines = &chart.panels[0].lines;
+    let labels: Vec<&str> = lines.iter().map(|l| l.label.as_str()).collect();
+    assert_eq!(labels, ["N = 6", "N = 8", "N = 12", "N = 24", "continuum"]);
+    // At μ = 0.8 every arch collapses by hinges alone: the curve is flat at K_c of its
+    // count, which an independent solve at infinite friction gives.
+    let mut ends = Vec::new();
+    for (line, n) in lines
+        .iter()
+        .zip([Some(6), Some(8), Some(12), Some(24), None])
+    {
+        let disc = n.map_or(Discretisation::Continuum, Discretisation::Voussoirs);
+        let arch = Arch::new(1.2, 90.0, WeightModel::Annular, disc).expect("arch");
+        let kc = scene::solve(&Scene::new(arch, Friction::INFINITE, Find::Thickness))
+            .k_crit
+            .expect("K_c");
+        let end = line
+            .points
+            .iter()
+            .find(|p| p.x >= 0.8 - 1e-9)
+            .expect("a collapse point at μ = 0.8");
+        assert!(
+            (end.y - kc).abs() < 1e-6,
+            "{}: {} against K_c = {kc}",
+            line.label,
+            end.y
+        );
+        assert_eq!(end.mechanism, "rotational", "{}", line.label);
+        ends.push(end.y);
+    }
+    // The joints of 6 voussoirs are among those of 12, those among those of 24, and those
+    // among the continuum's sections: more places for a hinge, never a thinner arch.
+    let tol = 1e-9;
+    assert!(
+        ends[0] <= ends[2] + tol && ends[2] <= ends[3] + tol && ends[3] <= ends[4] + tol,
+        "{ends:?}"
+    );
+    assert!(ends[..4].iter().all(|&k| k < ends[4]), "{ends:?}");
+}
