@@ -65,14 +65,18 @@ pub struct LinesChart {
     pub panels: Vec<LinePanel>,
 }
 
-/// Greys of increasing lightness for the lines, so that the mechanism colours stay the
-/// only colours.
-const LINE_GREYS: [RGBColor; 4] = [
-    RGBColor(30, 30, 30),
-    RGBColor(90, 90, 90),
-    RGBColor(140, 140, 140),
-    RGBColor(180, 180, 180),
-];
+/// The grey of line `i` of `n`: from near black to a light grey in equal steps, so that the
+/// mechanism colours stay the only colours and no two lines of a panel share a grey.
+fn line_grey(i: usize, n: usize) -> RGBColor {
+    let (dark, light) = (30.0, 185.0);
+    let f = if n > 1 {
+        i as f64 / (n - 1) as f64
+    } else {
+        0.0
+    };
+    let g = (dark + (light - dark) * f.min(1.0)).round() as u8;
+    RGBColor(g, g, g)
+}
 
 fn range(vals: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
     let (lo, hi) = vals
@@ -163,7 +167,7 @@ fn draw_panel<DB: DrawingBackend>(
         style::draw_ticks(root, ctx, plot, style::AxisSide::Left, &ticks)?;
     }
     for (i, l) in p.lines.iter().enumerate() {
-        let grey = LINE_GREYS[i % LINE_GREYS.len()];
+        let grey = line_grey(i, p.lines.len());
         let pts: Vec<(f64, f64)> = l.points.iter().map(|q| (q.x, p.y_of(q.y))).collect();
         for piece in clip_polyline(&pts, (x0, x1), (y0, y1)) {
             chart.draw_series(LineSeries::new(piece, grey.stroke_width(ctx.upx(1.6))))?;
@@ -280,7 +284,7 @@ impl LinesChart {
                 LegendItem::new(
                     l.label.clone(),
                     Mark::Line {
-                        color: LINE_GREYS[i % LINE_GREYS.len()],
+                        color: line_grey(i, p.lines.len()),
                         width: 2.4,
                         dashed: false,
                     },
@@ -288,5 +292,18 @@ impl LinesChart {
             }));
         }
         items
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_line_of_a_panel_gets_its_own_grey() {
+        // Five voussoir counts: five greys, darkest first, none repeated.
+        let greys: Vec<u8> = (0..5).map(|i| line_grey(i, 5).0).collect();
+        assert_eq!(greys, [30, 69, 108, 146, 185]);
+        assert_eq!(line_grey(0, 1), RGBColor(30, 30, 30));
     }
 }
