@@ -16,6 +16,7 @@ mod mechanisms;
 mod paper;
 mod report;
 mod report_arches;
+mod report_charts;
 mod report_regime_map;
 mod report_states;
 mod run;

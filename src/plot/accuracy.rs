@@ -5,6 +5,7 @@ use super::style::{self, LegendItem, Mark, palette};
 use super::{Figure, PlotContext};
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 /// One compared quantity.
 #[derive(Debug, Clone, PartialEq)]
@@ -56,16 +57,6 @@ fn log_range(v: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
     })
 }
 
-/// Tick labels at powers of ten only (the other ticks stay unlabelled).
-fn sci(v: f64) -> String {
-    let e = v.log10().round() as i32;
-    if (v / 10f64.powi(e) - 1.0).abs() < 1e-9 {
-        format!("1e{e}")
-    } else {
-        String::new()
-    }
-}
-
 #[allow(clippy::too_many_arguments)]
 fn panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
@@ -96,19 +87,29 @@ fn panel<DB: DrawingBackend>(
         .x_label_area_size(ctx.px(48.0))
         .y_label_area_size(ctx.px(66.0))
         .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
-    let f = |v: &f64| sci(*v);
+    // Both axes are ticked by `style::log_ticks`, not at plotters' key points.
+    let none = |_: &f64| String::new();
     chart
         .configure_mesh()
         .x_desc(x_desc)
         .y_desc("|error| against the continuum")
-        .x_label_formatter(&f)
-        .y_label_formatter(&f)
+        .x_label_formatter(&none)
+        .y_label_formatter(&none)
         .label_style(ctx.font(12.5))
         .axis_desc_style(ctx.font(13.5))
-        .set_all_tick_mark_size(ctx.px(5.0))
-        .light_line_style(BLACK.mix(0.04))
-        .bold_line_style(BLACK.mix(0.10).stroke_width(1))
+        .set_all_tick_mark_size(0)
+        .light_line_style(TRANSPARENT)
+        .bold_line_style(TRANSPARENT)
         .draw()?;
+    let plot = chart.plotting_area().get_pixel_range();
+    let xt: Vec<(i32, String)> = (style::log_ticks(x0, x1).into_iter())
+        .map(|(v, l)| (chart.backend_coord(&(v, y0)).0, l))
+        .collect();
+    let yt: Vec<(i32, String)> = (style::log_ticks(y0, y1).into_iter())
+        .map(|(v, l)| (chart.backend_coord(&(x0, v)).1, l))
+        .collect();
+    style::draw_ticks(area, ctx, plot.clone(), style::AxisSide::Bottom, &xt)?;
+    style::draw_ticks(area, ctx, plot.clone(), style::AxisSide::Left, &yt)?;
     // Labels stacked from the top so that lines close together keep readable labels.
     for (i, (x, label)) in vlines.iter().enumerate() {
         let x = *x;
@@ -119,13 +120,22 @@ fn panel<DB: DrawingBackend>(
             palette::GREY.stroke_width(ctx.upx(1.5)),
         ))?;
         let c = chart.backend_coord(&(x, y1));
+        let font = ctx.font(12.0).color(&palette::GREY);
+        let (w, _) = style::text_block_size(&font, std::slice::from_ref(label), 1.0);
+        // Right of its line, or left of it where the label would leave the plot.
+        let right = c.0 + ctx.px(4.0) + w <= plot.0.end;
+        let (x_at, anchor) = if right {
+            (c.0 + ctx.px(4.0), HPos::Left)
+        } else {
+            (c.0 - ctx.px(4.0), HPos::Right)
+        };
         area.draw(&Text::new(
             label.to_string(),
             (
-                c.0 - area.get_base_pixel().0 + ctx.px(4.0),
+                x_at - area.get_base_pixel().0,
                 c.1 - area.get_base_pixel().1 + ctx.px(4.0 + 16.0 * i as f64),
             ),
-            ctx.font(12.0).color(&palette::GREY),
+            font.pos(Pos::new(anchor, VPos::Top)),
         ))?;
     }
     for (i, (_, pts)) in series.iter().enumerate() {

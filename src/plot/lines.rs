@@ -65,14 +65,18 @@ pub struct LinesChart {
     pub panels: Vec<LinePanel>,
 }
 
-/// Greys of increasing lightness for the lines, so that the mechanism colours stay the
-/// only colours.
-const LINE_GREYS: [RGBColor; 4] = [
-    RGBColor(30, 30, 30),
-    RGBColor(90, 90, 90),
-    RGBColor(140, 140, 140),
-    RGBColor(180, 180, 180),
-];
+/// The grey of line `i` of `n`: from near black to a light grey in equal steps, so that the
+/// mechanism colours stay the only colours and no two lines of a panel share a grey.
+fn line_grey(i: usize, n: usize) -> RGBColor {
+    let (dark, light) = (30.0, 185.0);
+    let f = if n > 1 {
+        i as f64 / (n - 1) as f64
+    } else {
+        0.0
+    };
+    let g = (dark + (light - dark) * f.min(1.0)).round() as u8;
+    RGBColor(g, g, g)
+}
 
 fn range(vals: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
     let (lo, hi) = vals
@@ -126,20 +130,15 @@ fn draw_panel<DB: DrawingBackend>(
         .build_cartesian_2d(x0..x1, y0..y1)?;
     let fx = |v: &f64| format!("{:.*}", decimals_for(x1 - x0), v);
     let log = p.log_y;
+    // A logarithmic axis is ticked by `style::log_ticks`, not at plotters' key points.
     let fy = |v: &f64| {
         if log {
-            // Powers of ten only, typeset as 10 with a superscript exponent; the ticks
-            // between them stay unlabelled.
-            let e = v.round();
-            if (v - e).abs() < 1e-9 {
-                format!("1e{}", e as i32)
-            } else {
-                String::new()
-            }
+            String::new()
         } else {
             format!("{:.*}", decimals_for(y1 - y0), v)
         }
     };
+    let tick = ctx.px(5.0);
     chart
         .configure_mesh()
         .x_desc(p.x_desc.clone())
@@ -150,12 +149,25 @@ fn draw_panel<DB: DrawingBackend>(
         .y_labels(7)
         .label_style(ctx.font(12.5))
         .axis_desc_style(ctx.font(13.5))
-        .set_all_tick_mark_size(ctx.px(5.0))
+        .set_tick_mark_size(LabelAreaPosition::Bottom, tick)
+        .set_tick_mark_size(LabelAreaPosition::Left, if log { 0 } else { tick })
         .light_line_style(TRANSPARENT)
-        .bold_line_style(BLACK.mix(0.08).stroke_width(1))
+        .bold_line_style(if log {
+            TRANSPARENT.stroke_width(1)
+        } else {
+            BLACK.mix(0.08).stroke_width(1)
+        })
         .draw()?;
+    if log {
+        let ticks: Vec<(i32, String)> = style::log_ticks(10f64.powf(y0), 10f64.powf(y1))
+            .into_iter()
+            .map(|(v, label)| (chart.backend_coord(&(x0, v.log10())).1, label))
+            .collect();
+        let plot = chart.plotting_area().get_pixel_range();
+        style::draw_ticks(root, ctx, plot, style::AxisSide::Left, &ticks)?;
+    }
     for (i, l) in p.lines.iter().enumerate() {
-        let grey = LINE_GREYS[i % LINE_GREYS.len()];
+        let grey = line_grey(i, p.lines.len());
         let pts: Vec<(f64, f64)> = l.points.iter().map(|q| (q.x, p.y_of(q.y))).collect();
         for piece in clip_polyline(&pts, (x0, x1), (y0, y1)) {
             chart.draw_series(LineSeries::new(piece, grey.stroke_width(ctx.upx(1.6))))?;
@@ -272,7 +284,7 @@ impl LinesChart {
                 LegendItem::new(
                     l.label.clone(),
                     Mark::Line {
-                        color: LINE_GREYS[i % LINE_GREYS.len()],
+                        color: line_grey(i, p.lines.len()),
                         width: 2.4,
                         dashed: false,
                     },
@@ -280,5 +292,18 @@ impl LinesChart {
             }));
         }
         items
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_line_of_a_panel_gets_its_own_grey() {
+        // Five voussoir counts: five greys, darkest first, none repeated.
+        let greys: Vec<u8> = (0..5).map(|i| line_grey(i, 5).0).collect();
+        assert_eq!(greys, [30, 69, 108, 146, 185]);
+        assert_eq!(line_grey(0, 1), RGBColor(30, 30, 30));
     }
 }

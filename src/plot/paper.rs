@@ -467,6 +467,14 @@ mod tests {
             pieces("1e-3"),
             vec![(Shift::Base, "10".into()), (Shift::Sup, "\u{2212}3".into())]
         );
+        // A multiple of a power of ten on a short logarithmic axis.
+        assert_eq!(
+            pieces("2×10^-2"),
+            vec![
+                (Shift::Base, "2×10".into()),
+                (Shift::Sup, "\u{2212}2".into())
+            ]
+        );
         assert_eq!(pieces("-0.0000"), vec![(Shift::Base, "0".into())]);
         assert_eq!(pieces("0.000"), vec![(Shift::Base, "0".into())]);
         assert_eq!(pieces("-0.25"), vec![(Shift::Base, "\u{2212}0.25".into())]);

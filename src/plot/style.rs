@@ -620,6 +620,97 @@ pub fn title<DB: DrawingBackend>(
     Ok(area.margin(ctx.px(38.0), 0, 0, 0))
 }
 
+/// The ticks of a logarithmic axis over [lo, hi] (lo > 0), each with its label: every
+/// power of ten, with 2 and 5 times each where the range spans less than about two
+/// decades, and every integer multiple where it spans less than one (so that a short axis
+/// still carries three labels or more); every other power of ten beyond eight decades.
+/// Powers of ten are written `1e-2` (typeset as 10 with the superscript −2), multiples
+/// `2×10^-2`; ten to the 0 and 1 as `1` and `10`, their multiples as plain numbers.
+pub fn log_ticks(lo: f64, hi: f64) -> Vec<(f64, String)> {
+    if !(lo > 0.0 && hi > lo && hi.is_finite()) {
+        return Vec::new();
+    }
+    let span = (hi / lo).log10();
+    let mantissas: &[u32] = if span < 1.0 {
+        &[1, 2, 3, 4, 5, 6, 7, 8, 9]
+    } else if span < 2.2 {
+        &[1, 2, 5]
+    } else {
+        &[1]
+    };
+    let every = if span > 8.0 { 2 } else { 1 };
+    let (e0, e1) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
+    let mut out = Vec::new();
+    for e in e0..=e1 {
+        for &m in mantissas {
+            if m == 1 && e.rem_euclid(every) != 0 {
+                continue;
+            }
+            let v = f64::from(m) * 10f64.powi(e);
+            // A relative slack, so that the ends of a range of whole decades are ticked.
+            if v < lo * (1.0 - 1e-9) || v > hi * (1.0 + 1e-9) {
+                continue;
+            }
+            let label = match (m, e) {
+                (_, 0) => m.to_string(),
+                (_, 1) => (10 * m).to_string(),
+                (1, _) => format!("1e{e}"),
+                _ => format!("{m}×10^{e}"),
+            };
+            out.push((v, label));
+        }
+    }
+    out
+}
+
+/// Which side of the plotting area an axis drawn by [`draw_ticks`] is on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AxisSide {
+    /// The y axis, at the left.
+    Left,
+    /// The x axis, at the bottom.
+    Bottom,
+}
+
+/// Draws an axis's ticks on `area` (any part of the canvas): a tick mark, its label and a
+/// faint grid line across the plotting area `plot` (absolute pixels, as
+/// `plotting_area().get_pixel_range()` gives them) at each absolute pixel position of
+/// `ticks`.
+pub fn draw_ticks<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    ctx: &PlotContext,
+    plot: (std::ops::Range<i32>, std::ops::Range<i32>),
+    side: AxisSide,
+    ticks: &[(i32, String)],
+) -> DrawResult<(), DB> {
+    let (bx, by) = area.get_base_pixel();
+    let (xr, yr) = plot;
+    let ink = BLACK.stroke_width(ctx.upx(1.0).max(1));
+    let grid = BLACK.mix(0.08).stroke_width(1);
+    let (len, gap) = (ctx.px(5.0), ctx.px(8.0));
+    for (p, label) in ticks {
+        let (line, mark, at, pos) = match side {
+            AxisSide::Left => (
+                [(xr.start, *p), (xr.end, *p)],
+                [(xr.start - len, *p), (xr.start, *p)],
+                (xr.start - gap, *p),
+                Pos::new(HPos::Right, VPos::Center),
+            ),
+            AxisSide::Bottom => (
+                [(*p, yr.start), (*p, yr.end)],
+                [(*p, yr.end), (*p, yr.end + len)],
+                (*p, yr.end + gap),
+                Pos::new(HPos::Center, VPos::Top),
+            ),
+        };
+        let rel = |(x, y): (i32, i32)| (x - bx, y - by);
+        area.draw(&PathElement::new(line.map(rel).to_vec(), grid))?;
+        area.draw(&PathElement::new(mark.map(rel).to_vec(), ink))?;
+        area.draw(&Text::new(label.clone(), rel(at), ctx.font(12.5).pos(pos)))?;
+    }
+    Ok(())
+}
+
 /// A "nice" tick step for a range, giving about `n` ticks.
 pub fn nice_step(span: f64, n: usize) -> f64 {
     let raw = span / n.max(1) as f64;
@@ -640,6 +731,40 @@ pub fn nice_step(span: f64, n: usize) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn log_ticks_label_every_decade_and_more_on_short_axes() {
+        let labels =
+            |lo, hi| -> Vec<String> { log_ticks(lo, hi).into_iter().map(|t| t.1).collect() };
+        // Five decades: the powers of ten only.
+        assert_eq!(
+            labels(1e-3, 1e2),
+            ["1e-3", "1e-2", "1e-1", "1", "10", "1e2"]
+        );
+        // From 0.012 to 0.86 (under two decades): 2 and 5 times each decade too.
+        let t = log_ticks(0.012, 0.86);
+        let values: Vec<f64> = t.iter().map(|t| t.0).collect();
+        let expected = [0.02, 0.05, 0.1, 0.2, 0.5];
+        assert_eq!(values.len(), expected.len(), "{t:?}");
+        for (v, e) in values.iter().zip(expected) {
+            assert!((v - e).abs() < 1e-12 * e, "{v} against {e}");
+        }
+        assert_eq!(t[0].1, "2×10^-2");
+        assert_eq!(t[2].1, "1e-1");
+        // Inside one decade: every multiple.
+        assert_eq!(
+            labels(0.25, 0.8),
+            [
+                "3×10^-1", "4×10^-1", "5×10^-1", "6×10^-1", "7×10^-1", "8×10^-1"
+            ]
+        );
+        // Ten decades: every other power of ten.
+        assert_eq!(
+            labels(1e-10, 1.0),
+            ["1e-10", "1e-8", "1e-6", "1e-4", "1e-2", "1"]
+        );
+        assert!(log_ticks(0.0, 1.0).is_empty());
+    }
 
     #[test]
     fn clipping_keeps_inside_pieces_and_breaks_at_nan() {

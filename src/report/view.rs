@@ -45,7 +45,7 @@ pub struct ReportView {
     pub key_results_note: String,
     /// Figures.
     pub figures: Vec<FigureView>,
-    /// True when boundaries.parquet was found.
+    /// True when the run located a boundary (the section is left out otherwise).
     pub has_boundaries: bool,
     /// Boundary points grouped.
     pub boundary_groups: Vec<BoundaryGroup>,
@@ -96,7 +96,7 @@ pub fn build(data: &RunData, figs: &[FigureSpec], svgs: &[String]) -> ReportView
         key_results,
         key_results_note: note,
         figures,
-        has_boundaries: data.boundaries.is_some(),
+        has_boundaries: !boundaries.groups.is_empty(),
         boundary_groups: boundaries.groups,
         collapse_points: boundaries.collapse_points,
         collapse_note: boundaries.collapse_note,

@@ -211,7 +211,11 @@ impl RegimeMap {
             0.0
         };
         let mut builder = ChartBuilder::on(&upper);
-        if ctx.titles {
+        if !with_legend {
+            // A panel of small multiples is named by its arch in every format: the caption
+            // of a paper figure cannot say which panel is which.
+            builder.caption(&self.title, ctx.font(15.0));
+        } else if ctx.titles {
             builder.caption(&self.title, ctx.font(17.0));
         }
         let mut chart = builder

@@ -335,7 +335,7 @@ impl RegimeMap {
 
     /// The regime at every cell centre of an `nx` × `ny` raster over the grid's finite range,
     /// K-major.
-    pub(super) fn raster(&self, nx: usize, ny: usize) -> Vec<Option<&str>> {
+    pub fn raster(&self, nx: usize, ny: usize) -> Vec<Option<&str>> {
         let (m, k) = (&self.mu, &self.k);
         let (mu0, mu1, k0, k1) = (m[0], m[m.len() - 1], k[0], k[k.len() - 1]);
         let cls = Classifier::new(self);

@@ -66,12 +66,14 @@ pub fn figures(data: &RunData, lc: &LoadCaseFigure) -> Vec<FigureSpec> {
         return Vec::new();
     }
     let axis_name = axis_words(data);
+    let mut caption = format!(
+        "The regime map of every {axis_name} of the study, one panel each, named above it, over the same μ and K axes and in the same colours (read each panel as the regime map of a single arch: regions from results.parquet and the located boundaries of that arch in boundaries.parquet, its collapse curve coloured by mechanism, its bifurcations marked with their values, or with their number where the values find no free place)."
+    );
+    caption.push_str(&numbered_bifurcations(&maps));
     let mut out = vec![FigureSpec {
         stem: format!("regime-maps{}", lc.stem_suffix),
         title: format!("Regime maps by {axis_name}{on}"),
-        caption: format!(
-            "The regime map of every {axis_name} of the study, one panel each, over the same μ and K axes and in the same colours (read each panel as the regime map of a single arch: regions from results.parquet and the located boundaries of that arch in boundaries.parquet, its collapse curve coloured by mechanism, its bifurcations marked with their values)."
-        ),
+        caption,
         chart: Chart::RegimeMapPanels(RegimeMapPanels {
             maps: maps.iter().map(|(_, m)| m.clone()).collect(),
         }),
@@ -81,6 +83,26 @@ pub fn figures(data: &RunData, lc: &LoadCaseFigure) -> Vec<FigureSpec> {
     }
     out.extend(bifurcations_against_axis(data, &maps, lc));
     out
+}
+
+/// The bifurcations of every panel with their numbers, for the caption: a panel too small
+/// for a bifurcation's values shows its number only.
+fn numbered_bifurcations(maps: &[(ArchKey, RegimeMap)]) -> String {
+    let panels: Vec<String> = maps
+        .iter()
+        .filter(|(_, m)| !m.bifurcations.is_empty())
+        .map(|(_, m)| {
+            let listed: Vec<String> = (m.bifurcations.iter())
+                .map(|b| format!("{}, {}: {}", b.compact, b.lines[0], b.lines[1..].join(", ")))
+                .collect();
+            format!("{}: {}", m.title, listed.join("; "))
+        })
+        .collect();
+    if panels.is_empty() {
+        String::new()
+    } else {
+        format!(" Bifurcations by panel: {}.", panels.join(". "))
+    }
 }
 
 /// `half-angle`, `voussoir count` or `arch`.

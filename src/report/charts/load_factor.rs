@@ -23,7 +23,7 @@ pub fn compact(v: f64) -> String {
 }
 
 /// Distinct finite-or-infinite values, sorted.
-fn distinct(vals: impl Iterator<Item = f64>) -> Vec<f64> {
+pub(super) fn distinct(vals: impl Iterator<Item = f64>) -> Vec<f64> {
     let mut v: Vec<f64> = vals.filter(|x| !x.is_nan()).collect();
     v.sort_by(f64::total_cmp);
     v.dedup();
@@ -85,12 +85,12 @@ pub fn x_over_l(arch: &ArchView, k: f64, half_angle_deg: f64, at_deg: f64) -> f6
 
 /// The cases of one load case, and the arch group to draw (the first half-angle and voussoir
 /// count of the study: a study with arch axes gets one figure per group).
-struct Cases<'a> {
+pub(super) struct Cases<'a> {
     all: Vec<&'a LoadFactorCase>,
 }
 
 impl<'a> Cases<'a> {
-    fn of(data: &'a RunData, lc: &str) -> Self {
+    pub(super) fn of(data: &'a RunData, lc: &str) -> Self {
         Cases {
             all: data
                 .load_factors
@@ -101,7 +101,7 @@ impl<'a> Cases<'a> {
     }
 
     /// The arch groups: (half-angle, voussoirs).
-    fn groups(&self) -> Vec<(f64, Option<u32>)> {
+    pub(super) fn groups(&self) -> Vec<(f64, Option<u32>)> {
         let mut g: Vec<(f64, Option<u32>)> = self
             .all
             .iter()
@@ -112,7 +112,7 @@ impl<'a> Cases<'a> {
         g
     }
 
-    fn of_group(&self, g: (f64, Option<u32>)) -> Vec<&'a LoadFactorCase> {
+    pub(super) fn of_group(&self, g: (f64, Option<u32>)) -> Vec<&'a LoadFactorCase> {
         self.all
             .iter()
             .copied()
@@ -122,7 +122,7 @@ impl<'a> Cases<'a> {
 }
 
 /// The words naming an arch group when the study has more than one.
-fn group_text(g: (f64, Option<u32>), several: bool) -> String {
+pub(super) fn group_text(g: (f64, Option<u32>), several: bool) -> String {
     if !several {
         return String::new();
     }
@@ -130,7 +130,7 @@ fn group_text(g: (f64, Option<u32>), several: bool) -> String {
     format!(", α = {}°, {n}", given(g.0))
 }
 
-fn group_stem(g: (f64, Option<u32>), several: bool) -> String {
+pub(super) fn group_stem(g: (f64, Option<u32>), several: bool) -> String {
     if !several {
         return String::new();
     }

@@ -66,7 +66,7 @@ pub fn figure(data: &RunData, s: &StateRow) -> Option<FigureSpec> {
                 s.case_id.map_or("—".into(), |c| c.to_string())
             ),
             caption: format!(
-                "The {mech} collapse mechanism of the state at λ_max (K = {}, μ = {}{on}), from the joints at the limit there: the arch before the virtual displacement (dashed), fixed parts (grey), the displaced blocks (blue; largest displacement 0.08 r), hinges (red dots) and sliding joints (orange arrows: the sense in which the crown-side part moves), under the paper's rule (pure sliding, no dilatancy).",
+                "The {mech} collapse mechanism of the state at λ_max (K = {}, μ = {}{on}), from the joints at the limit there: the arch before the virtual displacement (dashed), fixed parts (grey), the displaced blocks (blue; largest displacement 0.08 r), hinges (red dots) and sliding joints (an orange dot at the middle of the joint, with an orange arrow beside it on the crown side for the sense in which the crown-side part moves), under the paper's rule (pure sliding, no dilatancy).",
                 short(s.k),
                 short(s.mu)
             ),
@@ -77,7 +77,7 @@ pub fn figure(data: &RunData, s: &StateRow) -> Option<FigureSpec> {
         stem: mechanisms_stem(&s.state_id),
         title: format!("Collapse mechanisms at the {mech} bifurcation{on}"),
         caption: format!(
-            "The mechanisms admissible at the {mech} bifurcation (K = {}, μ = {}{on}): the arch before the virtual displacement (dashed), fixed parts (grey), the displaced blocks (blue; largest displacement 0.08 r), hinges (red dots; hollow where the joint stays closed in that mechanism) and sliding joints (orange arrows: the sense in which the crown-side part moves). Non-associative panels use the paper's rule (pure sliding, no dilatancy); the associative panels use normality to the Coulomb cone, whose slip opens the joint by tan φ times the slip.",
+            "The mechanisms admissible at the {mech} bifurcation (K = {}, μ = {}{on}): the arch before the virtual displacement (dashed), fixed parts (grey), the displaced blocks (blue; largest displacement 0.08 r), hinges (red dots; hollow where the joint stays closed in that mechanism) and the sliding joints of the limit state (an orange dot at the middle of the joint, with an orange arrow beside it on the crown side for the sense in which the crown-side part moves; a dot without an arrow is a joint at the Coulomb limit that does not slip in that mechanism). Non-associative panels use the paper's rule (pure sliding, no dilatancy); the associative panels use normality to the Coulomb cone, whose slip opens the joint by tan φ times the slip.",
             short(s.k),
             short(s.mu)
         ),

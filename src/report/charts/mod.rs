@@ -6,6 +6,7 @@ pub mod accuracy;
 pub mod arch_axis;
 pub mod critical;
 pub mod domains;
+pub mod lambda_map;
 pub mod load_factor;
 pub mod mechanisms;
 pub mod regime_map;
@@ -19,6 +20,7 @@ use super::format::given;
 use crate::plot::accuracy::AccuracyChart;
 use crate::plot::critical::CriticalChart;
 use crate::plot::domains::DomainsChart;
+use crate::plot::lambda_map::LambdaMap;
 use crate::plot::lines::LinesChart;
 use crate::plot::mechanisms::MechanismPanels;
 use crate::plot::regime_map::{RegimeMap, RegimeMapPanels};
@@ -44,6 +46,8 @@ pub enum Chart {
     Mechanisms(MechanismPanels),
     /// Curves against a parameter, points coloured by mechanism (load factors).
     Lines(LinesChart),
+    /// The collapse load factor as a colour over (μ, K), with the mechanisms' regions.
+    LambdaMap(LambdaMap),
 }
 
 /// A figure of the report.
@@ -71,6 +75,7 @@ impl FigureSpec {
             Chart::Accuracy(c) => plot::render(c, format),
             Chart::Mechanisms(c) => plot::render(c, format),
             Chart::Lines(c) => plot::render(c, format),
+            Chart::LambdaMap(c) => plot::render(c, format),
         }
     }
 }
@@ -130,6 +135,7 @@ pub fn build(data: &RunData) -> Vec<FigureSpec> {
         out.extend(arch_axis::figures(data, &lc));
         out.extend(critical::figure(data, &lc));
         out.extend(load_factor::figures(data, &lc));
+        out.extend(lambda_map::figures(data, &lc));
     }
     for s in &data.states {
         // Fig. 2 exists for the symmetric closed forms only (its curves are stored then).

@@ -1,0 +1,352 @@
+//! The collapse load factor λ_max of a load_factor study as a colour map over (μ, K), with
+//! the regions of each collapse mechanism bounded by the located mechanism changes of
+//! bifurcations.parquet. The chart's data is reduced here to the figure's resolution: a
+//! raster of [`RASTER`] cells, λ bilinear between the grid points and the mechanism
+//! classified from the located changes as the regime map classifies regimes, so a grid of
+//! a million cases draws from a few tens of thousands of values.
+
+use super::load_factor::{Cases, distinct, group_stem, group_text};
+use super::regime_map::{ArchKey, bifurcations_of_arch};
+use super::{Chart, FigureSpec, LoadCaseFigure};
+use crate::plot::lambda_map::{LambdaMap, LambdaStrip};
+use crate::plot::regime_map::{Crossing, RegimeMap};
+use crate::report::data::RunData;
+use crate::report::format::given;
+use crate::store::LoadFactorCase;
+use std::sync::Arc;
+
+/// The fewest distinct values of finite μ and of K for which the map is drawn: with fewer,
+/// the load-factor curves show every value.
+pub const MIN_VALUES: usize = 4;
+
+/// Raster cells of the map along μ and along K (about 2.5 design pixels each).
+pub const RASTER: (usize, usize) = (240, 200);
+
+/// Above this ratio of the largest to the smallest λ, the colour scale is logarithmic.
+const LOG_RATIO: f64 = 30.0;
+
+/// A logarithmic colour scale spans at most this ratio below the largest λ; smaller values
+/// take its lowest colour.
+const LOG_SPAN: f64 = 100.0;
+
+/// The index of `x` in the increasing grid `v`, within a relative tolerance.
+fn grid_index(v: &[f64], x: f64) -> Option<usize> {
+    let i = v.partition_point(|&g| g < x);
+    let tol = 1e-9 * (1.0 + x.abs());
+    [i.checked_sub(1), Some(i)]
+        .into_iter()
+        .flatten()
+        .filter(|&i| i < v.len())
+        .find(|&i| (v[i] - x).abs() <= tol)
+}
+
+/// The grid cell of `x` (its lower index) and the place in it, 0 to 1.
+fn cell(v: &[f64], x: f64) -> (usize, f64) {
+    let i = v.partition_point(|&g| g <= x).clamp(1, v.len() - 1) - 1;
+    let f = ((x - v[i]) / (v[i + 1] - v[i])).clamp(0.0, 1.0);
+    (i, f)
+}
+
+/// The mean of values with weights, over the finite values only (NaN when none is).
+fn weighted(pairs: &[(f64, f64)]) -> f64 {
+    let (sum, w) = pairs
+        .iter()
+        .filter(|(v, w)| v.is_finite() && *w > 0.0)
+        .fold((0.0, 0.0), |(s, t), (v, w)| (s + v * w, t + w));
+    if w > 0.0 { sum / w } else { f64::NAN }
+}
+
+/// λ at (μ, K), bilinear between the four grid points round it (over those with a finite
+/// λ); `values` is K-major over the grid `mu` × `k`.
+pub fn bilinear(mu: &[f64], k: &[f64], values: &[f64], at: (f64, f64)) -> f64 {
+    let ((i, s), (j, t)) = (cell(mu, at.0), cell(k, at.1));
+    let v = |i: usize, j: usize| values[j * mu.len() + i];
+    weighted(&[
+        (v(i, j), (1.0 - s) * (1.0 - t)),
+        (v(i + 1, j), s * (1.0 - t)),
+        (v(i, j + 1), (1.0 - s) * t),
+        (v(i + 1, j + 1), s * t),
+    ])
+}
+
+/// The λ maps of a load case, one per arch of the study.
+pub fn figures(data: &RunData, lc: &LoadCaseFigure) -> Vec<FigureSpec> {
+    if data.manifest.find_of(lc.name) != "load_factor" {
+        return Vec::new();
+    }
+    let cases = Cases::of(data, lc.name);
+    let groups = cases.groups();
+    let several = groups.len() > 1;
+    let mut out = Vec::new();
+    for g in groups {
+        let own = cases.of_group(g);
+        let on = group_text(g, several);
+        let at = own
+            .iter()
+            .find_map(|c| c.at_deg)
+            .map_or(String::new(), |a| format!(", load at {}°", given(a)));
+        let title = format!("Collapse load factor over μ and K{on}{at}");
+        let Some(map) = lambda_map(data, lc.name, &own, several.then_some(g), title) else {
+            continue;
+        };
+        let mut caption = format!(
+            "The collapse load factor λ_max of every case (results.parquet) as a colour over the friction coefficient μ and the thickness ratio K, bilinear between the grid points and drawn at the figure's resolution; {}.",
+            if map.log {
+                "a logarithmic colour scale over two decades below the largest λ (smaller values take its lowest colour)"
+            } else {
+                "a linear colour scale"
+            }
+        );
+        caption.push_str(" Thin lines with a white edge join the located changes of the collapse mechanism on neighbouring grid lines (bifurcations.parquet); each region bounded by them is named by its collapse mechanism at λ_max (hinges only, hinges and sliding joints, sliding joints only).");
+        if map.infinite.is_some() {
+            caption.push_str(" The strip at the right, apart from the μ axis, is μ = ∞.");
+        }
+        let strip = map.infinite.iter().flat_map(|s| s.lambda.iter());
+        if map.lambda.iter().chain(strip).any(|l| !l.is_finite()) {
+            caption.push_str(
+                " Grey: no finite λ (unbounded, or the arch does not stand under its own weight).",
+            );
+        }
+        out.push(FigureSpec {
+            stem: format!("lambda-map{}{}", lc.stem_suffix, group_stem(g, several)),
+            title: format!("{}{}", map.title, lc.title_suffix),
+            caption,
+            chart: Chart::LambdaMap(map),
+        });
+    }
+    out
+}
+
+/// The grid of one arch: finite μ, K, and λ and the mechanism at every point (K-major), and
+/// the μ = ∞ column when there is one.
+struct Grid {
+    mu: Vec<f64>,
+    k: Vec<f64>,
+    lambda: Vec<f64>,
+    mechanism: Vec<Option<Arc<str>>>,
+    infinite: Option<Vec<f64>>,
+}
+
+fn grid_of(own: &[&LoadFactorCase]) -> Option<Grid> {
+    if distinct(own.iter().filter_map(|c| c.at_deg)).len() > 1 {
+        return None;
+    }
+    let mu: Vec<f64> = distinct(own.iter().map(|c| c.mu).filter(|m| m.is_finite()));
+    let k: Vec<f64> = distinct(own.iter().map(|c| c.k).filter(|k| k.is_finite()));
+    if mu.len() < MIN_VALUES || k.len() < MIN_VALUES {
+        return None;
+    }
+    let names: Vec<Arc<str>> = ["rotational", "mixed", "sliding"]
+        .into_iter()
+        .map(Arc::from)
+        .collect();
+    let intern = |m: &str| names.iter().find(|n| &***n == m).cloned();
+    let mut g = Grid {
+        lambda: vec![f64::NAN; mu.len() * k.len()],
+        mechanism: vec![None; mu.len() * k.len()],
+        infinite: None,
+        mu,
+        k,
+    };
+    for c in own {
+        let Some(j) = grid_index(&g.k, c.k) else {
+            continue;
+        };
+        let lambda = c.load_factor.unwrap_or(f64::NAN);
+        if c.mu.is_infinite() {
+            g.infinite.get_or_insert_with(|| vec![f64::NAN; g.k.len()])[j] = lambda;
+        } else if let Some(i) = grid_index(&g.mu, c.mu) {
+            g.lambda[j * g.mu.len() + i] = lambda;
+            g.mechanism[j * g.mu.len() + i] = c.mechanism.as_deref().and_then(intern);
+        }
+    }
+    Some(g)
+}
+
+/// The λ map of one arch's cases of a load case (all arches when `arch` is None), when it
+/// has one load position and at least [`MIN_VALUES`] values of finite μ and of K.
+pub fn lambda_map(
+    data: &RunData,
+    lc: &str,
+    own: &[&LoadFactorCase],
+    arch: Option<ArchKey>,
+    title: String,
+) -> Option<LambdaMap> {
+    let g = grid_of(own)?;
+    let finite = || {
+        g.lambda
+            .iter()
+            .chain(g.infinite.iter().flatten())
+            .copied()
+            .filter(|l| l.is_finite())
+    };
+    let lo = finite().fold(f64::INFINITY, f64::min);
+    let hi = finite().fold(f64::NEG_INFINITY, f64::max);
+    if lo > hi {
+        return None;
+    }
+    let hi = if hi > lo {
+        hi
+    } else {
+        lo + 1e-9_f64.max(lo.abs() * 1e-6)
+    };
+    let bifs = bifurcations_of_arch(data, lc, arch);
+    let changes: Vec<(f64, f64, &str, &str)> = bifs
+        .iter()
+        .map(|b| (b.mu, b.k, b.mechanism_a.as_str(), b.mechanism_b.as_str()))
+        .collect();
+    let (nx, ny) = RASTER;
+    let (mu0, mu1) = (g.mu[0], g.mu[g.mu.len() - 1]);
+    let (k0, k1) = (g.k[0], g.k[g.k.len() - 1]);
+    let centre = |i: usize, n: usize, a: f64, b: f64| a + (b - a) * (i as f64 + 0.5) / n as f64;
+    let mut lambda = Vec::with_capacity(nx * ny);
+    for j in 0..ny {
+        for i in 0..nx {
+            let at = (centre(i, nx, mu0, mu1), centre(j, ny, k0, k1));
+            lambda.push(bilinear(&g.mu, &g.k, &g.lambda, at));
+        }
+    }
+    let mechanisms: Vec<String> = ["rotational", "mixed", "sliding"]
+        .into_iter()
+        .filter(|m| g.mechanism.iter().any(|x| x.as_deref() == Some(m)))
+        .map(String::from)
+        .collect();
+    let classified = mechanism_map(&g, &changes);
+    let mechanism = classified
+        .raster(nx, ny)
+        .into_iter()
+        .map(|m| {
+            let m = m?;
+            mechanisms.iter().position(|n| n == m).map(|p| p as u8)
+        })
+        .collect();
+    let infinite = g.infinite.as_ref().map(|col| LambdaStrip {
+        lambda: (0..ny)
+            .map(|j| {
+                let (jj, t) = cell(&g.k, centre(j, ny, k0, k1));
+                weighted(&[(col[jj], 1.0 - t), (col[jj + 1], t)])
+            })
+            .collect(),
+        changes: changes
+            .iter()
+            .filter(|c| c.0.is_infinite())
+            .map(|c| c.1)
+            .collect(),
+    });
+    let log = lo > 0.0 && hi > LOG_RATIO * lo;
+    // λ falls to 0 at the collapse curve: a few cells next to it would stretch a logarithmic
+    // scale over decades that the rest of the map does not use.
+    let lo = if log { lo.max(hi / LOG_SPAN) } else { lo };
+    Some(LambdaMap {
+        title,
+        window: ((mu0, mu1), (k0, k1)),
+        nx,
+        ny,
+        lambda,
+        mechanism,
+        mechanisms,
+        boundaries: boundaries(&g, &changes),
+        lambda_range: (lo, hi),
+        log,
+        infinite,
+    })
+}
+
+/// The two mechanisms of a change, the one at the lower end of its edge (`below`) first.
+fn oriented<'a>(below: Option<&str>, a: &'a str, b: &'a str) -> (&'a str, &'a str) {
+    if below == Some(b) { (b, a) } else { (a, b) }
+}
+
+/// The two mechanisms of a change in name order.
+fn pair<'a>(a: &'a str, b: &'a str) -> (&'a str, &'a str) {
+    if a <= b { (a, b) } else { (b, a) }
+}
+
+/// The mechanisms over the finite grid as a regime map (no curves, no labels), whose
+/// classifier bounds each mechanism's region by the located changes.
+fn mechanism_map(g: &Grid, changes: &[(f64, f64, &str, &str)]) -> RegimeMap {
+    let at = |i: usize, j: usize| g.mechanism[j * g.mu.len() + i].as_deref();
+    let mut along_mu = Vec::new();
+    let mut along_k = Vec::new();
+    for &(mu, k, a, b) in changes.iter().filter(|c| c.0.is_finite()) {
+        if let Some(j) = grid_index(&g.k, k) {
+            let (low, high) = oriented(at(cell(&g.mu, mu).0, j), a, b);
+            along_mu.push(Crossing {
+                fixed: g.k[j],
+                at: mu,
+                low: low.into(),
+                high: high.into(),
+            });
+        } else if let Some(i) = grid_index(&g.mu, mu) {
+            let (low, high) = oriented(at(i, cell(&g.k, k).0), a, b);
+            along_k.push(Crossing {
+                fixed: g.mu[i],
+                at: k,
+                low: low.into(),
+                high: high.into(),
+            });
+        }
+    }
+    RegimeMap {
+        title: String::new(),
+        mu: g.mu.clone(),
+        k: g.k.clone(),
+        regimes: g.mechanism.clone(),
+        crossings_along_mu: along_mu,
+        crossings_along_k: along_k,
+        collapse: Vec::new(),
+        other_boundaries: Vec::new(),
+        bifurcations: Vec::new(),
+        infinite: None,
+    }
+}
+
+/// A located change: on a K line (true) or a μ line, its pair of mechanisms, the index of
+/// its grid line, its place along that line and the point (μ, K).
+type Located<'a> = (bool, (&'a str, &'a str), usize, f64, (f64, f64));
+
+/// A boundary being joined: its family and pair, the index of the grid line and the place
+/// of its last point, and its points.
+type Chain<'a> = ((bool, (&'a str, &'a str)), usize, f64, Vec<(f64, f64)>);
+
+/// The located changes at finite μ joined into polylines: on each family of grid lines (K
+/// lines, μ lines) and for each pair of mechanisms, a change joins the line whose last
+/// point lies on the previous grid line and nearest it, within two grid steps.
+fn boundaries(g: &Grid, changes: &[(f64, f64, &str, &str)]) -> Vec<Vec<(f64, f64)>> {
+    let step = |v: &[f64]| v.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);
+    let (dm, dk) = (step(&g.mu), step(&g.k));
+    let mut pts: Vec<Located> = Vec::new();
+    for &(mu, k, a, b) in changes.iter().filter(|c| c.0.is_finite()) {
+        if let Some(j) = grid_index(&g.k, k) {
+            pts.push((true, pair(a, b), j, mu, (mu, k)));
+        } else if let Some(i) = grid_index(&g.mu, mu) {
+            pts.push((false, pair(a, b), i, k, (mu, k)));
+        }
+    }
+    pts.sort_by(|x, y| {
+        (x.0, x.1, x.2)
+            .cmp(&(y.0, y.1, y.2))
+            .then(x.3.total_cmp(&y.3))
+    });
+    let mut lines: Vec<Chain> = Vec::new();
+    for (family, p, idx, place, point) in pts {
+        let reach = 2.0 * if family { dm } else { dk };
+        let best = lines
+            .iter_mut()
+            .filter(|l| l.0 == (family, p) && l.1 + 1 == idx && (l.2 - place).abs() <= reach)
+            .min_by(|a, b| (a.2 - place).abs().total_cmp(&(b.2 - place).abs()));
+        match best {
+            Some(l) => {
+                l.1 = idx;
+                l.2 = place;
+                l.3.push(point);
+            }
+            None => lines.push(((family, p), idx, place, vec![point])),
+        }
+    }
+    lines
+        .into_iter()
+        .map(|l| l.3)
+        .filter(|l| l.len() >= 2)
+        .collect()
+}
