@@ -20,5 +20,6 @@ mod report_states;
 mod run;
 mod shard;
 mod solve;
+mod state_drawings;
 mod symmetric_boundaries;
 mod symmetric_lines;
