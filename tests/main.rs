@@ -22,5 +22,6 @@ mod report_states;
 mod run;
 mod shard;
 mod solve;
+mod state_drawings;
 mod symmetric_boundaries;
 mod symmetric_lines;

@@ -114,6 +114,10 @@ fn paper_figures_are_the_same_text_at_the_column_width() {
     }
     stems.sort();
     assert!(stems.len() >= 3, "{stems:?}");
+    assert!(
+        stems.iter().any(|s| s.starts_with("mechanisms-")),
+        "no mechanism figure: {stems:?}"
+    );
     for stem in &stems {
         let svg = std::fs::read_to_string(plots.join(format!("{stem}.svg"))).unwrap();
         let pdf = std::fs::read(plots.join(format!("{stem}.pdf"))).unwrap();
@@ -126,6 +130,15 @@ fn paper_figures_are_the_same_text_at_the_column_width() {
             .read_info()
             .unwrap();
         assert_eq!(reader.info().width, 1050, "{stem}.png is 3.5 in at 300 dpi");
+        // A figure of four panels (the mechanisms at a bifurcation) is no taller than 1.3
+        // times the column width (4.55 in): stacked in one column it was 6.9 in tall.
+        let tall = f64::from(reader.info().height) / 1050.0;
+        if stem.starts_with("mechanisms-") {
+            assert!(
+                tall <= 1.3 + 1e-3,
+                "{stem}.png is {tall:.3} times as tall as wide"
+            );
+        }
         // Text is 8–9 pt on the baseline, scripts no smaller than 7 pt.
         let pt = print_pt / user;
         let sizes = font_sizes(&svg);

@@ -155,14 +155,20 @@ fn sections(model: &ArchModel, extra: &[f64]) -> Vec<f64> {
     t
 }
 
+/// The force F(θ) = F₀ + C_d + λ C_l over W_half and the moment M(θ) = M₀ + C_d^M + λ C_l^M
+/// across joint θ (statics.rs).
+fn joint_force(model: &ArchModel, c: &CrownForce, theta: f64) -> ([f64; 2], f64) {
+    let d = model.dead_load(theta);
+    let l = model.live_load(theta);
+    let f = [c.fx + d.fx + c.lambda * l.fx, c.fy + d.fy + c.lambda * l.fy];
+    (f, c.m0 + d.m + c.lambda * l.m)
+}
+
 /// The point where the line of thrust crosses joint θ: the point p of the joint's line with
 /// M(θ) − p × F(θ) = 0, F = F₀ + C_d + λ C_l and M = M₀ + C_d^M + λ C_l^M (statics.rs);
 /// `None` where the joint carries no compression.
 pub fn thrust_point(model: &ArchModel, c: &CrownForce, theta: f64) -> Option<(f64, f64)> {
-    let d = model.dead_load(theta);
-    let l = model.live_load(theta);
-    let f = [c.fx + d.fx + c.lambda * l.fx, c.fy + d.fy + c.lambda * l.fy];
-    let m = c.m0 + d.m + c.lambda * l.m;
+    let (f, m) = joint_force(model, c, theta);
     let j = model.joint(theta);
     let nu = j.normal();
     if f[0] * nu[0] + f[1] * nu[1] <= 0.0 {
@@ -175,19 +181,74 @@ pub fn thrust_point(model: &ArchModel, c: &CrownForce, theta: f64) -> Option<(f6
         .then(|| (i[0] + s * (e[0] - i[0]), i[1] + s * (e[1] - i[1])))
 }
 
+/// Where the line of thrust turns at a point load: the point of the load's line of action
+/// (the vertical through its point X) on the resultant line of the sections on the left of
+/// the load, and the two joint parameters on either side of it (left, right). `None`
+/// without a point load, at λ = 0, or where the left resultant is vertical or absent.
+///
+/// The resultant lines of the two sides meet on the load's line of action (the moment of
+/// the load about any point of that line is zero), so the line of thrust is continuous there
+/// with a kink; the two sides' crossings of the load's own joint differ (a radial joint is
+/// not the load's line of action), and drawing both joined along the joint would show a
+/// step that the statics does not have.
+pub fn point_load_kink(model: &ArchModel, c: &CrownForce) -> Option<((f64, f64), [f64; 2])> {
+    let Load::Point { at_deg } = model.load() else {
+        return None;
+    };
+    if c.lambda == 0.0 {
+        return None;
+    }
+    let alpha = model.arch().half_angle;
+    let a = at_deg.to_radians().clamp(-alpha, alpha);
+    // The joint at a carries the load on its crown side (forms.rs, `split`).
+    let sides = if a > 0.0 {
+        [a.next_down(), a]
+    } else if a < 0.0 {
+        [a, a.next_up()]
+    } else {
+        [0.0, 0.0f64.next_up()]
+    };
+    let x = model.joint(a).extrados[0];
+    let p = thrust_point(model, c, sides[0])?;
+    let (f, _) = joint_force(model, c, sides[0]);
+    if f[0].abs() < f64::EPSILON * f[1].abs() {
+        return None;
+    }
+    let q = (x, p.1 + (x - p.0) * f[1] / f[0]);
+    Some((q, sides))
+}
+
 /// The line of thrust of a state: its crossing of every sampled section and of the joints
 /// at `angles_deg` (its hinges and sliding joints, so that it passes through the hinges
 /// exactly), from the left springing to the right one, NaN where a section carries no
-/// compression.
+/// compression. At a point load the line turns at [`point_load_kink`]: the crossings of the
+/// sections between the kink and the load's joint lie on the resultant lines produced
+/// beyond the kink and are left out, so the line runs from the last section before the kink
+/// to the kink and on to the crossing of the first section after it.
 pub fn line_of_thrust(model: &ArchModel, c: &CrownForce, angles_deg: &[f64]) -> Samples {
     let extra: Vec<f64> = angles_deg
         .iter()
         .map(|&a| joint_parameter(model, a))
         .collect();
-    sections(model, &extra)
+    let points = sections(model, &extra)
         .into_iter()
-        .map(|t| thrust_point(model, c, t).unwrap_or((f64::NAN, f64::NAN)))
-        .collect()
+        .map(|t| (t, thrust_point(model, c, t).unwrap_or((f64::NAN, f64::NAN))));
+    let Some((q, [left, right])) = point_load_kink(model, c) else {
+        return points.map(|(_, p)| p).collect();
+    };
+    let mut out = Vec::new();
+    let mut turned = false;
+    for (t, p) in points {
+        if t >= right && !turned {
+            out.push(q);
+            turned = true;
+        }
+        let beyond = (t <= left && p.0 > q.0) || (t >= right && p.0 < q.0);
+        if !beyond {
+            out.push(p);
+        }
+    }
+    out
 }
 
 /// The line's points on the joints between the voussoirs of a discrete arch (the supports
@@ -376,6 +437,83 @@ mod tests {
                     / ((e[0] - i[0]).powi(2) + (e[1] - i[1]).powi(2));
                 assert!(s > 1e-3 && s < 1.0 - 1e-3, "{joints} θ = {t}: s = {s}");
             }
+        }
+    }
+
+    #[test]
+    fn line_of_thrust_turns_on_the_point_load_without_a_step() {
+        // The collapse state at λ_max of the pointed arch of studies/influence-line.yaml
+        // (e = 0.2, K = 1.3, μ = 0.5) with the load at −20°: its radial joint at −20° is
+        // crossed at two points by the resultants of its two sides.
+        for at in [-20.0, 35.0] {
+            let mut r = row(1.3, "pointed", 0.2, "radial", "point");
+            r.at_deg = Some(at);
+            let model = model_of_state(&r).unwrap();
+            let (c, _) = load_factor_state(&model, 0.5f64.atan()).unwrap();
+            assert!(c.lambda > 0.1, "λ_max = {}", c.lambda);
+            let ((qx, qy), [left, right]) = point_load_kink(&model, &c).unwrap();
+            let a = f64::to_radians(at);
+            let x = model.joint(a).extrados;
+            // The kink lies on the load's line of action and on both sides' resultant lines.
+            assert!((qx - x[0]).abs() < 1e-12, "{qx} vs {}", x[0]);
+            for t in [left, right] {
+                let p = thrust_point(&model, &c, t).unwrap();
+                let (f, _) = joint_force(&model, &c, t);
+                let cross = (qx - p.0) * f[1] - (qy - p.1) * f[0];
+                assert!(cross.abs() < 1e-9, "θ = {t}: {cross}");
+            }
+            let (a_left, a_right) = (
+                thrust_point(&model, &c, left).unwrap(),
+                thrust_point(&model, &c, right).unwrap(),
+            );
+            let step = (a_left.0 - a_right.0).hypot(a_left.1 - a_right.1);
+            assert!(step > 0.02, "the two crossings of the joint differ: {step}");
+            let line = line_of_thrust(&model, &c, &[]);
+            let k = line.iter().position(|&p| p == (qx, qy)).unwrap();
+            // The step along the joint between them, as the line was drawn before, runs at
+            // more than 45° to the force of either side.
+            let (f_left, _) = joint_force(&model, &c, left);
+            let (dx, dy) = (a_right.0 - a_left.0, a_right.1 - a_left.1);
+            let cos = (dx * f_left[0] + dy * f_left[1]) / (step * f_left[0].hypot(f_left[1]));
+            assert!(cos.abs() < 45f64.to_radians().cos(), "{cos}");
+            // Near the kink every segment runs along the force of its side, within 15° (the
+            // tangent of the crossings of radial sections is a few degrees off the
+            // resultant, more over the short chord to the kink): no step along the joint, no
+            // backward segment.
+            for i in k.saturating_sub(4)..(k + 4).min(line.len() - 1) {
+                let (p, q) = (line[i], line[i + 1]);
+                let side = if i < k { left } else { right };
+                let (f, _) = joint_force(&model, &c, side);
+                let (dx, dy) = (q.0 - p.0, q.1 - p.1);
+                let cos = (dx * f[0] + dy * f[1]) / (dx.hypot(dy) * f[0].hypot(f[1]));
+                assert!(
+                    cos > 15f64.to_radians().cos(),
+                    "at {at}°, segment {i}: cos = {cos}"
+                );
+            }
+            // It crosses the load's joint once, where the statics of the side beyond the kink
+            // puts it: the crown side's crossing for a load on the extrados.
+            let j = model.joint(a);
+            let (i0, e0) = (j.intrados, j.extrados);
+            let side_of =
+                |p: (f64, f64)| (e0[0] - i0[0]) * (p.1 - i0[1]) - (e0[1] - i0[1]) * (p.0 - i0[0]);
+            let crossings: Vec<(f64, f64)> = line
+                .windows(2)
+                .filter(|w| side_of(w[0]) * side_of(w[1]) < 0.0)
+                .map(|w| {
+                    let (s0, s1) = (side_of(w[0]), side_of(w[1]));
+                    let u = s0 / (s0 - s1);
+                    (
+                        w[0].0 + u * (w[1].0 - w[0].0),
+                        w[0].1 + u * (w[1].1 - w[0].1),
+                    )
+                })
+                .filter(|p| (p.0 - x[0]).abs() < 0.5)
+                .collect();
+            let crown_side = if at < 0.0 { a_right } else { a_left };
+            assert_eq!(crossings.len(), 1, "{crossings:?}");
+            let d = (crossings[0].0 - crown_side.0).hypot(crossings[0].1 - crown_side.1);
+            assert!(d < 1e-9, "at {at}°: {:?} vs {crown_side:?}", crossings[0]);
         }
     }
 }

@@ -107,18 +107,33 @@ fn draw<DB: DrawingBackend>(
             (FONT, (0.032 * h).max(10.0)).into_font().color(&GROUND),
         ),
     };
+    let margin = 0.03 * w.min(h);
+    // On paper the text keeps its printed size: a narrow panel wraps its title and
+    // subtitle into as many lines as they need.
+    let room = (w - 2.0 * margin).max(1.0);
+    let (titles, subtitles) = match ctx {
+        Some(_) => (
+            wrap(&fonts.0, &fig.title, room),
+            wrap(&fonts.1, &fig.subtitle, room),
+        ),
+        None => (vec![fig.title.clone()], vec![fig.subtitle.clone()]),
+    };
+    let line_h =
+        |f: &TextStyle, l: &[String]| f64::from(super::style::text_block_size(f, &l[..1], 1.2).1);
+    let (h0, h1) = (line_h(&fonts.0, &titles), line_h(&fonts.1, &subtitles));
     let title_h = match ctx {
         None if text => 0.11 * h,
         None => 0.0,
-        // Two lines of text and a gap.
-        Some(c) => f64::from(c.px(44.0)).max(0.11 * h),
+        // The lines of text and a gap.
+        Some(c) => (titles.len() as f64 * h0 + subtitles.len() as f64 * h1 + f64::from(c.px(8.0)))
+            .max(f64::from(c.px(44.0)))
+            .max(0.11 * h),
     };
     let d = &fig.drawing;
     let mut b = d.bounds();
     // Room for the ground hatching below the springings and for the arrows.
     let pad = 0.06 * (b[1] - b[0]).max(b[3] - b[2]);
     b = [b[0] - pad, b[1] + pad, b[2] - pad, b[3] + 0.5 * pad];
-    let margin = 0.03 * w.min(h);
     let frame = Frame::fit(
         b,
         margin,
@@ -137,7 +152,15 @@ fn draw<DB: DrawingBackend>(
     p.draw_blocks()?;
     p.draw_slides()?;
     p.draw_hinges((0.012 * w.min(h)).max(3.0 * p.px) as i32)?;
-    if text {
+    if text && ctx.is_some() {
+        let mut y = 0.12 * f64::from(ctx.map_or(0, |c| c.px(44.0)));
+        for (l, f, lh) in (titles.iter().map(|l| (l, &fonts.0, h0)))
+            .chain(subtitles.iter().map(|l| (l, &fonts.1, h1)))
+        {
+            root.draw(&Text::new(l.clone(), (margin as i32, y as i32), f.clone()))?;
+            y += lh;
+        }
+    } else if text {
         root.draw(&Text::new(
             fig.title.clone(),
             (margin as i32, (0.12 * title_h) as i32),
@@ -150,6 +173,26 @@ fn draw<DB: DrawingBackend>(
         ))?;
     }
     Ok(())
+}
+
+/// `text` in lines no wider than `room` pixels in `font`, broken at spaces (a word wider
+/// than `room` keeps a line of its own).
+fn wrap(font: &TextStyle, text: &str, room: f64) -> Vec<String> {
+    let width = |t: &str| f64::from(font.font.box_size(t).map_or(0, |b| b.0));
+    let mut lines: Vec<String> = Vec::new();
+    for word in text.split(' ') {
+        match lines.last_mut() {
+            Some(l) if width(&format!("{l} {word}")) <= room => {
+                l.push(' ');
+                l.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    if lines.is_empty() {
+        lines.push(String::new());
+    }
+    lines
 }
 
 /// One mechanism drawn in a drawing area: the area, the map to its pixels, the geometry and

@@ -60,9 +60,16 @@ pub struct PaperLayout {
     pub panel_columns: Option<usize>,
 }
 
+/// The tallest a paper figure of three or more stacked panels is drawn, over its width: a
+/// taller figure does not sit on a page with its caption and text around it.
+pub const MAX_HEIGHT_OVER_WIDTH: f64 = 1.3;
+
 /// The layout of a paper figure of a chart whose screen design is `design` with panels in
 /// `grid` (rows, columns): the column width, as many panel columns as fit at
-/// [`MIN_PANEL_PX`], the panels keeping their proportions.
+/// [`MIN_PANEL_PX`], the panels keeping their proportions. A stack of three or more panels
+/// taller than [`MAX_HEIGHT_OVER_WIDTH`] times the width takes more columns than fit at
+/// [`MIN_PANEL_PX`], up to the design's grid (text keeps its printed size, [`font_range`]):
+/// four mechanism panels in one column are 2×2 instead of 4×1.
 pub fn paper_layout(design: (u32, u32), grid: (usize, usize), width: FigureWidth) -> PaperLayout {
     let w = (width.inches() * PX_PER_INCH).round();
     let (rows, cols) = (grid.0.max(1), grid.1.max(1));
@@ -76,22 +83,24 @@ pub fn paper_layout(design: (u32, u32), grid: (usize, usize), width: FigureWidth
             .sqrt()
             .clamp(1.0, 1.6)
     };
+    let layout = |h: f64, panel_columns: Option<usize>| PaperLayout {
+        size: (w as u32, h.round().max(1.0) as u32),
+        panel_columns,
+    };
     if cols <= fit {
-        let h = w * aspect * taller(w / cols as f64);
-        return PaperLayout {
-            size: (w as u32, h.round().max(1.0) as u32),
-            panel_columns: None,
-        };
+        return layout(w * aspect * taller(w / cols as f64), None);
     }
     // Stacked panels share one legend and are wider than designed: three quarters of the
     // design's proportions keep a stack of two within about half a page.
     let panel_aspect = aspect * cols as f64 / rows as f64;
-    let new_rows = (rows * cols).div_ceil(fit);
-    let h = new_rows as f64 * (w / fit as f64) * panel_aspect * 0.75;
-    PaperLayout {
-        size: (w as u32, h.round().max(1.0) as u32),
-        panel_columns: Some(fit),
+    for c in fit..cols {
+        let new_rows = (rows * cols).div_ceil(c);
+        let h = new_rows as f64 * (w / c as f64) * panel_aspect * 0.75;
+        if new_rows <= 2 || h <= MAX_HEIGHT_OVER_WIDTH * w {
+            return layout(h, Some(c));
+        }
     }
+    layout(w * aspect * taller(w / cols as f64), None)
 }
 
 /// The grid (rows, columns) panels designed in `grid` take in a layout of `panel_columns`.
@@ -526,6 +535,16 @@ mod tests {
         assert_eq!(two.size, (336, 524));
         assert_eq!(two.panel_columns, Some(1));
         assert_eq!(panel_grid((1, 2), two.panel_columns), (2, 1));
+        // Four mechanism panels of 440 × 290 in 2 × 2: stacked 4 × 1 they would be 664 px
+        // (6.9 in) tall, twice the width; 2 × 2 at the column width they are 336 × 0.659 ×
+        // 1.6 (the text of a panel half as wide as designed) = 354 px.
+        let four = paper_layout((880, 580), (2, 2), FigureWidth::Single);
+        assert_eq!(four.size, (336, 354));
+        assert_eq!(four.panel_columns, None);
+        assert!(f64::from(four.size.1) <= MAX_HEIGHT_OVER_WIDTH * f64::from(four.size.0));
+        // Three panels in a row stack as three in one column while that stays low enough.
+        let three = paper_layout((900, 150), (1, 3), FigureWidth::Single);
+        assert_eq!(three.panel_columns, Some(1));
         // Two fit in two columns.
         let wide = paper_layout((1000, 520), (1, 2), FigureWidth::Double);
         assert_eq!(wide.panel_columns, None);

@@ -2,12 +2,16 @@
 //! x and y): the voussoirs when discrete, the line of thrust, hinges as dots on the intrados
 //! or extrados and sliding joints with an arrow giving the sense of the crown-side part.
 
-use super::style::{self, LabelPlacer, LegendItem, Mark, palette};
+use super::style::{self, LegendItem, Mark, palette};
 use super::{Figure, PlotContext, Window, XyChart as Chart};
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
+
+mod labels;
+
+pub use labels::{PixelMap, PlacedLabel, box_meets_polygon, boxes_meet};
 
 /// A point over r.
 pub type Xy = (f64, f64);
@@ -192,7 +196,7 @@ impl Figure for StateDrawing {
         let upper = style::above_legend(root, ctx, &legend)?;
         let top = self.draw_titles(&upper, ctx)?;
         let area = upper.margin(top, ctx.px(4.0), ctx.px(10.0), ctx.px(10.0));
-        let w = self.equal_scales(area.dim_in_pixel());
+        let w = self.equal_scales(area.dim_in_pixel(), self.label_room(ctx));
         let ((x0, x1), (y0, y1)) = w;
         let chart = ChartBuilder::on(&area).build_cartesian_2d(x0..x1, y0..y1)?;
         let plot = chart.plotting_area();
@@ -201,7 +205,7 @@ impl Figure for StateDrawing {
         self.draw_sliding_joints(root, &chart, ctx)?;
         self.draw_line_of_thrust(root, &chart, ctx, w)?;
         self.draw_load(root, &chart, ctx)?;
-        self.draw_hinges(root, &chart, ctx)?;
+        self.draw_hinges(root, &chart, ctx, w)?;
         if let Some(note) = &self.note {
             let f = ctx.font(14.0).pos(Pos::new(HPos::Center, VPos::Center));
             let b = bounds(self.outline.iter());
@@ -243,13 +247,31 @@ impl StateDrawing {
     }
 
     /// The data window widened in the direction with room to spare, so that x and y have
-    /// equal scales in an area of `(aw, ah)` pixels.
-    fn equal_scales(&self, (aw, ah): (u32, u32)) -> Window {
+    /// equal scales in an area of `(aw, ah)` pixels, with `room` pixels more on either side
+    /// of the window in x.
+    fn equal_scales(&self, (aw, ah): (u32, u32), room: i32) -> Window {
         let ((x0, x1), (y0, y1)) = window(self);
-        let s = (f64::from(aw) / (x1 - x0)).min(f64::from(ah) / (y1 - y0));
+        let inner = (f64::from(aw) - 2.0 * f64::from(room)).max(0.5 * f64::from(aw));
+        let s = (inner / (x1 - x0)).min(f64::from(ah) / (y1 - y0));
         let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
         let (hw, hh) = (0.5 * f64::from(aw) / s, 0.5 * f64::from(ah) / s);
         ((cx - hw, cx + hw), (cy - hh, cy + hh))
+    }
+
+    /// Pixels kept free beside the arch for the angle label of a hinge or sliding joint at a
+    /// springing, which stands beyond the extrados above the ground line: the width of the
+    /// widest such label and a gap; none when no label is there.
+    fn label_room(&self, ctx: &PlotContext) -> i32 {
+        let near = |p: Xy, q: Xy| (p.0 - q.0).abs() < 1e-9 && (p.1 - q.1).abs() < 1e-9;
+        let at_support = |i: Xy| self.supports.iter().any(|s| near(s.intrados, i));
+        let springing = (self.hinges.iter().map(|h| h.joint))
+            .chain(self.sliding.iter().map(|s| s.joint))
+            .any(|j| at_support(j.intrados));
+        if !springing {
+            return 0;
+        }
+        let text = ["−90.0°".to_string()];
+        style::text_block_size(&ctx.font(12.5), &text, 1.0).0 + ctx.px(16.0)
     }
 
     /// The arch, outlined, with the joints between its voussoirs.
@@ -275,41 +297,21 @@ impl StateDrawing {
         Ok(())
     }
 
-    /// Supports under the springings: a hatched strip beyond each springing joint.
+    /// Supports under the springings: a hatched strip beyond each springing joint
+    /// ([`DrawnSupport::hatching`]).
     fn draw_supports<DB: DrawingBackend>(
         &self,
         plot: &Plot<DB>,
         ctx: &PlotContext,
     ) -> DrawResult<(), DB> {
         for s in &self.supports {
-            let (i, e) = (s.intrados, s.extrados);
-            let (dx, dy) = (e.0 - i.0, e.1 - i.1);
-            let thick = dx.hypot(dy);
-            let along = (
-                dx / thick.max(f64::MIN_POSITIVE),
-                dy / thick.max(f64::MIN_POSITIVE),
-            );
-            let ext = 0.25 * thick;
-            let p0 = (i.0 - ext * along.0, i.1 - ext * along.1);
-            let p1 = (e.0 + ext * along.0, e.1 + ext * along.1);
-            plot.draw(&PathElement::new(
-                vec![p0, p1],
-                palette::INK.stroke_width(ctx.upx(2.0)),
-            ))?;
-            let n = 9;
-            let depth = 0.35 * thick;
-            let out = s.into_ground;
-            for k in 0..=n {
-                let f = k as f64 / n as f64;
-                let q = (p0.0 + f * (p1.0 - p0.0), p0.1 + f * (p1.1 - p0.1));
-                let q2 = (
-                    q.0 + depth * (out.0 - 0.6 * along.0),
-                    q.1 + depth * (out.1 - 0.6 * along.1),
-                );
-                plot.draw(&PathElement::new(
-                    vec![q, q2],
-                    palette::GREY.stroke_width(ctx.upx(1.0).max(1)),
-                ))?;
+            for (k, [a, b]) in s.hatching().into_iter().enumerate() {
+                let stroke = if k == 0 {
+                    palette::INK.stroke_width(ctx.upx(2.0))
+                } else {
+                    palette::GREY.stroke_width(ctx.upx(1.0).max(1))
+                };
+                plot.draw(&PathElement::new(vec![a, b], stroke))?;
             }
         }
         Ok(())
@@ -435,96 +437,38 @@ impl StateDrawing {
         Ok(())
     }
 
-    /// Hinges as dots, then the angle of every hinge and sliding joint.
+    /// Hinges as dots, then the angle of every hinge and sliding joint, placed clear of
+    /// the masonry, the supports and the load ([`StateDrawing::angle_labels`]).
     fn draw_hinges<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, Shift>,
         chart: &Chart<DB>,
         ctx: &PlotContext,
+        window: Window,
     ) -> DrawResult<(), DB> {
-        let (xr, yr) = chart.plotting_area().get_pixel_range();
-        let mut labels = AngleLabels {
-            placer: LabelPlacer::new((xr.start, yr.start, xr.end, yr.end)),
-            labelled: Vec::new(),
-            symmetric: self.is_symmetric(),
-            font: ctx.font(12.5),
-        };
-        let hinge_px: Vec<(i32, i32)> = self
-            .hinges
-            .iter()
-            .map(|h| chart.backend_coord(&h.point()))
-            .collect();
-        for p in &hinge_px {
-            let r = ctx.px(7.0);
-            labels.placer.block((p.0 - r, p.1 - r, p.0 + r, p.1 + r));
-        }
-        for b in self.load_boxes(chart, ctx) {
-            labels.placer.block(b);
-        }
-        for p in &hinge_px {
-            style::dot(root, ctx, *p, 5.5, palette::INK)?;
-        }
-        let gap = 0.07 * self.scale();
         for h in &self.hinges {
-            let (n, p) = (h.joint.along(), h.point());
-            let sign = if h.extrados { 1.0 } else { -1.0 };
-            let anchor = (p.0 + sign * gap * n.0, p.1 + sign * gap * n.1);
-            labels.draw(root, chart, ctx, (h.joint.angle_deg, anchor, palette::INK))?;
-        }
-        for s in &self.sliding {
-            let (n, p) = (s.joint.along(), s.joint.extrados);
-            let anchor = (p.0 + gap * n.0, p.1 + gap * n.1);
-            labels.draw(
+            style::dot(
                 root,
-                chart,
                 ctx,
-                (s.joint.angle_deg, anchor, palette::SLIDING_LINE),
+                chart.backend_coord(&h.point()),
+                5.5,
+                palette::INK,
             )?;
         }
-        Ok(())
-    }
-
-    /// Device-pixel boxes of the load's arrows and label, kept clear of the angle labels.
-    fn load_boxes<DB: DrawingBackend>(
-        &self,
-        chart: &Chart<DB>,
-        ctx: &PlotContext,
-    ) -> Vec<style::PixelBox> {
-        let heads: Vec<Xy> = match &self.load {
-            Some(DrawnLoad::Point { at, .. }) => vec![*at],
-            Some(DrawnLoad::Horizontal { at, .. }) => at.clone(),
-            None => return Vec::new(),
+        let (xr, yr) = chart.plotting_area().get_pixel_range();
+        let map = PixelMap {
+            window,
+            pixels: (xr.start, yr.start, xr.end, yr.end),
         };
-        let pad = ctx.px(6.0);
-        let mut out: Vec<style::PixelBox> = self
-            .load_tails()
-            .iter()
-            .zip(&heads)
-            .map(|(t, h)| {
-                let (a, b) = (chart.backend_coord(t), chart.backend_coord(h));
-                (
-                    a.0.min(b.0) - pad,
-                    a.1.min(b.1) - pad,
-                    a.0.max(b.0) + pad,
-                    a.1.max(b.1) + pad,
-                )
-            })
-            .collect();
-        if let Some(t) = self.load_tails().iter().max_by(|a, b| a.1.total_cmp(&b.1)) {
-            let p = chart.backend_coord(t);
-            out.push(match &self.load {
-                Some(DrawnLoad::Point { .. }) => {
-                    (p.0 - pad, p.1 - ctx.px(30.0), p.0 + ctx.px(110.0), p.1)
-                }
-                _ => (
-                    p.0 - ctx.px(110.0),
-                    p.1 - ctx.px(12.0),
-                    p.0,
-                    p.1 + ctx.px(12.0),
-                ),
-            });
+        let font = ctx.font(12.5);
+        for l in self.place_angle_labels(ctx, map) {
+            root.draw(&Text::new(
+                l.text,
+                l.top_left,
+                font.color(&l.color).pos(Pos::new(HPos::Left, VPos::Top)),
+            ))?;
         }
-        out
+        Ok(())
     }
 
     /// True when every hinge and sliding joint has its mirror image.
@@ -539,59 +483,6 @@ impl StateDrawing {
                 .iter()
                 .any(|u| mirrored(s.joint.angle_deg, u.joint.angle_deg))
         })
-    }
-}
-
-/// The angle labels of the hinges and sliding joints: one per joint, on the right half when
-/// the state is symmetric (else the left is labelled too).
-struct AngleLabels {
-    placer: LabelPlacer,
-    /// Angles already labelled.
-    labelled: Vec<f64>,
-    symmetric: bool,
-    font: TextStyle<'static>,
-}
-
-impl AngleLabels {
-    /// Labels joint `t` (degrees) near the point `anchor` (over r), in `color`.
-    fn draw<DB: DrawingBackend>(
-        &mut self,
-        root: &DrawingArea<DB, Shift>,
-        chart: &Chart<DB>,
-        ctx: &PlotContext,
-        (t, anchor, color): (f64, Xy, RGBColor),
-    ) -> DrawResult<(), DB> {
-        if (self.symmetric && t < -1e-9) || self.labelled.iter().any(|&u| (u - t).abs() < 1e-6) {
-            return Ok(());
-        }
-        self.labelled.push(t);
-        let font = &self.font;
-        let text = format!("{:.1}°", t);
-        let (tw, th) = style::text_block_size(font, std::slice::from_ref(&text), 1.0);
-        let p = chart.backend_coord(&anchor);
-        let far = ctx.px(14.0);
-        let cands = [
-            (p.0 - tw / 2, p.1 - th / 2),
-            (p.0, p.1 - th),
-            (p.0 - tw, p.1 - th),
-            (p.0, p.1),
-            (p.0 - tw, p.1),
-            (p.0 + ctx.px(8.0), p.1 - th / 2),
-            (p.0 - tw - ctx.px(8.0), p.1 - th / 2),
-            (p.0 + far, p.1 + far / 2),
-            (p.0 - tw - far, p.1 + far / 2),
-            (p.0 + far, p.1 - th - far / 2),
-            (p.0 - tw - far, p.1 - th - far / 2),
-            (p.0 - tw / 2, p.1 + far),
-            (p.0 - tw / 2, p.1 - th - far),
-        ];
-        let pos = self.placer.place(tw, th, &cands);
-        root.draw(&Text::new(
-            text,
-            pos,
-            font.color(&color).pos(Pos::new(HPos::Left, VPos::Top)),
-        ))?;
-        Ok(())
     }
 }
 
