@@ -1,0 +1,139 @@
+//! The statics of a form under its load case: [`ArchGeometry`] for [`ArchModel`].
+
+use super::ArchModel;
+use crate::analysis::statics::{ArchGeometry, Condition, Joint, Resultant};
+use crate::model::{Discretisation, JointOrientation, Load};
+
+/// Splits the families at a point load at `a`, so that each side of the load is a closed
+/// family: the joint at `a` carries the load on its crown side.
+pub(super) fn split(fam: &[[f64; 2]], a: f64) -> Vec<[f64; 2]> {
+    let mut out = Vec::with_capacity(fam.len() + 1);
+    for &[lo, hi] in fam {
+        // The first parameter on the far side of the load from the crown … and the last one
+        // on the crown side, as an ordered cut (left part ends at `l`, right part starts at
+        // `r`).
+        let (l, r) = if a > 0.0 {
+            (a.next_down(), a)
+        } else if a < 0.0 {
+            (a, a.next_up())
+        } else {
+            (0.0, 0.0f64.next_up())
+        };
+        if lo <= l && r <= hi {
+            out.push([lo, l]);
+            out.push([r, hi]);
+        } else {
+            out.push([lo, hi]);
+        }
+    }
+    out
+}
+
+impl ArchGeometry for ArchModel {
+    fn half_angle(&self) -> f64 {
+        self.arch.half_angle
+    }
+
+    fn joint(&self, theta: f64) -> Joint {
+        self.joint_at(theta)
+    }
+
+    fn dead_load(&self, theta: f64) -> Resultant {
+        let [w, sx, _] = self.weight_moments(theta);
+        Resultant {
+            fx: 0.0,
+            fy: -w,
+            m: -sx,
+        }
+    }
+
+    fn live_load(&self, theta: f64) -> Resultant {
+        match self.load {
+            Load::SelfWeight => Resultant::default(),
+            Load::Horizontal => {
+                let [w, _, sy] = self.weight_moments(theta);
+                Resultant {
+                    fx: w,
+                    fy: 0.0,
+                    m: -sy,
+                }
+            }
+            Load::Point { .. } => {
+                let Some((a, x)) = self.point else {
+                    return Resultant::default();
+                };
+                let sign = if theta > 0.0 && 0.0 <= a && a <= theta {
+                    1.0
+                } else if theta < 0.0 && theta <= a && a < 0.0 {
+                    -1.0
+                } else {
+                    0.0
+                };
+                Resultant {
+                    fx: 0.0,
+                    fy: -2.0 * sign,
+                    m: -2.0 * sign * x[0],
+                }
+            }
+        }
+    }
+
+    fn relaxed(&self, theta: f64, condition: Condition) -> bool {
+        if !self.shared_apex {
+            return false;
+        }
+        if theta == 0.0 {
+            condition == Condition::SlideOutward
+        } else if theta == 0.0f64.next_up() {
+            condition != Condition::SlideOutward
+        } else {
+            false
+        }
+    }
+
+    fn discrete_joints(&self) -> Option<Vec<f64>> {
+        let Discretisation::Voussoirs(n) = self.arch.joints else {
+            return None;
+        };
+        let a = self.arch.half_angle;
+        let mut joints: Vec<f64> = (0..=n)
+            .map(|j| {
+                if j == 0 {
+                    self.support_param(-1.0)
+                } else if j == n {
+                    self.support_param(1.0)
+                } else if self.psi_1 == 0.0 {
+                    -a + 2.0 * a * f64::from(j) / f64::from(n)
+                } else {
+                    let s = -1.0 + 2.0 * f64::from(j) / f64::from(n);
+                    self.at_fraction(s.abs()).copysign(s)
+                }
+            })
+            .collect();
+        if self.shared_apex && joints.contains(&0.0) {
+            joints.push(0.0f64.next_up());
+            joints.sort_by(f64::total_cmp);
+        }
+        Some(joints)
+    }
+
+    fn families(&self) -> Vec<[f64; 2]> {
+        self.base_families().0
+    }
+
+    fn isolated_joints(&self) -> Vec<f64> {
+        self.base_families().1
+    }
+
+    fn angle_deg(&self, theta: f64) -> f64 {
+        let a = self.arch.half_angle;
+        if theta.abs() > a {
+            a.to_degrees().copysign(theta)
+        } else if self.form.joints == JointOrientation::Vertical && theta.abs() == self.psi_1 {
+            // The vertical joints through the intrados apex are the crown joint.
+            0.0
+        } else {
+            theta.to_degrees()
+        }
+    }
+}
