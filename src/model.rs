@@ -297,6 +297,11 @@ pub struct ArchForm {
     pub shape: Shape,
     /// Radial or vertical joint planes.
     pub joints: JointOrientation,
+    /// True when the crown is inside one rigid block, the keystone between the first joints
+    /// of the two halves: the crown plane x = 0 is then no joint, and a point load may sit on
+    /// the keystone. The continuum has one only on a pointed arch with radial joints (the
+    /// wedge between ±ψ₁); N voussoirs have one when N is odd.
+    pub keystone: bool,
 }
 
 impl ArchForm {
@@ -329,11 +334,13 @@ impl ArchForm {
     /// Largest K at which the form exists at half-angle α (radians) and a point load of
     /// `load` still sits at a joint: a pointed arch's first joint ψ₁ = asin(e(1 + K)/2)
     /// moves away from the crown as K grows, so a load at a ≠ 0 needs e(1 + K)/2 ≤ sin|a|.
+    /// With a keystone and radial joints a load the first joint passes lies on the keystone.
     pub fn max_k_with_load(&self, half_angle: f64, load: Load) -> f64 {
         let k = self.max_k(half_angle);
         let e = self.shape.eccentricity();
+        let on_keystone = self.keystone && self.joints == JointOrientation::Radial;
         match load {
-            Load::Point { at_deg } if at_deg != 0.0 && e > 0.0 => {
+            Load::Point { at_deg } if at_deg != 0.0 && e > 0.0 && !on_keystone => {
                 let s = at_deg
                     .to_radians()
                     .abs()

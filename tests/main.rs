@@ -10,6 +10,7 @@ mod common;
 mod damaged;
 mod disk_full;
 mod hardening;
+mod keystone;
 mod loads;
 mod mechanisms;
 mod paper;

@@ -196,6 +196,11 @@ pub struct SolveArgs {
     /// Joint planes: radial, or vertical through the intrados points (α ≤ 90°).
     #[arg(long, value_name = "PLANES", default_value = "radial", value_parser = ["radial", "vertical"])]
     pub joints: String,
+    /// The crown inside one rigid block, the keystone: a pointed arch with radial joints in
+    /// the continuum (the wedge between the first joints ±ψ₁), or an odd voussoir count.
+    /// A point load may then sit on the keystone.
+    #[arg(long)]
+    pub keystone: bool,
     /// Load case: self-weight only, or self-weight plus a live load scaled by λ: a horizontal
     /// body force λ·(weight), or a vertical point load λ·W_total on the extrados (--at).
     #[arg(long, value_name = "LOAD", default_value = "self-weight", value_parser = ["self-weight", "self_weight", "horizontal", "point"])]
@@ -293,7 +298,9 @@ impl SolveArgs {
             FormError::PointedTooThick { k, .. } => usage("--k", k, e.to_string()),
             FormError::VerticalBeyondQuadrant(a) => usage("--half-angle", a, e.to_string()),
             FormError::LoadOutside { at_deg, .. }
-            | FormError::LoadInsideKeystone { at_deg, .. } => usage("--at", at_deg, e.to_string()),
+            | FormError::LoadInsideKeystone { at_deg, .. }
+            | FormError::LoadOffExtrados { at_deg, .. } => usage("--at", at_deg, e.to_string()),
+            FormError::NoKeystone(_) => usage("--keystone", "on", e.to_string()),
         })?;
         Ok(scene)
     }
@@ -390,7 +397,11 @@ impl SolveArgs {
             }
             (other, _) => return Err(usage("--shape", other, "circular or pointed")),
         };
-        Ok(ArchForm { shape, joints })
+        Ok(ArchForm {
+            shape,
+            joints,
+            keystone: self.keystone,
+        })
     }
 
     fn load(&self) -> Result<Load, UsageError> {

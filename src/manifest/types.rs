@@ -105,6 +105,7 @@ impl ArchOptions {
                 _ => Shape::Circular,
             },
             joints: JointOrientation::parse(self.joints).unwrap_or_default(),
+            keystone: false,
         }
     }
 }

@@ -188,7 +188,8 @@ impl ArchModel {
             vec![[-a, -self.psi_1], [self.psi_1, a]]
         };
         let mut iso = Vec::new();
-        if self.psi_1 > 0.0 && self.form.joints == JointOrientation::Radial {
+        if self.psi_1 > 0.0 && self.form.joints == JointOrientation::Radial && !self.has_keystone()
+        {
             iso.push(0.0);
             if self.shared_apex {
                 iso.push(0.0f64.next_up());

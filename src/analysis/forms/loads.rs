@@ -1,8 +1,47 @@
 //! The statics of a form under its load case: [`ArchGeometry`] for [`ArchModel`].
 
-use super::ArchModel;
-use crate::analysis::statics::{ArchGeometry, Condition, Joint, Resultant};
+use super::{ArchModel, FormError, GEOMETRY};
+use crate::analysis::statics::{ArchGeometry, Condition, Joint, Point, Resultant};
 use crate::model::{Discretisation, JointOrientation, Load};
+
+impl ArchModel {
+    /// The parameter a (radians) and the extrados point X of a point load at `at_deg`: the
+    /// extrados end of the joint at a. On the keystone of a pointed arch with radial joints
+    /// (0 < |a| < ψ₁, where no joint exists) X is the extrados point at angle |a| from its
+    /// arc's centre, which needs |a| ≥ ψ_e, the angle of the extrados apex.
+    pub(super) fn place_point(&self, at_deg: f64) -> Result<(f64, Point), FormError> {
+        let alpha = self.arch.half_angle;
+        let a = at_deg.to_radians();
+        if !(a.abs() <= alpha * (1.0 + GEOMETRY.tol_joint_range)) {
+            return Err(FormError::LoadOutside {
+                at_deg,
+                half_angle_deg: self.arch.half_angle_deg(),
+            });
+        }
+        let a = a.clamp(-alpha, alpha);
+        if a == 0.0 || a.abs() >= self.psi_1 {
+            return Ok((a, self.joint_at(a).extrados));
+        }
+        let on_keystone = self.form.keystone && self.form.joints == JointOrientation::Radial;
+        if !on_keystone {
+            return Err(FormError::LoadInsideKeystone {
+                at_deg,
+                first_joint_deg: self.psi_1.to_degrees(),
+            });
+        }
+        if a.abs() < self.psi_e0 {
+            return Err(FormError::LoadOffExtrados {
+                at_deg,
+                apex_deg: self.psi_e0.to_degrees(),
+                first_joint_deg: self.psi_1.to_degrees(),
+            });
+        }
+        let (s, c) = a.abs().sin_cos();
+        let k = self.arch.k;
+        let x = (-self.d + k * s).copysign(a);
+        Ok((a, [x, k * c]))
+    }
+}
 
 /// Splits the families at a point load at `a`, so that each side of the load is a closed
 /// family: the joint at `a` carries the load on its crown side.

@@ -86,7 +86,7 @@ pub enum FormError {
     },
     /// A point load between the crown and the first joint of a pointed arch.
     #[error(
-        "a point load at {at_deg}° is not at a joint of this pointed arch: its crown joint is at 0° and the next ones at ±{first_joint_deg}°"
+        "a point load at {at_deg}° is not at a joint of this pointed arch: its crown joint is at 0° and the next ones at ±{first_joint_deg}°; a load between them needs a keystone"
     )]
     LoadInsideKeystone {
         /// Position given.
@@ -94,6 +94,57 @@ pub enum FormError {
         /// ψ₁ in degrees.
         first_joint_deg: f64,
     },
+    /// A point load on a keystone between the crown and the extrados apex's angle.
+    #[error(
+        "a point load at {at_deg}° is not on the extrados: the keystone's extrados runs from the apex at ±{apex_deg}° (named 0°) to ±{first_joint_deg}°"
+    )]
+    LoadOffExtrados {
+        /// Position given.
+        at_deg: f64,
+        /// ψ of the extrados apex, asin(d/K), in degrees.
+        apex_deg: f64,
+        /// ψ₁ in degrees.
+        first_joint_deg: f64,
+    },
+    /// A keystone asked for where the form has none.
+    #[error("{0}")]
+    NoKeystone(KeystoneRefusal),
+}
+
+/// Why a form has no keystone (the rigid block between the first joints of the two halves).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+pub enum KeystoneRefusal {
+    /// The continuum of a circular arch.
+    #[error(
+        "a circular arch has no keystone in the continuum: every section is a joint, so the first joints of the two halves are the crown plane itself (an odd voussoir count puts a keystone at the crown)"
+    )]
+    Circular,
+    /// The continuum of a pointed arch with vertical joints.
+    #[error(
+        "a pointed arch with vertical joints has no keystone in the continuum: the vertical joint through the intrados apex is the crown plane itself (an odd voussoir count puts a keystone at the crown)"
+    )]
+    Vertical,
+    /// An even voussoir count.
+    #[error("{0} voussoirs put a joint at the crown: a keystone needs an odd voussoir count")]
+    EvenVoussoirs(u32),
+}
+
+/// Checks that a form asked to have a keystone has one.
+pub fn check_keystone(form: &ArchForm, joints: Discretisation) -> Result<(), KeystoneRefusal> {
+    if !form.keystone {
+        return Ok(());
+    }
+    match joints {
+        Discretisation::Voussoirs(n) if n % 2 == 0 => Err(KeystoneRefusal::EvenVoussoirs(n)),
+        Discretisation::Voussoirs(_) => Ok(()),
+        Discretisation::Continuum if form.shape.eccentricity() == 0.0 => {
+            Err(KeystoneRefusal::Circular)
+        }
+        Discretisation::Continuum if form.joints == JointOrientation::Vertical => {
+            Err(KeystoneRefusal::Vertical)
+        }
+        Discretisation::Continuum => Ok(()),
+    }
 }
 
 /// Area and first moments of a region: (A, ∫x dA, ∫y dA).
@@ -195,23 +246,9 @@ impl ArchModel {
             WeightModel::Annular => m.region(&m.support()).0[0],
             WeightModel::Centreline => (k - 1.0) * rho_c * (alpha - psi_c0),
         };
+        check_keystone(&form, arch.joints).map_err(FormError::NoKeystone)?;
         if let Load::Point { at_deg } = load {
-            let a = at_deg.to_radians();
-            if !(a.abs() <= alpha * (1.0 + GEOMETRY.tol_joint_range)) {
-                return Err(FormError::LoadOutside {
-                    at_deg,
-                    half_angle_deg: arch.half_angle_deg(),
-                });
-            }
-            let a = a.clamp(-alpha, alpha);
-            if a != 0.0 && a.abs() < psi_1 {
-                return Err(FormError::LoadInsideKeystone {
-                    at_deg,
-                    first_joint_deg: psi_1.to_degrees(),
-                });
-            }
-            let x = m.joint_at(a).extrados;
-            m.point = Some((a, x));
+            m.point = Some(m.place_point(at_deg)?);
         }
         Ok(m)
     }
@@ -221,12 +258,8 @@ impl ArchModel {
     /// crown joint between the two halves, and how it is shared between them is statically
     /// indeterminate.
     pub fn has_apex_load(&self) -> bool {
-        // An odd voussoir count has a keystone over the apex: the load lies on one block.
-        let crown_joint = match self.arch.joints {
-            Discretisation::Voussoirs(n) => n % 2 == 0,
-            Discretisation::Continuum => true,
-        };
-        crown_joint
+        // A keystone over the apex carries the load on one block.
+        !self.has_keystone()
             && self.psi_1 > 0.0
             && self.form.joints == JointOrientation::Radial
             && self.point.is_some_and(|(a, _)| a == 0.0)
@@ -243,6 +276,15 @@ impl ArchModel {
     pub fn with_shared_apex(mut self) -> Self {
         self.shared_apex = self.has_apex_load();
         self
+    }
+
+    /// True when the crown lies inside one block, the keystone: the continuum with the
+    /// form's keystone, or an odd voussoir count.
+    pub fn has_keystone(&self) -> bool {
+        match self.arch.joints {
+            Discretisation::Voussoirs(n) => n % 2 == 1,
+            Discretisation::Continuum => self.form.keystone,
+        }
     }
 
     /// The arch.

@@ -19,6 +19,7 @@ fn form(e: f64, joints: JointOrientation) -> ArchForm {
             Shape::Pointed { eccentricity: e }
         },
         joints,
+        keystone: false,
     }
 }
 
@@ -230,19 +231,36 @@ fn load_factor_programmes_agree_with_clarabel() {
     use clarabel::solver::{
         DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus,
     };
-    let a = arch(
-        1.3,
-        90.0,
-        WeightModel::Annular,
-        Discretisation::Voussoirs(64),
-    );
-    for (f, load, phi) in [
-        (ArchForm::default(), Load::Horizontal, 0.6f64.atan()),
-        (ArchForm::default(), Load::Point { at_deg: 22.5 }, FRAC_PI_2),
-        (form(0.3, JointOrientation::Vertical), Load::Horizontal, 1.4),
+    let voussoirs = |k, n| arch(k, 90.0, WeightModel::Annular, Discretisation::Voussoirs(n));
+    let a = voussoirs(1.3, 64);
+    for (a, f, load, phi) in [
+        (a, ArchForm::default(), Load::Horizontal, 0.6f64.atan()),
         (
+            a,
+            ArchForm::default(),
+            Load::Point { at_deg: 22.5 },
+            FRAC_PI_2,
+        ),
+        (
+            a,
+            form(0.3, JointOrientation::Vertical),
+            Load::Horizontal,
+            1.4,
+        ),
+        (
+            a,
             form(0.3, JointOrientation::Radial),
             Load::Point { at_deg: -45.0 },
+            0.7,
+        ),
+        // On the keystone of 65 voussoirs (ψ₁ = 18.8°, extrados apex 16.3°).
+        (
+            voussoirs(1.15, 65),
+            ArchForm {
+                keystone: true,
+                ..form(0.3, JointOrientation::Radial)
+            },
+            Load::Point { at_deg: 18.5 },
             0.7,
         ),
     ] {
