@@ -290,6 +290,24 @@ impl JointOrientation {
     }
 }
 
+/// Why a form has no keystone (the rigid block between the first joints of the two halves).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+pub enum KeystoneRefusal {
+    /// The continuum of a circular arch.
+    #[error(
+        "a circular arch has no keystone in the continuum: every section is a joint, so the first joints of the two halves are the crown plane itself (an odd voussoir count puts a keystone at the crown)"
+    )]
+    Circular,
+    /// The continuum of a pointed arch with vertical joints.
+    #[error(
+        "a pointed arch with vertical joints has no keystone in the continuum: the vertical joint through the intrados apex is the crown plane itself (an odd voussoir count puts a keystone at the crown)"
+    )]
+    Vertical,
+    /// An even voussoir count.
+    #[error("{0} voussoirs put a joint at the crown: a keystone needs an odd voussoir count")]
+    EvenVoussoirs(u32),
+}
+
 /// The form of an arch beyond the data of [`Arch`]: its outline and its joint planes.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ArchForm {
@@ -305,6 +323,24 @@ pub struct ArchForm {
 }
 
 impl ArchForm {
+    /// Checks that a form asked to have a keystone has one with these joints.
+    pub fn check_keystone(&self, joints: Discretisation) -> Result<(), KeystoneRefusal> {
+        if !self.keystone {
+            return Ok(());
+        }
+        match joints {
+            Discretisation::Voussoirs(n) if n % 2 == 0 => Err(KeystoneRefusal::EvenVoussoirs(n)),
+            Discretisation::Voussoirs(_) => Ok(()),
+            Discretisation::Continuum if self.shape.eccentricity() == 0.0 => {
+                Err(KeystoneRefusal::Circular)
+            }
+            Discretisation::Continuum if self.joints == JointOrientation::Vertical => {
+                Err(KeystoneRefusal::Vertical)
+            }
+            Discretisation::Continuum => Ok(()),
+        }
+    }
+
     /// True for the paper's circular arch with radial joints (closed forms exist).
     pub fn is_circular_radial(&self) -> bool {
         self.shape == Shape::Circular && self.joints == JointOrientation::Radial

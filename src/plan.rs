@@ -211,8 +211,9 @@ impl Plan {
         } else {
             m.arch.voussoirs.to_string()
         };
+        let keystone = if m.arch.keystone { ", keystone" } else { "" };
         s.push_str(&format!(
-            "arch: {} {alpha}, {} joints, {} weight, {voussoirs}\n",
+            "arch: {} {alpha}, {} joints{keystone}, {} weight, {voussoirs}\n",
             shape, m.arch.joints, m.arch.weight
         ));
         for a in &m.grid {

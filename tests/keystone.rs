@@ -90,7 +90,8 @@ fn loads_on_the_keystone_converge_to_the_continuum() {
 /// as are the forms without a keystone.
 #[test]
 fn keystone_refusals() {
-    use archstudy::analysis::forms::{ArchModel, FormError, KeystoneRefusal};
+    use archstudy::analysis::forms::{ArchModel, FormError};
+    use archstudy::model::KeystoneRefusal;
     let arch = |joints| Arch::new(1.15, 90.0, WeightModel::Annular, joints).unwrap();
     let c = Discretisation::Continuum;
     let at = |at_deg| Load::Point { at_deg };
@@ -132,4 +133,78 @@ fn keystone_refusals() {
         ArchModel::new(odd, vertical, at(10.0)),
         Err(FormError::LoadInsideKeystone { .. })
     ));
+}
+
+/// A load-factor study with `keystone: true`: every row says so in results.parquet, and the
+/// loads on the keystone (17° and 18°, inside ψ₁ = 18.814°) get the continuum's λ_max above.
+#[test]
+fn keystone_study_stores_its_column() {
+    use crate::common::{run_study, scratch};
+    use archstudy::store;
+    let dir = scratch("keystone-study");
+    let text = "name: ks
+arch: {shape: pointed, eccentricity: 0.3, keystone: true}
+grid:
+  at_deg: {values: [0, 17, 18]}
+  k: {values: [1.15]}
+  mu: {values: [0.6]}
+load_cases:
+  - {name: p, kind: point}
+find: load_factor
+";
+    let run = run_study(&dir, "ks.yaml", text);
+    let df = store::read_parquet(&run.join("results.parquet")).unwrap();
+    let keystone = store::bool_column(&df, "keystone").unwrap();
+    assert_eq!(keystone, vec![Some(true); 3]);
+    let lf = store::f64_column(&df, "load_factor").unwrap();
+    for (got, want) in lf.iter().zip([0.7532291, 0.6605207, 0.5616365]) {
+        approx::assert_abs_diff_eq!(got.unwrap(), want, epsilon = 1e-6);
+    }
+}
+
+/// The manifest refuses a keystone where the form has none, and a load on the keystone
+/// nearer the crown than the extrados apex; `solve --keystone` likewise.
+#[test]
+fn keystone_usage_errors() {
+    use crate::common::{archstudy, assert_usage_error, manifest, scratch};
+    let dir = scratch("keystone-refusals");
+    for (arch, at, names) in [
+        (
+            "{keystone: true}",
+            "30",
+            &["arch.keystone", "circular arch has no keystone"][..],
+        ),
+        (
+            "{shape: pointed, eccentricity: 0.3, keystone: true, voussoirs: 40}",
+            "30",
+            &["arch.keystone", "40 voussoirs"][..],
+        ),
+        (
+            "{shape: pointed, eccentricity: 0.3, keystone: true}",
+            "16",
+            &["grid.at_deg", "16", "extrados"][..],
+        ),
+        (
+            "{shape: pointed, eccentricity: 0.3}",
+            "17",
+            &["grid.at_deg", "17", "keystone: true"][..],
+        ),
+    ] {
+        let text = format!(
+            "name: bad\narch: {arch}\ngrid:\n  at_deg: {{values: [{at}]}}\n  k: {{values: [1.15]}}\n  mu: {{values: [0.6]}}\nload_cases:\n  - {{name: p, kind: point}}\nfind: load_factor\n"
+        );
+        let m = manifest(&dir, "bad.yaml", &text);
+        assert_usage_error(&archstudy(&["check", m.to_str().unwrap()]), names);
+    }
+    let o = archstudy(&[
+        "solve",
+        "--find",
+        "load-factor",
+        "--load",
+        "point",
+        "--at",
+        "10",
+        "--keystone",
+    ]);
+    assert_usage_error(&o, &["--keystone", "circular arch"]);
 }

@@ -92,6 +92,7 @@ pub(super) struct RawArch {
     pub(super) eccentricity: Option<Spanned<f64>>,
     pub(super) half_angle_deg: Option<Spanned<f64>>,
     pub(super) joints: Option<Spanned<String>>,
+    pub(super) keystone: Option<Spanned<bool>>,
     pub(super) weight: Option<Spanned<String>>,
     pub(super) voussoirs: Option<Spanned<RawVoussoirs>>,
 }

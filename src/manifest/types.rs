@@ -89,6 +89,9 @@ pub struct ArchOptions {
     pub half_angle_deg: f64,
     /// `radial` or `vertical`.
     pub joints: &'static str,
+    /// The crown inside one rigid block (`ArchForm::keystone`).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub keystone: bool,
     /// Weight model.
     pub weight: WeightModel,
     /// Continuum or voussoirs.
@@ -105,7 +108,7 @@ impl ArchOptions {
                 _ => Shape::Circular,
             },
             joints: JointOrientation::parse(self.joints).unwrap_or_default(),
-            keystone: false,
+            keystone: self.keystone,
         }
     }
 }

@@ -106,6 +106,9 @@ pub struct Solution {
     pub eccentricity: Option<f64>,
     /// `radial` or `vertical` joint planes.
     pub joints: &'static str,
+    /// True when the crown lies inside one block, the keystone: the form's keystone in the
+    /// continuum, an odd voussoir count.
+    pub keystone: bool,
     /// The load case kind: `self_weight`, `horizontal` or `point`.
     pub load: &'static str,
     /// Position of a point load, degrees from the crown (null for other loads).
@@ -236,6 +239,10 @@ impl Solution {
                 crate::model::Shape::Circular => None,
             },
             joints: scene.form.joints.as_str(),
+            keystone: match a.joints {
+                crate::model::Discretisation::Voussoirs(n) => n % 2 == 1,
+                crate::model::Discretisation::Continuum => scene.form.keystone,
+            },
             load: scene.load.as_str(),
             at_deg: scene.load.at_deg(),
             lambda: (scene.load.is_live() && scene.find != Find::LoadFactor)

@@ -305,6 +305,7 @@ impl Stored {
             shape: same("shape", self.s("shape", i), planned.shape)?,
             eccentricity: self.n("eccentricity", i),
             joints: same("joints", self.s("joints", i), planned.joints)?,
+            keystone: planned.keystone,
             load: same("load", self.s("load", i), planned.load)?,
             at_deg: self.n("at_deg", i),
             lambda: self.n("lambda", i),

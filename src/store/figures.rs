@@ -58,6 +58,8 @@ pub struct StateRow {
     pub eccentricity: f64,
     /// Orientation of the joints: `radial` or `vertical`.
     pub joint_orientation: String,
+    /// True when the form asks for a keystone (`ArchForm::keystone`).
+    pub keystone: bool,
     /// Kind of the load case: `self_weight`, `horizontal` or `point`.
     pub load: String,
     /// Position of the point load, degrees from the crown (`None` for other loads).
@@ -287,6 +289,7 @@ pub fn states_frame(rows: &[StateRow]) -> Result<DataFrame> {
         .str("shape", s(&|r| r.shape.clone()))
         .f64("eccentricity", f(&|r| r.eccentricity))
         .str("joint_orientation", s(&|r| r.joint_orientation.clone()))
+        .bool("keystone", rows.iter().map(|r| r.keystone).collect())
         .str("load", s(&|r| r.load.clone()))
         .opt_f64("at_deg", o(&|r| r.at_deg))
         .opt_f64("load_factor", o(&|r| r.load_factor))
@@ -374,6 +377,7 @@ pub fn read_states(path: &Path) -> Result<Vec<StateRow>> {
             shape: arch.shape[i].clone().unwrap_or_else(|| "circular".into()),
             eccentricity: arch.eccentricity[i].unwrap_or(0.0),
             joint_orientation: arch.joints[i].clone().unwrap_or_else(|| "radial".into()),
+            keystone: arch.keystone[i].unwrap_or(false),
             load: arch.load[i].clone().unwrap_or_else(|| "self_weight".into()),
             at_deg: arch.at_deg[i],
             load_factor: arch.load_factor[i],
@@ -413,6 +417,7 @@ struct StateArchColumns {
     shape: Vec<Option<String>>,
     eccentricity: Vec<Option<f64>>,
     joints: Vec<Option<String>>,
+    keystone: Vec<Option<bool>>,
     load: Vec<Option<String>>,
     at_deg: Vec<Option<f64>>,
     load_factor: Vec<Option<f64>>,
@@ -426,6 +431,8 @@ impl StateArchColumns {
             shape: str_or_null(df, "shape"),
             eccentricity: f64_or_null(df, "eccentricity"),
             joints: str_or_null(df, "joint_orientation"),
+            keystone: super::bool_column(df, "keystone")
+                .unwrap_or_else(|_| vec![None; df.height()]),
             load: str_or_null(df, "load"),
             at_deg: f64_or_null(df, "at_deg"),
             load_factor: f64_or_null(df, "load_factor"),

@@ -57,6 +57,11 @@ const COLUMN_DOCS: &[(&str, &str, &str)] = &[
     ),
     ("joints", "", "joint planes: radial or vertical"),
     (
+        "keystone",
+        "",
+        "true when the crown lies inside one block: the keystone option (continuum) or an odd voussoir count",
+    ),
+    (
         "at_deg",
         "deg",
         "position of the point load, from the crown, positive to the right",

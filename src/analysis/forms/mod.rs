@@ -42,7 +42,9 @@
 
 use super::settings::GeometrySettings;
 use super::statics::Point;
-use crate::model::{Arch, ArchForm, Discretisation, JointOrientation, Load, WeightModel};
+use crate::model::{
+    Arch, ArchForm, Discretisation, JointOrientation, KeystoneRefusal, Load, WeightModel,
+};
 use geometry::{arc_primitive, segment};
 use std::f64::consts::FRAC_PI_2;
 
@@ -109,42 +111,6 @@ pub enum FormError {
     /// A keystone asked for where the form has none.
     #[error("{0}")]
     NoKeystone(KeystoneRefusal),
-}
-
-/// Why a form has no keystone (the rigid block between the first joints of the two halves).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
-pub enum KeystoneRefusal {
-    /// The continuum of a circular arch.
-    #[error(
-        "a circular arch has no keystone in the continuum: every section is a joint, so the first joints of the two halves are the crown plane itself (an odd voussoir count puts a keystone at the crown)"
-    )]
-    Circular,
-    /// The continuum of a pointed arch with vertical joints.
-    #[error(
-        "a pointed arch with vertical joints has no keystone in the continuum: the vertical joint through the intrados apex is the crown plane itself (an odd voussoir count puts a keystone at the crown)"
-    )]
-    Vertical,
-    /// An even voussoir count.
-    #[error("{0} voussoirs put a joint at the crown: a keystone needs an odd voussoir count")]
-    EvenVoussoirs(u32),
-}
-
-/// Checks that a form asked to have a keystone has one.
-pub fn check_keystone(form: &ArchForm, joints: Discretisation) -> Result<(), KeystoneRefusal> {
-    if !form.keystone {
-        return Ok(());
-    }
-    match joints {
-        Discretisation::Voussoirs(n) if n % 2 == 0 => Err(KeystoneRefusal::EvenVoussoirs(n)),
-        Discretisation::Voussoirs(_) => Ok(()),
-        Discretisation::Continuum if form.shape.eccentricity() == 0.0 => {
-            Err(KeystoneRefusal::Circular)
-        }
-        Discretisation::Continuum if form.joints == JointOrientation::Vertical => {
-            Err(KeystoneRefusal::Vertical)
-        }
-        Discretisation::Continuum => Ok(()),
-    }
 }
 
 /// Area and first moments of a region: (A, ∫x dA, ∫y dA).
@@ -246,7 +212,8 @@ impl ArchModel {
             WeightModel::Annular => m.region(&m.support()).0[0],
             WeightModel::Centreline => (k - 1.0) * rho_c * (alpha - psi_c0),
         };
-        check_keystone(&form, arch.joints).map_err(FormError::NoKeystone)?;
+        form.check_keystone(arch.joints)
+            .map_err(FormError::NoKeystone)?;
         if let Load::Point { at_deg } = load {
             m.point = Some(m.place_point(at_deg)?);
         }

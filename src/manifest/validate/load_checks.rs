@@ -5,7 +5,7 @@ use super::{Ctx, fmt_num};
 use crate::manifest::error::ManifestError;
 use crate::manifest::raw::{RawAxis, RawLoadCase, RawManifest};
 use crate::manifest::types::{ArchOptions, AxisName, GridAxis, LoadCase, LoadKind};
-use crate::model::{ArchForm, JointOrientation, Shape};
+use crate::model::{ArchForm, Discretisation, JointOrientation, Shape};
 use crate::scene::Find;
 use serde_saphyr::{Location, Spanned};
 
@@ -65,6 +65,7 @@ pub(super) fn check_loads(
     let alpha_min = alphas.iter().copied().fold(f64::INFINITY, f64::min);
     let alpha_max = alphas.iter().copied().fold(0.0, f64::max);
     check_vertical_joints(raw, &form, alpha_max, cx)?;
+    check_keystone(raw, arch, grid, cx)?;
     let positions = point_positions(lcs, at_axis, grid, &written);
     check_positions_on_arch(&positions, alpha_min, cx)?;
     if let Shape::Pointed { eccentricity: e } = form.shape
@@ -234,6 +235,39 @@ fn check_vertical_joints(
     Ok(())
 }
 
+/// A keystone needs a pointed arch with radial joints in the continuum, or an odd voussoir
+/// count (every count of a voussoirs axis).
+fn check_keystone(
+    raw: &RawManifest,
+    arch: &ArchOptions,
+    grid: &[GridAxis],
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    let counts = match axis_values(grid, AxisName::Voussoirs) {
+        Some(values) => values
+            .iter()
+            .map(|&v| {
+                if v.is_infinite() {
+                    Discretisation::Continuum
+                } else {
+                    Discretisation::Voussoirs(v as u32)
+                }
+            })
+            .collect(),
+        None => vec![arch.voussoirs],
+    };
+    for joints in counts {
+        if let Err(why) = arch.form().check_keystone(joints) {
+            return Err(cx.err(
+                raw.arch.keystone.as_ref().map(|k| k.referenced),
+                "arch.keystone",
+                format!("value true is not allowed: {why}"),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Positions of point loads with where they were written: the load cases' own, then the
 /// grid's at_deg axis.
 fn point_positions(
@@ -314,15 +348,35 @@ fn check_pointed_arch(
             ));
         }
     }
-    // ψ₁ = asin(e(1 + K)/2) grows with K: the thickest arch has the largest keystone.
+    // ψ₁ = asin(e(1 + K)/2) grows with K: the thickest arch has the largest keystone. On a
+    // keystone a load lies on its extrados, which starts at the apex, ψ_e = asin(d/K): the
+    // thinnest arch has the largest ψ_e.
     let psi_1 = (e * 0.5 * (1.0 + k_top)).min(1.0).asin().to_degrees();
+    if form.keystone && form.joints == JointOrientation::Radial {
+        let k_low = ks.iter().copied().fold(f64::INFINITY, f64::min);
+        let psi_e = (e * 0.5 * (1.0 + k_low) / k_low)
+            .min(1.0)
+            .asin()
+            .to_degrees();
+        return match positions.iter().find(|p| p.0 != 0.0 && p.0.abs() < psi_e) {
+            Some(&(a, at, key)) => Err(cx.err(
+                at,
+                key,
+                format!(
+                    "value {} is not allowed: a point load on the keystone lies on its extrados, which starts at the apex (0°) at ±{psi_e:.6}° from its arc's centre at K = {k_low}",
+                    fmt_num(a)
+                ),
+            )),
+            None => Ok(()),
+        };
+    }
     for &(a, at, key) in positions {
         if a != 0.0 && a.abs() < psi_1 {
             return Err(cx.err(
                 at,
                 key,
                 format!(
-                    "value {} is not allowed: a point load must sit at a joint, and this pointed arch has none between its crown (0°) and ±{psi_1:.6}° at K = {k_top}",
+                    "value {} is not allowed: a point load must sit at a joint, and this pointed arch has none between its crown (0°) and ±{psi_1:.6}° at K = {k_top} (with `keystone: true` a load may sit on the keystone)",
                     fmt_num(a)
                 ),
             ));
