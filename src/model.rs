@@ -367,6 +367,22 @@ impl ArchForm {
         2.0 * reach / e - 1.0
     }
 
+    /// The extrados point at x/L = `at_x` of the arch of thickness K and half-angle α
+    /// (radians): its side (+1 right, −1 left; the crown counts as right), its signed
+    /// abscissa x over r, and its angle ψ at its arc's centre, from the vertical. x/L is
+    /// measured horizontally from the left extrados springing, L = 2(K sin α − d) the
+    /// extrados span. `None` when α > 90° (a vertical line meets the extrados twice) or x/L
+    /// is outside [0, 1].
+    pub fn extrados_at_x(&self, k: f64, half_angle: f64, at_x: f64) -> Option<(f64, f64, f64)> {
+        if half_angle > std::f64::consts::FRAC_PI_2 || !(0.0..=1.0).contains(&at_x) {
+            return None;
+        }
+        let d = self.centre_offset(k);
+        let x = (2.0 * at_x - 1.0) * (k * half_angle.sin() - d);
+        let side = if x < 0.0 { -1.0 } else { 1.0 };
+        Some((side, x, ((x.abs() + d) / k).min(1.0).asin()))
+    }
+
     /// Largest K at which the form exists at half-angle α (radians) and a point load of
     /// `load` still sits at a joint: a pointed arch's first joint ψ₁ = asin(e(1 + K)/2)
     /// moves away from the crown as K grows, so a load at a ≠ 0 needs e(1 + K)/2 ≤ sin|a|.
@@ -406,6 +422,14 @@ pub enum Load {
         /// Position, degrees from the crown, positive to the right.
         at_deg: f64,
     },
+    /// A vertical point load λ·W_total at the extrados point at a fraction `at_x` of the
+    /// span: x/L ∈ [0, 1] measured horizontally from the left extrados springing, L the
+    /// extrados span (0.5 is the crown). Its joint angle depends on K and the form
+    /// ([`ArchForm::extrados_at_x`]).
+    PointX {
+        /// Position as x/L.
+        at_x: f64,
+    },
 }
 
 impl Load {
@@ -414,14 +438,23 @@ impl Load {
         match self {
             Load::SelfWeight => "self_weight",
             Load::Horizontal => "horizontal",
-            Load::Point { .. } => "point",
+            Load::Point { .. } | Load::PointX { .. } => "point",
         }
     }
 
-    /// The position of a point load in degrees, `None` for the other loads.
+    /// The position of a point load given in degrees, `None` for the other loads (and for a
+    /// position given as x/L, whose angle depends on K and the form).
     pub fn at_deg(self) -> Option<f64> {
         match self {
             Load::Point { at_deg } => Some(at_deg),
+            _ => None,
+        }
+    }
+
+    /// The position of a point load given as x/L, `None` for the other loads.
+    pub fn at_x(self) -> Option<f64> {
+        match self {
+            Load::PointX { at_x } => Some(at_x),
             _ => None,
         }
     }

@@ -117,6 +117,7 @@ pub(super) struct RawGrid {
     pub(super) half_angle_deg: Option<Spanned<RawAxis>>,
     pub(super) voussoirs: Option<Spanned<RawAxis>>,
     pub(super) at_deg: Option<Spanned<RawAxis>>,
+    pub(super) at_x: Option<Spanned<RawAxis>>,
 }
 
 /// One load case as written.
@@ -126,6 +127,7 @@ pub(super) struct RawLoadCase {
     pub(super) name: Spanned<String>,
     pub(super) kind: Spanned<String>,
     pub(super) at_deg: Option<Spanned<f64>>,
+    pub(super) at_x: Option<Spanned<f64>>,
     pub(super) lambda: Option<Spanned<f64>>,
     pub(super) find: Option<Spanned<String>>,
 }

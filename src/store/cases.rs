@@ -212,12 +212,13 @@ const STRS: [&str; 11] = [
     "message",
 ];
 /// The other numeric input columns, and `mechanism_dof` and `solve_time_us`.
-const NUMS: [&str; 8] = [
+const NUMS: [&str; 9] = [
     "mu",
     "half_angle_deg",
     "voussoirs",
     "eccentricity",
     "at_deg",
+    "at_x",
     "lambda",
     "mechanism_dof",
     "solve_time_us",
@@ -308,6 +309,7 @@ impl Stored {
             keystone: planned.keystone,
             load: same("load", self.s("load", i), planned.load)?,
             at_deg: self.n("at_deg", i),
+            at_x: self.n("at_x", i),
             lambda: self.n("lambda", i),
             outcome: opt_name(
                 &Outcome::ALL,

@@ -452,6 +452,8 @@ pub struct BifurcationGroup {
     pub voussoirs: Option<Option<u32>>,
     /// Position of the point load, degrees from the crown.
     pub at_deg: Option<f64>,
+    /// Position of the point load given as x/L.
+    pub at_x: Option<f64>,
     /// λ_max at the bifurcation (load_factor studies).
     pub load_factor: Option<f64>,
     /// `k` or `mu`: the grid edge along which a change of mechanism was located (general
@@ -466,6 +468,7 @@ pub fn read_bifurcation_groups(path: &Path) -> Result<Vec<BifurcationGroup>> {
     let half = f64_or_null(&df, "half_angle_deg");
     let nv = f64_or_null(&df, "voussoirs");
     let at = f64_or_null(&df, "at_deg");
+    let at_x = f64_or_null(&df, "at_x");
     let lf = f64_or_null(&df, "load_factor");
     let has_voussoirs = has("voussoirs");
     let axis = str_or_null(&df, "axis");
@@ -474,6 +477,7 @@ pub fn read_bifurcation_groups(path: &Path) -> Result<Vec<BifurcationGroup>> {
             half_angle_deg: half[i],
             voussoirs: has_voussoirs.then(|| nv[i].map(|v| v as u32)),
             at_deg: at[i],
+            at_x: at_x[i],
             load_factor: lf[i],
             axis: axis[i].clone(),
         })

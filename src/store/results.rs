@@ -231,6 +231,7 @@ fn input_columns<'a>(plan: &'a Plan) -> Vec<Spec<'a>> {
         bool_col("keystone", |r| r.solution.keystone),
         str_col("load", |r| r.solution.load),
         opt_f64("at_deg", |r| r.solution.at_deg),
+        opt_f64("at_x", |r| r.solution.at_x),
         opt_f64("lambda", |r| r.solution.lambda),
     ]
 }

@@ -66,6 +66,11 @@ const COLUMN_DOCS: &[(&str, &str, &str)] = &[
         "deg",
         "position of the point load, from the crown, positive to the right",
     ),
+    (
+        "at_x",
+        "L",
+        "position of the point load as x/L: horizontally from the left extrados springing over the extrados span (0.5: the crown)",
+    ),
     ("lambda", "W_total", "given load factor λ of the live load"),
     (
         "outcome",

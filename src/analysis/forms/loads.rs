@@ -18,7 +18,10 @@ impl ArchModel {
                 half_angle_deg: self.arch.half_angle_deg(),
             });
         }
-        let a = a.clamp(-alpha, alpha);
+        self.place_angle(a.clamp(-alpha, alpha), at_deg)
+    }
+
+    fn place_angle(&self, a: f64, at_deg: f64) -> Result<(f64, Point), FormError> {
         if a == 0.0 || a.abs() >= self.psi_1 {
             return Ok((a, self.joint_at(a).extrados));
         }
@@ -36,10 +39,66 @@ impl ArchModel {
                 first_joint_deg: self.psi_1.to_degrees(),
             });
         }
+        Ok((a, self.extrados_point(a)))
+    }
+
+    /// The extrados point at angle |a| from its arc's centre, on the side of a.
+    fn extrados_point(&self, a: f64) -> Point {
         let (s, c) = a.abs().sin_cos();
         let k = self.arch.k;
-        let x = (-self.d + k * s).copysign(a);
-        Ok((a, [x, k * c]))
+        [(-self.d + k * s).copysign(a), k * c]
+    }
+
+    /// The parameter a and the extrados point X of a point load at x/L = `at_x`
+    /// ([`ArchForm::extrados_at_x`]): radial joints take the joint through the point (or the
+    /// keystone under it), vertical joints the vertical joint through it; a point beyond the
+    /// vertical joint at α lies on the wedge against the radial support and takes the
+    /// support's parameter.
+    pub(super) fn place_point_x(&self, at_x: f64) -> Result<(f64, Point), FormError> {
+        let (k, alpha) = (self.arch.k, self.arch.half_angle);
+        let Some((side, x, psi)) = self.form.extrados_at_x(k, alpha, at_x) else {
+            return Err(FormError::LoadOffSpan {
+                at_x,
+                half_angle_deg: self.arch.half_angle_deg(),
+            });
+        };
+        if x == 0.0 {
+            return Ok((0.0, self.joint_at(0.0).extrados));
+        }
+        match self.form.joints {
+            JointOrientation::Radial => self
+                .place_angle(side * psi, side * psi.to_degrees())
+                .map_err(|e| match e {
+                    FormError::LoadInsideKeystone {
+                        first_joint_deg, ..
+                    } => FormError::XInsideKeystone {
+                        at_x,
+                        at_deg: side * psi.to_degrees(),
+                        first_joint_deg,
+                    },
+                    other => other,
+                }),
+            JointOrientation::Vertical => {
+                let s = x.abs() + self.d;
+                if s <= alpha.sin() {
+                    let theta = side * s.asin();
+                    Ok((theta, self.joint_at(theta).extrados))
+                } else {
+                    Ok((self.support_param(side), self.extrados_point(side * psi)))
+                }
+            }
+        }
+    }
+
+    /// The point load's position as reported: degrees from the crown (the joint angle of
+    /// its parameter, the angle at its arc's centre on a keystone) and x/L (`None` when
+    /// α > 90°). `None` without a point load.
+    pub fn point_position(&self) -> Option<(f64, Option<f64>)> {
+        let (a, x) = self.point?;
+        let alpha = self.arch.half_angle;
+        let half_span = self.arch.k * alpha.sin() - self.d;
+        let at_x = (alpha <= std::f64::consts::FRAC_PI_2).then(|| 0.5 + 0.5 * x[0] / half_span);
+        Some((self.angle_deg(a), at_x))
     }
 }
 
@@ -97,7 +156,7 @@ impl ArchGeometry for ArchModel {
                     m: -sy,
                 }
             }
-            Load::Point { .. } => {
+            Load::Point { .. } | Load::PointX { .. } => {
                 let Some((a, x)) = self.point else {
                     return Resultant::default();
                 };

@@ -108,6 +108,29 @@ pub enum FormError {
         /// ψ₁ in degrees.
         first_joint_deg: f64,
     },
+    /// A point load given as x/L outside the span, or on an arch beyond a semicircle.
+    #[error(
+        "a point load at x/L = {at_x} is not allowed with a half-angle of {half_angle_deg}°: x/L must lie in [0, 1], on an arch with α ≤ 90° (beyond, a vertical line meets the extrados twice)"
+    )]
+    LoadOffSpan {
+        /// Position given.
+        at_x: f64,
+        /// α in degrees.
+        half_angle_deg: f64,
+    },
+    /// A point load given as x/L above the wedge between the crown and the first joints of a
+    /// pointed arch without a keystone.
+    #[error(
+        "a point load at x/L = {at_x} ({at_deg}° from its arc's centre) lies between the crown joint and the first joints at ±{first_joint_deg}° of this pointed arch: a load there needs a keystone"
+    )]
+    XInsideKeystone {
+        /// Position given.
+        at_x: f64,
+        /// Its angle at the arc's centre, degrees.
+        at_deg: f64,
+        /// ψ₁ in degrees.
+        first_joint_deg: f64,
+    },
     /// A keystone asked for where the form has none.
     #[error("{0}")]
     NoKeystone(KeystoneRefusal),
@@ -214,9 +237,11 @@ impl ArchModel {
         };
         form.check_keystone(arch.joints)
             .map_err(FormError::NoKeystone)?;
-        if let Load::Point { at_deg } = load {
-            m.point = Some(m.place_point(at_deg)?);
-        }
+        m.point = match load {
+            Load::Point { at_deg } => Some(m.place_point(at_deg)?),
+            Load::PointX { at_x } => Some(m.place_point_x(at_x)?),
+            Load::SelfWeight | Load::Horizontal => None,
+        };
         Ok(m)
     }
 
