@@ -21,5 +21,6 @@ mod report_states;
 mod run;
 mod shard;
 mod solve;
+mod span_positions;
 mod symmetric_boundaries;
 mod symmetric_lines;
