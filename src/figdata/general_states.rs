@@ -288,6 +288,7 @@ mod tests {
             half_angle_deg: 90.0,
             voussoirs: None,
             at_deg: Some(row as f64),
+            at_x: None,
             load_factor: Some(lambda),
             mechanism: Some(mech.into()),
         }

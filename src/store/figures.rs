@@ -565,6 +565,8 @@ pub struct LoadFactorCase {
     pub voussoirs: Option<u32>,
     /// Position of the point load, degrees from the crown.
     pub at_deg: Option<f64>,
+    /// Position of the point load as x/L (`None` in runs written before it was stored).
+    pub at_x: Option<f64>,
     /// λ_max, multiples of the total weight (`None` when unbounded or not found).
     pub load_factor: Option<f64>,
     /// Collapse mechanism at λ_max.
@@ -572,7 +574,7 @@ pub struct LoadFactorCase {
 }
 
 /// The columns of results.parquet read into [`LoadFactorCase`].
-const LOAD_FACTOR_COLUMNS: [&str; 9] = [
+const LOAD_FACTOR_COLUMNS: [&str; 10] = [
     "load_case",
     "find",
     "k",
@@ -580,6 +582,7 @@ const LOAD_FACTOR_COLUMNS: [&str; 9] = [
     "half_angle_deg",
     "voussoirs",
     "at_deg",
+    "at_x",
     "load_factor",
     "mechanism",
 ];
@@ -593,6 +596,7 @@ pub fn read_load_factor_cases(path: &Path) -> Result<Vec<LoadFactorCase>> {
     let (lc, find, mech) = (s("load_case")?, s("find")?, s("mechanism")?);
     let (k, mu, half) = (f("k")?, f("mu")?, f("half_angle_deg")?);
     let (nv, at, lf) = (f("voussoirs")?, f("at_deg")?, f("load_factor")?);
+    let at_x = f64_or_null(&df, "at_x");
     Ok((0..lc.len())
         .filter(|&i| find[i].as_deref() == Some("load_factor"))
         .map(|i| LoadFactorCase {
@@ -603,6 +607,7 @@ pub fn read_load_factor_cases(path: &Path) -> Result<Vec<LoadFactorCase>> {
             half_angle_deg: half[i].unwrap_or(90.0),
             voussoirs: nv[i].map(|v| v as u32),
             at_deg: at[i],
+            at_x: at_x[i],
             load_factor: lf[i],
             mechanism: mech[i].clone(),
         })
