@@ -367,6 +367,37 @@ impl ArchForm {
         2.0 * reach / e - 1.0
     }
 
+    /// The K below `k_max` at which the extrados point at x/L = `at_x` reaches the first
+    /// joint ψ₁ of a pointed arch (beyond, it lies above the wedge between the crown joint
+    /// and ψ₁): the root of u(K sin α − d) − (K − 1)d, u = |2x/L − 1|, found by bisection
+    /// (positive at K = 1 where the form exists).
+    fn max_k_at_x(&self, half_angle: f64, at_x: f64, k_max: f64) -> f64 {
+        let u = (2.0 * at_x - 1.0).abs();
+        let s = half_angle.min(std::f64::consts::FRAC_PI_2).sin();
+        let f = |k: f64| {
+            let d = self.centre_offset(k);
+            u * (k * s - d) - (k - 1.0) * d
+        };
+        let hi_start = if k_max.is_finite() { k_max } else { 1e3 };
+        if f(hi_start) >= 0.0 {
+            return k_max;
+        }
+        // Bisection down to adjacent floats.
+        let (mut lo, mut hi) = (1.0, hi_start);
+        loop {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if f(mid) >= 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        lo
+    }
+
     /// The extrados point at x/L = `at_x` of the arch of thickness K and half-angle α
     /// (radians): its side (+1 right, −1 left; the crown counts as right), its signed
     /// abscissa x over r, and its angle ψ at its arc's centre, from the vertical. x/L is
@@ -399,6 +430,9 @@ impl ArchForm {
                     .min(std::f64::consts::FRAC_PI_2)
                     .sin();
                 k.min(2.0 * s / e - 1.0)
+            }
+            Load::PointX { at_x } if at_x != 0.5 && e > 0.0 && !on_keystone => {
+                k.min(self.max_k_at_x(half_angle, at_x, k))
             }
             _ => k,
         }

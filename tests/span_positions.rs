@@ -213,3 +213,33 @@ fn x_over_l_usage_errors() {
     ]);
     assert_usage_error(&o, &["--at", "--at-x"]);
 }
+
+/// Without a keystone, the thickest pointed arch on which a load at x/L still sits at a
+/// joint is the K where its extrados point reaches the first joint ψ₁ = asin d: there
+/// asin((|x| + d)/K) = asin d, which a thickness search must not pass.
+#[test]
+fn x_over_l_bounds_the_thickness_where_the_point_meets_the_first_joint() {
+    let form = ArchForm {
+        shape: Shape::Pointed { eccentricity: 0.3 },
+        joints: JointOrientation::Radial,
+        keystone: false,
+    };
+    let half = std::f64::consts::FRAC_PI_2;
+    let k = form.max_k_with_load(half, Load::PointX { at_x: 0.52 });
+    assert!(k > 1.0 && k < form.max_k(half), "{k}");
+    let (_, _, psi) = form.extrados_at_x(k, half, 0.52).unwrap();
+    approx::assert_abs_diff_eq!(psi, form.centre_offset(k).asin(), epsilon = 1e-12);
+    // Closed form: u(K − d) = (K − 1)d with u = 0.04, d = 0.15(1 + K), i.e.
+    // 0.15K² − 0.034K − 0.144 = 0: K = 1.0996621043.
+    let root = (0.034 + (0.034f64.powi(2) + 4.0 * 0.15 * 0.144).sqrt()) / 0.3;
+    approx::assert_abs_diff_eq!(k, root, epsilon = 1e-12);
+    approx::assert_abs_diff_eq!(k, 1.0996621043, epsilon = 1e-10);
+    let keystone = ArchForm {
+        keystone: true,
+        ..form
+    };
+    assert_eq!(
+        keystone.max_k_with_load(half, Load::PointX { at_x: 0.52 }),
+        keystone.max_k(half)
+    );
+}
