@@ -64,7 +64,12 @@ pub(super) fn check_loads(
     for (i, lc) in lcs.iter().enumerate() {
         check_find_fits_load(i, lc, &written, cx)?;
         check_lambda_fits_find(i, lc, &written, cx)?;
-        check_position_source(i, lc, at_axis.or(x_axis), &written, cx)?;
+        let axis = match (at_axis, x_axis) {
+            (Some(a), _) => Some((a, "grid.at_deg")),
+            (None, Some(x)) => Some((x, "grid.at_x")),
+            (None, None) => None,
+        };
+        check_position_source(i, lc, axis, &written, cx)?;
     }
     let form = arch.form();
     check_form_fits_finds(raw, lcs, &form, cx)?;
@@ -167,12 +172,13 @@ fn check_lambda_fits_find(
     }
 }
 
-/// A point load is positioned by its `at_deg` or by the grid's at_deg axis (exactly one of
-/// them); an at_deg axis is for point loads only.
+/// A point load is positioned by its `at_deg` or `at_x`, or by the grid's at_deg or at_x
+/// axis (exactly one of them, with the axis's key); a position axis is for point loads
+/// only.
 fn check_position_source(
     i: usize,
     lc: &LoadCase,
-    at_axis: Option<&Spanned<RawAxis>>,
+    at_axis: Option<(&Spanned<RawAxis>, &'static str)>,
     written: &Written,
     cx: &Ctx,
 ) -> Result<(), ManifestError> {
@@ -199,9 +205,9 @@ fn check_position_source(
                 lc.name
             ),
         )),
-        (kind, Some(ax), _) if kind != LoadKind::Point => Err(cx.err(
+        (kind, Some((ax, key)), _) if kind != LoadKind::Point => Err(cx.err(
             Some(ax.referenced),
-            "grid position axis",
+            key,
             format!(
                 "an at_deg or at_x axis positions point loads, but load case {:?} is {}: give it a study of its own",
                 lc.name,
