@@ -65,14 +65,17 @@ fn bench_general(bencher: Bencher, s: &Scene) {
 const CIRCULAR: ArchForm = ArchForm {
     shape: Shape::Circular,
     joints: JointOrientation::Radial,
+    keystone: false,
 };
 const VERTICAL: ArchForm = ArchForm {
     shape: Shape::Circular,
     joints: JointOrientation::Vertical,
+    keystone: false,
 };
 const POINTED: ArchForm = ArchForm {
     shape: Shape::Pointed { eccentricity: 0.2 },
     joints: JointOrientation::Radial,
+    keystone: false,
 };
 
 mod circular {

@@ -290,6 +290,24 @@ impl JointOrientation {
     }
 }
 
+/// Why a form has no keystone (the rigid block between the first joints of the two halves).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+pub enum KeystoneRefusal {
+    /// The continuum of a circular arch.
+    #[error(
+        "a circular arch has no keystone in the continuum: every section is a joint, so the first joints of the two halves are the crown plane itself (an odd voussoir count puts a keystone at the crown)"
+    )]
+    Circular,
+    /// The continuum of a pointed arch with vertical joints.
+    #[error(
+        "a pointed arch with vertical joints has no keystone in the continuum: the vertical joint through the intrados apex is the crown plane itself (an odd voussoir count puts a keystone at the crown)"
+    )]
+    Vertical,
+    /// An even voussoir count.
+    #[error("{0} voussoirs put a joint at the crown: a keystone needs an odd voussoir count")]
+    EvenVoussoirs(u32),
+}
+
 /// The form of an arch beyond the data of [`Arch`]: its outline and its joint planes.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ArchForm {
@@ -297,9 +315,32 @@ pub struct ArchForm {
     pub shape: Shape,
     /// Radial or vertical joint planes.
     pub joints: JointOrientation,
+    /// True when the crown is inside one rigid block, the keystone between the first joints
+    /// of the two halves: the crown plane x = 0 is then no joint, and a point load may sit on
+    /// the keystone. The continuum has one only on a pointed arch with radial joints (the
+    /// wedge between ±ψ₁); N voussoirs have one when N is odd.
+    pub keystone: bool,
 }
 
 impl ArchForm {
+    /// Checks that a form asked to have a keystone has one with these joints.
+    pub fn check_keystone(&self, joints: Discretisation) -> Result<(), KeystoneRefusal> {
+        if !self.keystone {
+            return Ok(());
+        }
+        match joints {
+            Discretisation::Voussoirs(n) if n % 2 == 0 => Err(KeystoneRefusal::EvenVoussoirs(n)),
+            Discretisation::Voussoirs(_) => Ok(()),
+            Discretisation::Continuum if self.shape.eccentricity() == 0.0 => {
+                Err(KeystoneRefusal::Circular)
+            }
+            Discretisation::Continuum if self.joints == JointOrientation::Vertical => {
+                Err(KeystoneRefusal::Vertical)
+            }
+            Discretisation::Continuum => Ok(()),
+        }
+    }
+
     /// True for the paper's circular arch with radial joints (closed forms exist).
     pub fn is_circular_radial(&self) -> bool {
         self.shape == Shape::Circular && self.joints == JointOrientation::Radial
@@ -326,20 +367,72 @@ impl ArchForm {
         2.0 * reach / e - 1.0
     }
 
+    /// The K below `k_max` at which the extrados point at x/L = `at_x` reaches the first
+    /// joint ψ₁ of a pointed arch (beyond, it lies above the wedge between the crown joint
+    /// and ψ₁): the root of u(K sin α − d) − (K − 1)d, u = |2x/L − 1|, found by bisection
+    /// (positive at K = 1 where the form exists).
+    fn max_k_at_x(&self, half_angle: f64, at_x: f64, k_max: f64) -> f64 {
+        let u = (2.0 * at_x - 1.0).abs();
+        let s = half_angle.min(std::f64::consts::FRAC_PI_2).sin();
+        let f = |k: f64| {
+            let d = self.centre_offset(k);
+            u * (k * s - d) - (k - 1.0) * d
+        };
+        let hi_start = if k_max.is_finite() { k_max } else { 1e3 };
+        if f(hi_start) >= 0.0 {
+            return k_max;
+        }
+        // Bisection down to adjacent floats.
+        let (mut lo, mut hi) = (1.0, hi_start);
+        loop {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if f(mid) >= 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        lo
+    }
+
+    /// The extrados point at x/L = `at_x` of the arch of thickness K and half-angle α
+    /// (radians): its side (+1 right, −1 left; the crown counts as right), its signed
+    /// abscissa x over r, and its angle ψ at its arc's centre, from the vertical. x/L is
+    /// measured horizontally from the left extrados springing, L = 2(K sin α − d) the
+    /// extrados span. `None` when α > 90° (a vertical line meets the extrados twice) or x/L
+    /// is outside [0, 1].
+    pub fn extrados_at_x(&self, k: f64, half_angle: f64, at_x: f64) -> Option<(f64, f64, f64)> {
+        if half_angle > std::f64::consts::FRAC_PI_2 || !(0.0..=1.0).contains(&at_x) {
+            return None;
+        }
+        let d = self.centre_offset(k);
+        let x = (2.0 * at_x - 1.0) * (k * half_angle.sin() - d);
+        let side = if x < 0.0 { -1.0 } else { 1.0 };
+        Some((side, x, ((x.abs() + d) / k).min(1.0).asin()))
+    }
+
     /// Largest K at which the form exists at half-angle α (radians) and a point load of
     /// `load` still sits at a joint: a pointed arch's first joint ψ₁ = asin(e(1 + K)/2)
     /// moves away from the crown as K grows, so a load at a ≠ 0 needs e(1 + K)/2 ≤ sin|a|.
+    /// With a keystone and radial joints a load the first joint passes lies on the keystone.
     pub fn max_k_with_load(&self, half_angle: f64, load: Load) -> f64 {
         let k = self.max_k(half_angle);
         let e = self.shape.eccentricity();
+        let on_keystone = self.keystone && self.joints == JointOrientation::Radial;
         match load {
-            Load::Point { at_deg } if at_deg != 0.0 && e > 0.0 => {
+            Load::Point { at_deg } if at_deg != 0.0 && e > 0.0 && !on_keystone => {
                 let s = at_deg
                     .to_radians()
                     .abs()
                     .min(std::f64::consts::FRAC_PI_2)
                     .sin();
                 k.min(2.0 * s / e - 1.0)
+            }
+            Load::PointX { at_x } if at_x != 0.5 && e > 0.0 && !on_keystone => {
+                k.min(self.max_k_at_x(half_angle, at_x, k))
             }
             _ => k,
         }
@@ -363,6 +456,14 @@ pub enum Load {
         /// Position, degrees from the crown, positive to the right.
         at_deg: f64,
     },
+    /// A vertical point load λ·W_total at the extrados point at a fraction `at_x` of the
+    /// span: x/L ∈ [0, 1] measured horizontally from the left extrados springing, L the
+    /// extrados span (0.5 is the crown). Its joint angle depends on K and the form
+    /// ([`ArchForm::extrados_at_x`]).
+    PointX {
+        /// Position as x/L.
+        at_x: f64,
+    },
 }
 
 impl Load {
@@ -371,14 +472,23 @@ impl Load {
         match self {
             Load::SelfWeight => "self_weight",
             Load::Horizontal => "horizontal",
-            Load::Point { .. } => "point",
+            Load::Point { .. } | Load::PointX { .. } => "point",
         }
     }
 
-    /// The position of a point load in degrees, `None` for the other loads.
+    /// The position of a point load given in degrees, `None` for the other loads (and for a
+    /// position given as x/L, whose angle depends on K and the form).
     pub fn at_deg(self) -> Option<f64> {
         match self {
             Load::Point { at_deg } => Some(at_deg),
+            _ => None,
+        }
+    }
+
+    /// The position of a point load given as x/L, `None` for the other loads.
+    pub fn at_x(self) -> Option<f64> {
+        match self {
+            Load::PointX { at_x } => Some(at_x),
             _ => None,
         }
     }

@@ -129,6 +129,7 @@ pub fn shard_ids(total: u64, index: u64, count: u64) -> std::ops::Range<u64> {
 fn scene_at(m: &Manifest, lc: usize, idx: &[usize]) -> Scene {
     let mut half = m.arch.half_angle_deg;
     let mut at_deg = None;
+    let mut at_x = None;
     let mut joints = m.arch.voussoirs;
     // K for finds that do not use it: a placeholder the analysis ignores.
     let mut k = 2.0;
@@ -152,6 +153,7 @@ fn scene_at(m: &Manifest, lc: usize, idx: &[usize]) -> Scene {
                 }
             }
             AxisName::AtDeg => at_deg = Some(v),
+            AxisName::AtX => at_x = Some(v),
         }
     }
     // Every value was validated with the manifest, so the constructors cannot fail.
@@ -167,7 +169,7 @@ fn scene_at(m: &Manifest, lc: usize, idx: &[usize]) -> Scene {
         friction,
         find: case.map_or(m.find, |c| c.find),
         form: m.arch.form(),
-        load: case.map_or(Load::SelfWeight, |c| c.load(at_deg)),
+        load: case.map_or(Load::SelfWeight, |c| c.load(at_deg, at_x)),
         lambda: case.and_then(|c| c.lambda).unwrap_or(0.0),
     }
 }
@@ -211,8 +213,9 @@ impl Plan {
         } else {
             m.arch.voussoirs.to_string()
         };
+        let keystone = if m.arch.keystone { ", keystone" } else { "" };
         s.push_str(&format!(
-            "arch: {} {alpha}, {} joints, {} weight, {voussoirs}\n",
+            "arch: {} {alpha}, {} joints{keystone}, {} weight, {voussoirs}\n",
             shape, m.arch.joints, m.arch.weight
         ));
         for a in &m.grid {
@@ -240,6 +243,9 @@ impl Plan {
                 let mut d = format!("{} ({}", l.name, l.kind.as_str());
                 if let Some(a) = l.at_deg {
                     d.push_str(&format!(" at {a}°"));
+                }
+                if let Some(x) = l.at_x {
+                    d.push_str(&format!(" at x/L = {x}"));
                 }
                 if let Some(x) = l.lambda {
                     d.push_str(&format!(", λ = {x}"));

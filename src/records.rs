@@ -35,8 +35,10 @@ pub struct BoundaryPoint {
     /// Voussoir count, `None` for the continuum.
     pub voussoirs: Option<u32>,
     /// Position of the point load of the group, degrees from the crown (`None` for other
-    /// loads).
+    /// loads, and for a position given as x/L, whose angle depends on K).
     pub at_deg: Option<f64>,
+    /// Position of the point load of the group given as x/L (`None` otherwise).
+    pub at_x: Option<f64>,
     /// K = R/r at the point (located to the tolerance on a K-edge, a grid value otherwise).
     pub k: f64,
     /// μ at the point (located on a μ-edge, a grid value, possibly infinite, otherwise).
@@ -74,8 +76,10 @@ pub struct Bifurcation {
     /// Voussoir count, `None` for the continuum.
     pub voussoirs: Option<u32>,
     /// Position of the point load of the group, degrees from the crown (`None` for other
-    /// loads).
+    /// loads, and for a position given as x/L, whose angle depends on K).
     pub at_deg: Option<f64>,
+    /// Position of the point load of the group given as x/L (`None` otherwise).
+    pub at_x: Option<f64>,
     /// For a change of mechanism located on a grid edge (studies on the general route): the
     /// axis of that edge; `None` for the bifurcations of the symmetric collapse curve.
     pub axis: Option<EdgeAxis>,

@@ -159,7 +159,7 @@ pub fn state_from_domains(scene: &Scene, rot: &RotationalDomain, sld: &SlidingDo
 /// Analyses one scene.
 pub fn solve(scene: &Scene) -> Solution {
     let start = Instant::now();
-    let mut out = Solution::empty(scene);
+    let mut out = Solution::with_position(scene);
     if !scene.uses_closed_forms() {
         general_route::solve(scene, &mut out);
         out.solve_time_us = start.elapsed().as_secs_f64() * 1e6;

@@ -24,6 +24,7 @@ fn apex_both(joints: Discretisation) -> (f64, Option<f64>) {
                 eccentricity: 0.1213,
             },
             joints: JointOrientation::Radial,
+            keystone: false,
         },
         load: Load::Point { at_deg: 0.0 },
         lambda: 0.166277,

@@ -26,6 +26,7 @@ fn pointed(e: f64) -> ArchForm {
     ArchForm {
         shape: Shape::Pointed { eccentricity: e },
         joints: JointOrientation::Radial,
+        keystone: false,
     }
 }
 
@@ -33,6 +34,7 @@ fn vertical() -> ArchForm {
     ArchForm {
         shape: Shape::Circular,
         joints: JointOrientation::Vertical,
+        keystone: false,
     }
 }
 

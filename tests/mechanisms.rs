@@ -25,6 +25,7 @@ fn form(shape: u8, e: f64, vertical: bool) -> ArchForm {
         } else {
             JointOrientation::Radial
         },
+        keystone: false,
     }
 }
 

@@ -92,6 +92,7 @@ fn pointed_arch_lines_match_the_general_route() {
     let form = ArchForm {
         shape: Shape::Pointed { eccentricity: 0.2 },
         joints: JointOrientation::Radial,
+        keystone: false,
     };
     both_routes_agree(
         "  shape: pointed\n  eccentricity: 0.2",
@@ -106,6 +107,7 @@ fn vertical_joint_lines_match_the_general_route() {
     let form = ArchForm {
         shape: Shape::Circular,
         joints: JointOrientation::Vertical,
+        keystone: false,
     };
     both_routes_agree(
         "  joints: vertical\n  weight: centreline",
@@ -120,6 +122,7 @@ fn pointed_voussoir_lines_match_the_general_route() {
     let form = ArchForm {
         shape: Shape::Pointed { eccentricity: 0.2 },
         joints: JointOrientation::Vertical,
+        keystone: false,
     };
     both_routes_agree(
         "  shape: pointed\n  eccentricity: 0.2\n  joints: vertical\n  voussoirs: 9",

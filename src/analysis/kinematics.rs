@@ -175,7 +175,7 @@ pub fn normalise_pattern<G: ArchGeometry + ?Sized>(
         }
         let mut j = *j;
         // The float just beyond α is a support joint of its own on forms whose joints are
-        // not radial (vertical joints end at radial supports, `forms.rs`): it stays.
+        // not radial (vertical joints end at radial supports, `forms/`): it stays.
         let edge = alpha.next_up();
         if j.theta.abs() != edge {
             j.theta = j.theta.clamp(-alpha, alpha);

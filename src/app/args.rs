@@ -196,6 +196,11 @@ pub struct SolveArgs {
     /// Joint planes: radial, or vertical through the intrados points (α ≤ 90°).
     #[arg(long, value_name = "PLANES", default_value = "radial", value_parser = ["radial", "vertical"])]
     pub joints: String,
+    /// The crown inside one rigid block, the keystone: a pointed arch with radial joints in
+    /// the continuum (the wedge between the first joints ±ψ₁), or an odd voussoir count.
+    /// A point load may then sit on the keystone.
+    #[arg(long)]
+    pub keystone: bool,
     /// Load case: self-weight only, or self-weight plus a live load scaled by λ: a horizontal
     /// body force λ·(weight), or a vertical point load λ·W_total on the extrados (--at).
     #[arg(long, value_name = "LOAD", default_value = "self-weight", value_parser = ["self-weight", "self_weight", "horizontal", "point"])]
@@ -203,6 +208,10 @@ pub struct SolveArgs {
     /// Position of the point load, degrees from the crown (positive to the right).
     #[arg(long = "at", value_name = "DEG", allow_hyphen_values = true)]
     pub at: Option<f64>,
+    /// Position of the point load as x/L ∈ [0, 1]: horizontally from the left extrados
+    /// springing over the extrados span (0.5 is the crown; α ≤ 90°). Instead of --at.
+    #[arg(long = "at-x", value_name = "X/L", allow_hyphen_values = true)]
+    pub at_x: Option<f64>,
     /// Load factor λ ≥ 0 of the live load (multiples of the total weight), for every find
     /// but load-factor.
     #[arg(long, value_name = "L", allow_hyphen_values = true)]
@@ -293,7 +302,12 @@ impl SolveArgs {
             FormError::PointedTooThick { k, .. } => usage("--k", k, e.to_string()),
             FormError::VerticalBeyondQuadrant(a) => usage("--half-angle", a, e.to_string()),
             FormError::LoadOutside { at_deg, .. }
-            | FormError::LoadInsideKeystone { at_deg, .. } => usage("--at", at_deg, e.to_string()),
+            | FormError::LoadInsideKeystone { at_deg, .. }
+            | FormError::LoadOffExtrados { at_deg, .. } => usage("--at", at_deg, e.to_string()),
+            FormError::NoKeystone(_) => usage("--keystone", "on", e.to_string()),
+            FormError::LoadOffSpan { at_x, .. } | FormError::XInsideKeystone { at_x, .. } => {
+                usage("--at-x", at_x, e.to_string())
+            }
         })?;
         Ok(scene)
     }
@@ -390,10 +404,34 @@ impl SolveArgs {
             }
             (other, _) => return Err(usage("--shape", other, "circular or pointed")),
         };
-        Ok(ArchForm { shape, joints })
+        Ok(ArchForm {
+            shape,
+            joints,
+            keystone: self.keystone,
+        })
     }
 
     fn load(&self) -> Result<Load, UsageError> {
+        if let Some(x) = self.at_x {
+            return match (self.load.as_str(), self.at) {
+                (_, Some(a)) => Err(usage(
+                    "--at",
+                    a,
+                    "give the position once: --at DEG or --at-x X/L, not both",
+                )),
+                ("point", None) if (0.0..=1.0).contains(&x) => Ok(Load::PointX { at_x: x }),
+                ("point", None) => Err(usage(
+                    "--at-x",
+                    x,
+                    "x/L must lie in [0, 1] (0 and 1 the extrados springings, 0.5 the crown)",
+                )),
+                (_, None) => Err(usage(
+                    "--at-x",
+                    x,
+                    "--at-x is the position of a point load: add --load point",
+                )),
+            };
+        }
         let load = match (self.load.as_str(), self.at) {
             ("self-weight" | "self_weight", None) => Load::SelfWeight,
             ("horizontal", None) => Load::Horizontal,
@@ -403,7 +441,7 @@ impl SolveArgs {
                 return Err(usage(
                     "--load",
                     "point",
-                    "a point load needs its position: add --at DEG (degrees from the crown)",
+                    "a point load needs its position: add --at DEG (degrees from the crown) or --at-x X/L",
                 ));
             }
             (_, Some(a)) => {

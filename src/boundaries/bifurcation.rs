@@ -120,6 +120,7 @@ pub(crate) fn record(grid: &Grid, kind: Kind, state: &CriticalState) -> Bifurcat
         half_angle_deg: grid.arch.half_angle_deg(),
         voussoirs: grid.arch.joints.voussoirs(),
         at_deg: grid.scene.load.at_deg(),
+        at_x: grid.scene.load.at_x(),
         axis: None,
         load_factor: None,
         k: state.k,

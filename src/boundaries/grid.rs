@@ -44,8 +44,15 @@ pub(crate) fn ok_result<'a>(
     (r.status == Status::Ok).then_some(r)
 }
 
-/// Group key: load case, half-angle bits, discretisation and point-load position bits.
-type Key = (usize, u64, crate::model::Discretisation, Option<u64>);
+/// Group key: load case, half-angle bits, discretisation and point-load position bits (as
+/// an angle, as x/L).
+type Key = (
+    usize,
+    u64,
+    crate::model::Discretisation,
+    Option<u64>,
+    Option<u64>,
+);
 
 fn sorted_distinct(mut v: Vec<f64>) -> Vec<f64> {
     v.sort_by(f64::total_cmp);
@@ -64,8 +71,10 @@ pub(crate) fn groups(plan: &Plan, results: &[CaseResult]) -> Vec<Grid> {
             continue;
         }
         let a = &case.scene.arch;
+        // A group per position as given: an x/L position's angle moves with K.
         let at = case.scene.load.at_deg().map(f64::to_bits);
-        let key = (case.load_case, a.half_angle.to_bits(), a.joints, at);
+        let at_x = case.scene.load.at_x().map(f64::to_bits);
+        let key = (case.load_case, a.half_angle.to_bits(), a.joints, at, at_x);
         let g = *index.entry(key).or_insert_with(|| {
             grids.push(Grid {
                 load_case: case.load_case,

@@ -271,6 +271,7 @@ impl<'a> Refiner<'a> {
             half_angle_deg: grid.arch.half_angle_deg(),
             voussoirs: grid.arch.joints.voussoirs(),
             at_deg: grid.scene.load.at_deg(),
+            at_x: grid.scene.load.at_x(),
             k,
             mu,
             axis,

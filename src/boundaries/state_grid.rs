@@ -218,6 +218,7 @@ impl<'a> GridRefiner<'a> {
             half_angle_deg: self.grid.arch.half_angle_deg(),
             voussoirs: self.grid.arch.joints.voussoirs(),
             at_deg: self.grid.scene.load.at_deg(),
+            at_x: self.grid.scene.load.at_x(),
             k,
             mu,
             axis,

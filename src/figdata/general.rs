@@ -79,6 +79,7 @@ pub fn model_of_state(s: &StateRow) -> Result<ArchModel> {
             Shape::Circular
         },
         joints: JointOrientation::parse(&s.joint_orientation).unwrap_or_default(),
+        keystone: s.keystone,
     };
     ArchModel::new(arch, form, load_of_state(s))
         .map_err(|e| anyhow!("the arch of state {}: {e}", s.state_id))

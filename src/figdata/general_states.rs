@@ -47,9 +47,17 @@ fn fill(row: &mut StateRow, c: &CrownForce, mechanism: Option<&Mechanism>) {
 }
 
 impl LoadCaseStates<'_> {
-    fn model(&self, group: ArchGroup, k: f64, at_deg: Option<f64>) -> Result<Option<ArchModel>> {
+    /// The model at K with the point load at `at_deg` when given (a stored case's angle),
+    /// else at the load case's own position or `at_x` (a group of an x/L axis).
+    fn model(
+        &self,
+        group: ArchGroup,
+        k: f64,
+        (at_deg, at_x): (Option<f64>, Option<f64>),
+    ) -> Result<Option<ArchModel>> {
         let arch = group.arch(self.manifest, k)?;
-        Ok(ArchModel::new(arch, self.manifest.arch.form(), self.lc.load(at_deg)).ok())
+        let load = self.lc.load(at_deg, at_x);
+        Ok(ArchModel::new(arch, self.manifest.arch.form(), load).ok())
     }
 
     fn lambda(&self) -> f64 {
@@ -104,7 +112,8 @@ impl LoadCaseStates<'_> {
     ) -> Result<Option<StateRow>> {
         let group = ArchGroup::of_bifurcation(self.manifest, g);
         let at = g.and_then(|g| g.at_deg).or(self.lc.at_deg);
-        let Some(model) = self.model(group, b.k, at)? else {
+        let at_x = g.and_then(|g| g.at_x);
+        let Some(model) = self.model(group, b.k, (at, at_x))? else {
             return Ok(None);
         };
         let f = friction(b.mu);
@@ -116,7 +125,7 @@ impl LoadCaseStates<'_> {
         row.state = "bifurcation".into();
         (row.scene_k, row.scene_mu, row.k, row.mu) = (b.k, f.mu(), b.k, f.mu());
         row.t_over_r = b.t_over_r;
-        row.at_deg = at;
+        row.at_deg = at.or_else(|| model.point_position().map(|(deg, _)| deg));
         fill(&mut row, &c, None);
         row.mechanism = Some(format!("{}/{}", b.mechanism_a, b.mechanism_b));
         row.joints = b.joints.clone();
@@ -137,7 +146,7 @@ impl LoadCaseStates<'_> {
                 crate::model::Discretisation::Voussoirs,
             ),
         };
-        let Some(model) = self.model(group, c.k, c.at_deg)? else {
+        let Some(model) = self.model(group, c.k, (c.at_deg, None))? else {
             return Ok(None);
         };
         let f = friction(c.mu);
@@ -173,7 +182,7 @@ impl LoadCaseStates<'_> {
             });
             weakest(own.copied()).and_then(|c| c.at_deg)
         });
-        let Some(model) = self.model(at.group, at.k, position)? else {
+        let Some(model) = self.model(at.group, at.k, (position, None))? else {
             return Ok(None);
         };
         let f = friction(at.mu);
@@ -279,6 +288,7 @@ mod tests {
             half_angle_deg: 90.0,
             voussoirs: None,
             at_deg: Some(row as f64),
+            at_x: None,
             load_factor: Some(lambda),
             mechanism: Some(mech.into()),
         }

@@ -231,6 +231,7 @@ fn blank_state(manifest: &Manifest, lc: &LoadCase, group: ArchGroup, id: String)
         shape: form.shape.as_str().into(),
         eccentricity: form.shape.eccentricity(),
         joint_orientation: form.joints.as_str().into(),
+        keystone: form.keystone,
         load: lc.kind.as_str().into(),
         at_deg: lc.at_deg,
         load_factor: lc.lambda,

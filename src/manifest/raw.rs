@@ -92,6 +92,7 @@ pub(super) struct RawArch {
     pub(super) eccentricity: Option<Spanned<f64>>,
     pub(super) half_angle_deg: Option<Spanned<f64>>,
     pub(super) joints: Option<Spanned<String>>,
+    pub(super) keystone: Option<Spanned<bool>>,
     pub(super) weight: Option<Spanned<String>>,
     pub(super) voussoirs: Option<Spanned<RawVoussoirs>>,
 }
@@ -116,6 +117,7 @@ pub(super) struct RawGrid {
     pub(super) half_angle_deg: Option<Spanned<RawAxis>>,
     pub(super) voussoirs: Option<Spanned<RawAxis>>,
     pub(super) at_deg: Option<Spanned<RawAxis>>,
+    pub(super) at_x: Option<Spanned<RawAxis>>,
 }
 
 /// One load case as written.
@@ -125,6 +127,7 @@ pub(super) struct RawLoadCase {
     pub(super) name: Spanned<String>,
     pub(super) kind: Spanned<String>,
     pub(super) at_deg: Option<Spanned<f64>>,
+    pub(super) at_x: Option<Spanned<f64>>,
     pub(super) lambda: Option<Spanned<f64>>,
     pub(super) find: Option<Spanned<String>>,
 }

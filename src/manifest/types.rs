@@ -45,6 +45,10 @@ pub struct LoadCase {
     /// `at_deg` axis, and for other kinds).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub at_deg: Option<f64>,
+    /// Position of a point load as x/L (`None` when given in degrees or by a grid axis, and
+    /// for other kinds).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub at_x: Option<f64>,
     /// The given load factor λ of the live part (state, thickness and friction studies).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lambda: Option<f64>,
@@ -53,14 +57,17 @@ pub struct LoadCase {
 }
 
 impl LoadCase {
-    /// The load of this case, with the position `at_deg` of a point load when the grid gives
-    /// it.
-    pub fn load(&self, axis_at_deg: Option<f64>) -> Load {
+    /// The load of this case, with the position of a point load from the grid's `at_deg`
+    /// or `at_x` axis when it gives it.
+    pub fn load(&self, axis_at_deg: Option<f64>, axis_at_x: Option<f64>) -> Load {
         match self.kind {
             LoadKind::SelfWeight => Load::SelfWeight,
             LoadKind::Horizontal => Load::Horizontal,
-            LoadKind::Point => Load::Point {
-                at_deg: self.at_deg.or(axis_at_deg).unwrap_or(0.0),
+            LoadKind::Point => match self.at_x.or(axis_at_x) {
+                Some(at_x) if self.at_deg.or(axis_at_deg).is_none() => Load::PointX { at_x },
+                _ => Load::Point {
+                    at_deg: self.at_deg.or(axis_at_deg).unwrap_or(0.0),
+                },
             },
         }
     }
@@ -72,7 +79,7 @@ impl LoadCase {
         match axis {
             AxisName::K | AxisName::TOverR => self.find.needs_k(),
             AxisName::Mu => self.find.needs_mu(),
-            AxisName::HalfAngleDeg | AxisName::Voussoirs | AxisName::AtDeg => true,
+            AxisName::HalfAngleDeg | AxisName::Voussoirs | AxisName::AtDeg | AxisName::AtX => true,
         }
     }
 }
@@ -89,6 +96,9 @@ pub struct ArchOptions {
     pub half_angle_deg: f64,
     /// `radial` or `vertical`.
     pub joints: &'static str,
+    /// The crown inside one rigid block (`ArchForm::keystone`).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub keystone: bool,
     /// Weight model.
     pub weight: WeightModel,
     /// Continuum or voussoirs.
@@ -105,6 +115,7 @@ impl ArchOptions {
                 _ => Shape::Circular,
             },
             joints: JointOrientation::parse(self.joints).unwrap_or_default(),
+            keystone: self.keystone,
         }
     }
 }
@@ -132,6 +143,8 @@ pub enum AxisName {
     Voussoirs,
     /// Position of a point load, degrees from the crown (an influence line).
     AtDeg,
+    /// Position of a point load as x/L (an influence line over the span).
+    AtX,
 }
 
 impl AxisName {
@@ -144,6 +157,7 @@ impl AxisName {
             AxisName::HalfAngleDeg => "half_angle_deg",
             AxisName::Voussoirs => "voussoirs",
             AxisName::AtDeg => "at_deg",
+            AxisName::AtX => "at_x",
         }
     }
 }

@@ -184,10 +184,11 @@ fn solve_one(scene: &Scene, out: &mut Solution) {
         {
             out.k_crit = Some(k);
             out.t_over_r_crit = Some(crate::model::t_over_r_from_k(k));
-            if let (Some(m), Ok(model)) = (
-                &s.mechanism,
-                ArchModel::new(scene.arch.with_k(k), scene.form, scene.load),
-            ) {
+            let model = ArchModel::new(scene.arch.with_k(k), scene.form, scene.load);
+            if let Ok(model) = &model {
+                out.set_point_position(model);
+            }
+            if let (Some(m), Ok(model)) = (&s.mechanism, model) {
                 let at = StateAt {
                     crown: &s.state.crown,
                     lambda: scene.lambda,

@@ -3,10 +3,11 @@
 //! enums; they become strings only where they are written (JSON, Parquet).
 
 use super::{Find, Scene};
+use crate::analysis::forms::ArchModel;
 use crate::analysis::kinematics::{ModeStatus, collapse_mechanism};
 use crate::analysis::symmetric::{Critical, CriticalState};
 use crate::analysis::{Hinge, MechanismKind, Regime, SlidingJoint};
-use crate::model::{Arch, WeightModel};
+use crate::model::{Arch, Load, WeightModel};
 use serde::Serialize;
 use std::fmt;
 
@@ -106,10 +107,15 @@ pub struct Solution {
     pub eccentricity: Option<f64>,
     /// `radial` or `vertical` joint planes.
     pub joints: &'static str,
+    /// True when the crown lies inside one block, the keystone: the form's keystone in the
+    /// continuum, an odd voussoir count.
+    pub keystone: bool,
     /// The load case kind: `self_weight`, `horizontal` or `point`.
     pub load: &'static str,
     /// Position of a point load, degrees from the crown (null for other loads).
     pub at_deg: Option<f64>,
+    /// Position of a point load as x/L (null for other loads, and when α > 90°).
+    pub at_x: Option<f64>,
     /// The given load factor λ of the live part (null for self-weight and for `load_factor`).
     pub lambda: Option<f64>,
     /// `found`, `never_stands` or `always_stands` for critical finds (`found` or `never_stands`
@@ -208,6 +214,28 @@ pub(super) fn finite(x: f64) -> Option<f64> {
 }
 
 impl Solution {
+    /// Fills the position of a point load not given in its own terms (the angle of an x/L
+    /// position, the x/L of an angle) from the model of the scene at its K.
+    pub fn set_point_position(&mut self, model: &ArchModel) {
+        if let Some((at_deg, at_x)) = model.point_position() {
+            self.at_deg = self.at_deg.or(Some(at_deg));
+            self.at_x = self.at_x.or(at_x);
+        }
+    }
+
+    /// The inputs of a scene with every output null; a point load's position both as an
+    /// angle and as x/L (but for a `thickness` scene, whose K is not yet known).
+    pub fn with_position(scene: &Scene) -> Self {
+        let mut s = Self::empty(scene);
+        if scene.find != Find::Thickness
+            && matches!(scene.load, Load::Point { .. } | Load::PointX { .. })
+            && let Ok(model) = ArchModel::new(scene.arch, scene.form, scene.load)
+        {
+            s.set_point_position(&model);
+        }
+        s
+    }
+
     /// The inputs of a scene with every output null.
     pub fn empty(scene: &Scene) -> Self {
         let a = &scene.arch;
@@ -236,8 +264,13 @@ impl Solution {
                 crate::model::Shape::Circular => None,
             },
             joints: scene.form.joints.as_str(),
+            keystone: match a.joints {
+                crate::model::Discretisation::Voussoirs(n) => n % 2 == 1,
+                crate::model::Discretisation::Continuum => scene.form.keystone,
+            },
             load: scene.load.as_str(),
             at_deg: scene.load.at_deg(),
+            at_x: scene.load.at_x(),
             lambda: (scene.load.is_live() && scene.find != Find::LoadFactor)
                 .then_some(scene.lambda),
             outcome: None,

@@ -119,6 +119,7 @@ pub fn boundaries_frame(plan: &Plan, located: &Located) -> Result<DataFrame> {
         )
         .opt_u32("voussoirs", b.iter().map(|p| p.voussoirs).collect())
         .opt_f64("at_deg", b.iter().map(|p| p.at_deg).collect())
+        .opt_f64("at_x", b.iter().map(|p| p.at_x).collect())
         .finish()
 }
 
@@ -155,6 +156,7 @@ pub fn bifurcations_frame(plan: &Plan, located: &Located) -> Result<DataFrame> {
         )
         .opt_u32("voussoirs", b.iter().map(|p| p.voussoirs).collect())
         .opt_f64("at_deg", b.iter().map(|p| p.at_deg).collect())
+        .opt_f64("at_x", b.iter().map(|p| p.at_x).collect())
         .opt_str(
             "axis",
             b.iter()
@@ -174,7 +176,7 @@ mod tests {
     use polars::prelude::DataType;
     use std::path::Path;
 
-    const BOUNDARY_COLUMNS: [&str; 18] = [
+    const BOUNDARY_COLUMNS: [&str; 19] = [
         "load_case",
         "mu",
         "k",
@@ -193,8 +195,9 @@ mod tests {
         "half_angle_deg",
         "voussoirs",
         "at_deg",
+        "at_x",
     ];
-    const BIFURCATION_COLUMNS: [&str; 17] = [
+    const BIFURCATION_COLUMNS: [&str; 18] = [
         "load_case",
         "mu",
         "k",
@@ -210,6 +213,7 @@ mod tests {
         "half_angle_deg",
         "voussoirs",
         "at_deg",
+        "at_x",
         "axis",
         "load_factor",
     ];
@@ -267,6 +271,7 @@ mod tests {
             half_angle_deg: 90.0,
             voussoirs: None,
             at_deg: None,
+            at_x: None,
             k: kc.k,
             mu: 0.5,
             axis: EdgeAxis::K,
@@ -283,6 +288,7 @@ mod tests {
                 half_angle_deg: 90.0,
                 voussoirs: Some(16),
                 at_deg: None,
+                at_x: None,
                 axis: None,
                 load_factor: None,
                 k: kc.k,

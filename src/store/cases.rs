@@ -215,12 +215,13 @@ const STRS: [&str; 11] = [
     "message",
 ];
 /// The other numeric input columns, and `mechanism_dof` and `solve_time_us`.
-const NUMS: [&str; 8] = [
+const NUMS: [&str; 9] = [
     "mu",
     "half_angle_deg",
     "voussoirs",
     "eccentricity",
     "at_deg",
+    "at_x",
     "lambda",
     "mechanism_dof",
     "solve_time_us",
@@ -313,8 +314,10 @@ impl Stored {
             shape: same("shape", self.s("shape", i), planned.shape)?,
             eccentricity: self.n("eccentricity", i),
             joints: same("joints", self.s("joints", i), planned.joints)?,
+            keystone: planned.keystone,
             load: same("load", self.s("load", i), planned.load)?,
             at_deg: self.n("at_deg", i),
+            at_x: self.n("at_x", i),
             lambda: self.n("lambda", i),
             outcome: opt_name(
                 &Outcome::ALL,

@@ -58,6 +58,8 @@ pub struct StateRow {
     pub eccentricity: f64,
     /// Orientation of the joints: `radial` or `vertical`.
     pub joint_orientation: String,
+    /// True when the form asks for a keystone (`ArchForm::keystone`).
+    pub keystone: bool,
     /// Kind of the load case: `self_weight`, `horizontal` or `point`.
     pub load: String,
     /// Position of the point load, degrees from the crown (`None` for other loads).
@@ -287,6 +289,7 @@ pub fn states_frame(rows: &[StateRow]) -> Result<DataFrame> {
         .str("shape", s(&|r| r.shape.clone()))
         .f64("eccentricity", f(&|r| r.eccentricity))
         .str("joint_orientation", s(&|r| r.joint_orientation.clone()))
+        .bool("keystone", rows.iter().map(|r| r.keystone).collect())
         .str("load", s(&|r| r.load.clone()))
         .opt_f64("at_deg", o(&|r| r.at_deg))
         .opt_f64("load_factor", o(&|r| r.load_factor))
@@ -374,6 +377,7 @@ pub fn read_states(path: &Path) -> Result<Vec<StateRow>> {
             shape: arch.shape[i].clone().unwrap_or_else(|| "circular".into()),
             eccentricity: arch.eccentricity[i].unwrap_or(0.0),
             joint_orientation: arch.joints[i].clone().unwrap_or_else(|| "radial".into()),
+            keystone: arch.keystone[i].unwrap_or(false),
             load: arch.load[i].clone().unwrap_or_else(|| "self_weight".into()),
             at_deg: arch.at_deg[i],
             load_factor: arch.load_factor[i],
@@ -413,6 +417,7 @@ struct StateArchColumns {
     shape: Vec<Option<String>>,
     eccentricity: Vec<Option<f64>>,
     joints: Vec<Option<String>>,
+    keystone: Vec<Option<bool>>,
     load: Vec<Option<String>>,
     at_deg: Vec<Option<f64>>,
     load_factor: Vec<Option<f64>>,
@@ -426,6 +431,8 @@ impl StateArchColumns {
             shape: str_or_null(df, "shape"),
             eccentricity: f64_or_null(df, "eccentricity"),
             joints: str_or_null(df, "joint_orientation"),
+            keystone: super::bool_column(df, "keystone")
+                .unwrap_or_else(|_| vec![None; df.height()]),
             load: str_or_null(df, "load"),
             at_deg: f64_or_null(df, "at_deg"),
             load_factor: f64_or_null(df, "load_factor"),
@@ -445,6 +452,8 @@ pub struct BifurcationGroup {
     pub voussoirs: Option<Option<u32>>,
     /// Position of the point load, degrees from the crown.
     pub at_deg: Option<f64>,
+    /// Position of the point load given as x/L.
+    pub at_x: Option<f64>,
     /// λ_max at the bifurcation (load_factor studies).
     pub load_factor: Option<f64>,
     /// `k` or `mu`: the grid edge along which a change of mechanism was located (general
@@ -459,6 +468,7 @@ pub fn read_bifurcation_groups(path: &Path) -> Result<Vec<BifurcationGroup>> {
     let half = f64_or_null(&df, "half_angle_deg");
     let nv = f64_or_null(&df, "voussoirs");
     let at = f64_or_null(&df, "at_deg");
+    let at_x = f64_or_null(&df, "at_x");
     let lf = f64_or_null(&df, "load_factor");
     let has_voussoirs = has("voussoirs");
     let axis = str_or_null(&df, "axis");
@@ -467,6 +477,7 @@ pub fn read_bifurcation_groups(path: &Path) -> Result<Vec<BifurcationGroup>> {
             half_angle_deg: half[i],
             voussoirs: has_voussoirs.then(|| nv[i].map(|v| v as u32)),
             at_deg: at[i],
+            at_x: at_x[i],
             load_factor: lf[i],
             axis: axis[i].clone(),
         })
@@ -554,6 +565,8 @@ pub struct LoadFactorCase {
     pub voussoirs: Option<u32>,
     /// Position of the point load, degrees from the crown.
     pub at_deg: Option<f64>,
+    /// Position of the point load as x/L (`None` in runs written before it was stored).
+    pub at_x: Option<f64>,
     /// λ_max, multiples of the total weight (`None` when unbounded or not found).
     pub load_factor: Option<f64>,
     /// Collapse mechanism at λ_max.
@@ -561,7 +574,7 @@ pub struct LoadFactorCase {
 }
 
 /// The columns of results.parquet read into [`LoadFactorCase`].
-const LOAD_FACTOR_COLUMNS: [&str; 9] = [
+const LOAD_FACTOR_COLUMNS: [&str; 10] = [
     "load_case",
     "find",
     "k",
@@ -569,6 +582,7 @@ const LOAD_FACTOR_COLUMNS: [&str; 9] = [
     "half_angle_deg",
     "voussoirs",
     "at_deg",
+    "at_x",
     "load_factor",
     "mechanism",
 ];
@@ -582,6 +596,7 @@ pub fn read_load_factor_cases(path: &Path) -> Result<Vec<LoadFactorCase>> {
     let (lc, find, mech) = (s("load_case")?, s("find")?, s("mechanism")?);
     let (k, mu, half) = (f("k")?, f("mu")?, f("half_angle_deg")?);
     let (nv, at, lf) = (f("voussoirs")?, f("at_deg")?, f("load_factor")?);
+    let at_x = f64_or_null(&df, "at_x");
     Ok((0..lc.len())
         .filter(|&i| find[i].as_deref() == Some("load_factor"))
         .map(|i| LoadFactorCase {
@@ -592,6 +607,7 @@ pub fn read_load_factor_cases(path: &Path) -> Result<Vec<LoadFactorCase>> {
             half_angle_deg: half[i].unwrap_or(90.0),
             voussoirs: nv[i].map(|v| v as u32),
             at_deg: at[i],
+            at_x: at_x[i],
             load_factor: lf[i],
             mechanism: mech[i].clone(),
         })

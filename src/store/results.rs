@@ -236,8 +236,10 @@ fn input_columns<'a>(plan: &'a Plan) -> Vec<Spec<'a>> {
         str_col("shape", |r| r.solution.shape),
         opt_f64("eccentricity", |r| r.solution.eccentricity),
         str_col("joints", |r| r.solution.joints),
+        bool_col("keystone", |r| r.solution.keystone),
         str_col("load", |r| r.solution.load),
         opt_f64("at_deg", |r| r.solution.at_deg),
+        opt_f64("at_x", |r| r.solution.at_x),
         opt_f64("lambda", |r| r.solution.lambda),
     ]
 }

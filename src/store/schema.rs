@@ -57,9 +57,19 @@ const COLUMN_DOCS: &[(&str, &str, &str)] = &[
     ),
     ("joints", "", "joint planes: radial or vertical"),
     (
+        "keystone",
+        "",
+        "true when the crown lies inside one block: the keystone option (continuum) or an odd voussoir count",
+    ),
+    (
         "at_deg",
         "deg",
         "position of the point load, from the crown, positive to the right",
+    ),
+    (
+        "at_x",
+        "L",
+        "position of the point load as x/L: horizontally from the left extrados springing over the extrados span (0.5: the crown)",
     ),
     ("lambda", "W_total", "given load factor λ of the live load"),
     (

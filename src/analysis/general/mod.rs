@@ -91,7 +91,7 @@ pub struct ActiveRow {
     /// Joint angle from the crown, degrees, positive to the right.
     pub angle_deg: f64,
     /// The joint parameter θ in radians, exactly as the statics used it: the two sides of a
-    /// point load are distinct parameters one float apart (`forms.rs`), which degrees lose.
+    /// point load are distinct parameters one float apart (`forms/`), which degrees lose.
     pub theta: f64,
     /// The condition at the limit there.
     pub condition: Condition,

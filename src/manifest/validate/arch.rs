@@ -23,6 +23,7 @@ pub(super) fn validate_arch(a: &RawArch, cx: &Ctx) -> Result<ArchOptions, Manife
         eccentricity,
         half_angle_deg,
         joints: joints.as_str(),
+        keystone: a.keystone.as_ref().is_some_and(|k| k.value),
         weight,
         voussoirs,
     })

@@ -118,6 +118,7 @@ fn grid_axes(g: &RawGrid, cx: &Ctx) -> Result<Vec<GridAxis>, ManifestError> {
         (AxisName::HalfAngleDeg, &g.half_angle_deg),
         (AxisName::Voussoirs, &g.voussoirs),
         (AxisName::AtDeg, &g.at_deg),
+        (AxisName::AtX, &g.at_x),
         (AxisName::K, &g.k),
         (AxisName::TOverR, &g.t_over_r),
         (AxisName::Mu, &g.mu),
@@ -301,6 +302,7 @@ fn check_value(
             v.is_infinite() && v > 0.0 || v.fract() == 0.0 && (1.0..=1e7).contains(&v)
         }
         AxisName::AtDeg => v.is_finite() && v.abs() < 180.0,
+        AxisName::AtX => (0.0..=1.0).contains(&v),
     };
     if ok {
         return Ok(());
@@ -314,6 +316,9 @@ fn check_value(
             "the voussoir count must be an integer in [1, 10000000], or `continuum`"
         }
         AxisName::AtDeg => "the position of a point load must lie in (−180, 180) degrees",
+        AxisName::AtX => {
+            "the position of a point load as x/L must lie in [0, 1] (0.5 is the crown)"
+        }
     };
     Err(cx.err(
         Some(at),

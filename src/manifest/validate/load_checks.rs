@@ -5,7 +5,7 @@ use super::{Ctx, fmt_num};
 use crate::manifest::error::ManifestError;
 use crate::manifest::raw::{RawAxis, RawLoadCase, RawManifest};
 use crate::manifest::types::{ArchOptions, AxisName, GridAxis, LoadCase, LoadKind};
-use crate::model::{ArchForm, JointOrientation, Shape};
+use crate::model::{ArchForm, Discretisation, JointOrientation, Shape};
 use crate::scene::Find;
 use serde_saphyr::{Location, Spanned};
 
@@ -53,10 +53,23 @@ pub(super) fn check_loads(
         lcs: raw.load_cases.as_deref().unwrap_or(&[]),
     };
     let at_axis = raw.grid.as_ref().and_then(|g| g.at_deg.as_ref());
+    let x_axis = raw.grid.as_ref().and_then(|g| g.at_x.as_ref());
+    if let (Some(_), Some(x)) = (at_axis, x_axis) {
+        return Err(cx.err(
+            Some(x.referenced),
+            "grid.at_x",
+            "a study has one position axis: at_deg (degrees) or at_x (x/L), not both",
+        ));
+    }
     for (i, lc) in lcs.iter().enumerate() {
         check_find_fits_load(i, lc, &written, cx)?;
         check_lambda_fits_find(i, lc, &written, cx)?;
-        check_position_source(i, lc, at_axis, &written, cx)?;
+        let axis = match (at_axis, x_axis) {
+            (Some(a), _) => Some((a, "grid.at_deg")),
+            (None, Some(x)) => Some((x, "grid.at_x")),
+            (None, None) => None,
+        };
+        check_position_source(i, lc, axis, &written, cx)?;
     }
     let form = arch.form();
     check_form_fits_finds(raw, lcs, &form, cx)?;
@@ -65,6 +78,17 @@ pub(super) fn check_loads(
     let alpha_min = alphas.iter().copied().fold(f64::INFINITY, f64::min);
     let alpha_max = alphas.iter().copied().fold(0.0, f64::max);
     check_vertical_joints(raw, &form, alpha_max, cx)?;
+    check_keystone(raw, arch, grid, cx)?;
+    check_positions_x(
+        raw,
+        lcs,
+        grid,
+        &Span {
+            form: &form,
+            alphas: &alphas,
+        },
+        cx,
+    )?;
     let positions = point_positions(lcs, at_axis, grid, &written);
     check_positions_on_arch(&positions, alpha_min, cx)?;
     if let Shape::Pointed { eccentricity: e } = form.shape
@@ -148,21 +172,27 @@ fn check_lambda_fits_find(
     }
 }
 
-/// A point load is positioned by its `at_deg` or by the grid's at_deg axis (exactly one of
-/// them); an at_deg axis is for point loads only.
+/// A point load is positioned by its `at_deg` or `at_x`, or by the grid's at_deg or at_x
+/// axis (exactly one of them, with the axis's key); a position axis is for point loads
+/// only.
 fn check_position_source(
     i: usize,
     lc: &LoadCase,
-    at_axis: Option<&Spanned<RawAxis>>,
+    at_axis: Option<(&Spanned<RawAxis>, &'static str)>,
     written: &Written,
     cx: &Ctx,
 ) -> Result<(), ManifestError> {
-    match (lc.kind, at_axis, lc.at_deg) {
+    let own = lc.at_deg.or(lc.at_x);
+    match (lc.kind, at_axis, own) {
         (LoadKind::Point, Some(_), Some(a)) => Err(cx.err(
-            written.at_deg(i),
-            "load_cases.at_deg",
+            written.at_deg(i).or(written.case(i)),
+            if lc.at_deg.is_some() {
+                "load_cases.at_deg"
+            } else {
+                "load_cases.at_x"
+            },
             format!(
-                "value {} is not allowed: the grid's at_deg axis gives the position of load case {:?}; remove one of them",
+                "value {} is not allowed: the grid's position axis gives the position of load case {:?}; remove one of them",
                 fmt_num(a),
                 lc.name
             ),
@@ -171,15 +201,15 @@ fn check_position_source(
             written.case(i),
             "load_cases.at_deg",
             format!(
-                "point load case {:?} needs its position: add `at_deg: DEG` (degrees from the crown, in [−α, α]) or a grid axis `at_deg`",
+                "point load case {:?} needs its position: add `at_deg: DEG` (degrees from the crown, in [−α, α]), `at_x: X` (x/L in [0, 1]) or a grid axis `at_deg` or `at_x`",
                 lc.name
             ),
         )),
-        (kind, Some(ax), _) if kind != LoadKind::Point => Err(cx.err(
+        (kind, Some((ax, key)), _) if kind != LoadKind::Point => Err(cx.err(
             Some(ax.referenced),
-            "grid.at_deg",
+            key,
             format!(
-                "an at_deg axis positions point loads, but load case {:?} is {}: give it a study of its own",
+                "an at_deg or at_x axis positions point loads, but load case {:?} is {}: give it a study of its own",
                 lc.name,
                 kind.as_str()
             ),
@@ -234,6 +264,39 @@ fn check_vertical_joints(
     Ok(())
 }
 
+/// A keystone needs a pointed arch with radial joints in the continuum, or an odd voussoir
+/// count (every count of a voussoirs axis).
+fn check_keystone(
+    raw: &RawManifest,
+    arch: &ArchOptions,
+    grid: &[GridAxis],
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    let counts = match axis_values(grid, AxisName::Voussoirs) {
+        Some(values) => values
+            .iter()
+            .map(|&v| {
+                if v.is_infinite() {
+                    Discretisation::Continuum
+                } else {
+                    Discretisation::Voussoirs(v as u32)
+                }
+            })
+            .collect(),
+        None => vec![arch.voussoirs],
+    };
+    for joints in counts {
+        if let Err(why) = arch.form().check_keystone(joints) {
+            return Err(cx.err(
+                raw.arch.keystone.as_ref().map(|k| k.referenced),
+                "arch.keystone",
+                format!("value true is not allowed: {why}"),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Positions of point loads with where they were written: the load cases' own, then the
 /// grid's at_deg axis.
 fn point_positions(
@@ -277,6 +340,84 @@ fn check_positions_on_arch(
     Ok(())
 }
 
+/// The form of the arch and its half-angles.
+struct Span<'a> {
+    form: &'a ArchForm,
+    alphas: &'a [f64],
+}
+
+/// Positions as x/L need α ≤ 90° (beyond, a vertical line meets the extrados twice), and on
+/// a pointed arch with radial joints and no keystone must miss the wedge between the crown
+/// joint and the first joints at every K of the grid.
+fn check_positions_x(
+    raw: &RawManifest,
+    lcs: &[LoadCase],
+    grid: &[GridAxis],
+    span: &Span,
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    let x_axis = raw.grid.as_ref().and_then(|g| g.at_x.as_ref());
+    let written = raw.load_cases.as_deref().unwrap_or(&[]);
+    let mut xs: Vec<(f64, Option<Location>, &str)> = Vec::new();
+    for (i, lc) in lcs.iter().enumerate() {
+        if let Some(x) = lc.at_x {
+            let at = written
+                .get(i)
+                .and_then(|l| l.value.at_x.as_ref())
+                .map(|a| a.referenced);
+            xs.push((x, at, "load_cases.at_x"));
+        }
+    }
+    if let (Some(ax), Some(vals)) = (x_axis, axis_values(grid, AxisName::AtX)) {
+        xs.extend(
+            vals.into_iter()
+                .map(|v| (v, Some(ax.referenced), "grid.at_x")),
+        );
+    }
+    let Some(&(x0, at0, key0)) = xs.first() else {
+        return Ok(());
+    };
+    if let Some(alpha) = span.alphas.iter().copied().find(|&a| a > 90.0) {
+        return Err(cx.err(
+            at0,
+            key0,
+            format!(
+                "value {} is not allowed with a half-angle of {}°: positions as x/L need α ≤ 90° (beyond, a vertical line meets the extrados twice); give the position as at_deg",
+                fmt_num(x0),
+                fmt_num(alpha)
+            ),
+        ));
+    }
+    let form = span.form;
+    if form.shape.eccentricity() == 0.0 || form.keystone || form.joints != JointOrientation::Radial
+    {
+        return Ok(());
+    }
+    let ks = k_values(grid).unwrap_or_default();
+    for &(x, at, key) in &xs {
+        for &k in &ks {
+            for &alpha in span.alphas {
+                let psi_1 = form.centre_offset(k).min(1.0).asin();
+                let inside = form
+                    .extrados_at_x(k, alpha.to_radians(), x)
+                    .is_some_and(|(_, xx, psi)| xx != 0.0 && psi < psi_1);
+                if inside {
+                    return Err(cx.err(
+                        at,
+                        key,
+                        format!(
+                            "value {} is not allowed: at K = {k} this point of the extrados lies above the wedge between the crown joint and the first joints (±{:.6}°) of the pointed arch, where no joint exists; add `keystone: true` to load the keystone",
+                            fmt_num(x),
+                            psi_1.to_degrees()
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
 /// A pointed arch of eccentricity `e` > 0 and its half-angles.
 struct Pointed<'a> {
     form: &'a ArchForm,
@@ -314,15 +455,35 @@ fn check_pointed_arch(
             ));
         }
     }
-    // ψ₁ = asin(e(1 + K)/2) grows with K: the thickest arch has the largest keystone.
+    // ψ₁ = asin(e(1 + K)/2) grows with K: the thickest arch has the largest keystone. On a
+    // keystone a load lies on its extrados, which starts at the apex, ψ_e = asin(d/K): the
+    // thinnest arch has the largest ψ_e.
     let psi_1 = (e * 0.5 * (1.0 + k_top)).min(1.0).asin().to_degrees();
+    if form.keystone && form.joints == JointOrientation::Radial {
+        let k_low = ks.iter().copied().fold(f64::INFINITY, f64::min);
+        let psi_e = (e * 0.5 * (1.0 + k_low) / k_low)
+            .min(1.0)
+            .asin()
+            .to_degrees();
+        return match positions.iter().find(|p| p.0 != 0.0 && p.0.abs() < psi_e) {
+            Some(&(a, at, key)) => Err(cx.err(
+                at,
+                key,
+                format!(
+                    "value {} is not allowed: a point load on the keystone lies on its extrados, which starts at the apex (0°) at ±{psi_e:.6}° from its arc's centre at K = {k_low}",
+                    fmt_num(a)
+                ),
+            )),
+            None => Ok(()),
+        };
+    }
     for &(a, at, key) in positions {
         if a != 0.0 && a.abs() < psi_1 {
             return Err(cx.err(
                 at,
                 key,
                 format!(
-                    "value {} is not allowed: a point load must sit at a joint, and this pointed arch has none between its crown (0°) and ±{psi_1:.6}° at K = {k_top}",
+                    "value {} is not allowed: a point load must sit at a joint, and this pointed arch has none between its crown (0°) and ±{psi_1:.6}° at K = {k_top} (with `keystone: true` a load may sit on the keystone)",
                     fmt_num(a)
                 ),
             ));

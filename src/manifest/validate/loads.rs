@@ -19,6 +19,7 @@ pub(super) fn validate_load_cases(
             name: "self_weight".into(),
             kind: LoadKind::SelfWeight,
             at_deg: None,
+            at_x: None,
             lambda: None,
             find,
         }]);
@@ -35,11 +36,13 @@ pub(super) fn validate_load_cases(
         check_name(name, &out, cx)?;
         let kind = kind(lc, cx)?;
         check_position(lc, kind, cx)?;
+        check_position_x(lc, kind, cx)?;
         check_lambda(lc, kind, cx)?;
         out.push(LoadCase {
             name: name.value.clone(),
             kind,
             at_deg: lc.value.at_deg.as_ref().map(|a| a.value),
+            at_x: lc.value.at_x.as_ref().map(|a| a.value),
             lambda: lc.value.lambda.as_ref().map(|l| l.value),
             find: match &lc.value.find {
                 None => find,
@@ -119,6 +122,40 @@ fn check_position(
                 fmt_num(a.value)
             ),
         ));
+    }
+    Ok(())
+}
+
+/// Only a point load has a position as x/L, within [0, 1], and not beside `at_deg`.
+fn check_position_x(
+    lc: &Spanned<RawLoadCase>,
+    kind: LoadKind,
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    let Some(x) = &lc.value.at_x else {
+        return Ok(());
+    };
+    let refuse = |why: String| {
+        Err(cx.err(
+            Some(x.referenced),
+            "load_cases.at_x",
+            format!("value {} is not allowed: {why}", fmt_num(x.value)),
+        ))
+    };
+    if kind != LoadKind::Point {
+        return refuse(format!(
+            "only a `point` load case has a position (load case {:?} is {})",
+            lc.value.name.value,
+            kind.as_str()
+        ));
+    }
+    if lc.value.at_deg.is_some() {
+        return refuse("give the position once, as at_deg or as at_x".into());
+    }
+    if !(0.0..=1.0).contains(&x.value) {
+        return refuse(
+            "x/L must lie in [0, 1] (0 and 1 the extrados springings, 0.5 the crown)".into(),
+        );
     }
     Ok(())
 }

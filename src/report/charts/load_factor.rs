@@ -270,8 +270,11 @@ fn influence_line(
             .filter(|c| c.k == k && c.mu == mu)
             .filter_map(|c| {
                 let at = c.at_deg?;
+                // The stored x/L is exact on every form (keystones, springing wedges);
+                // runs written before it was stored get it from the angle.
                 let x = if as_xl {
-                    x_over_l(&data.manifest.arch, c.k, c.half_angle_deg, at)
+                    c.at_x
+                        .unwrap_or_else(|| x_over_l(&data.manifest.arch, c.k, c.half_angle_deg, at))
                 } else {
                     at
                 };

@@ -230,6 +230,7 @@ mod tests {
             form: ArchForm {
                 shape: Shape::Circular,
                 joints: JointOrientation::Vertical,
+                keystone: false,
             },
             load: Load::SelfWeight,
             lambda: 0.0,

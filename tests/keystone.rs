@@ -1,0 +1,210 @@
+//! The keystone option (docs/loads-and-geometries.md, *Keystone*): a pointed arch in the
+//! continuum with the crown inside one rigid block, checked against fine odd voussoir counts,
+//! which put a keystone over the apex, and refused where a form has none.
+
+use archstudy::model::{
+    Arch, ArchForm, Discretisation, Friction, JointOrientation, Load, Shape, WeightModel,
+};
+use archstudy::scene::{self, Find, Outcome, Scene};
+
+fn pointed(e: f64, keystone: bool) -> ArchForm {
+    ArchForm {
+        shape: Shape::Pointed { eccentricity: e },
+        joints: JointOrientation::Radial,
+        keystone,
+    }
+}
+
+/// The apex scene of tests/apex.rs: e = 0.1213, α = 45.37°, K = 1.340132, λ = 0.166277.
+fn apex_mu(joints: Discretisation, keystone: bool) -> f64 {
+    let s = Scene {
+        arch: Arch::new(1.340132, 45.37, WeightModel::Annular, joints).unwrap(),
+        friction: Friction::new(f64::INFINITY).unwrap(),
+        find: Find::Friction,
+        form: pointed(0.1213, keystone),
+        load: Load::Point { at_deg: 0.0 },
+        lambda: 0.166277,
+    };
+    let sol = scene::solve(&s);
+    assert_eq!(sol.outcome, Some(Outcome::Found), "{joints:?}");
+    assert_eq!(
+        sol.critical_apex_shared, None,
+        "a keystone has no split to choose"
+    );
+    sol.mu_crit.unwrap()
+}
+
+/// With the keystone the continuum has no crown joint: the apex load lies on one block, and
+/// μ_c is the keystone value of 2001 and 4001 voussoirs (0.0380245), not the 0.0773289 of a
+/// crown joint with the load on one half.
+#[test]
+fn apex_load_on_the_keystone_equals_odd_voussoirs() {
+    let continuum = apex_mu(Discretisation::Continuum, true);
+    approx::assert_abs_diff_eq!(continuum, 0.0380245, epsilon = 1e-6);
+    for n in [2001, 4001] {
+        let discrete = apex_mu(Discretisation::Voussoirs(n), true);
+        approx::assert_abs_diff_eq!(discrete, continuum, epsilon = 1e-7);
+    }
+}
+
+/// λ_max of a point load at `at_deg` on a pointed arch (e = 0.3, α = 90°, K = 1.15, μ = 0.6)
+/// with a keystone: ψ₁ = 18.814°, the extrados apex at 16.293°.
+fn keystone_lambda(at_deg: f64, joints: Discretisation) -> f64 {
+    let s = Scene {
+        arch: Arch::new(1.15, 90.0, WeightModel::Annular, joints).unwrap(),
+        friction: Friction::new(0.6).unwrap(),
+        find: Find::LoadFactor,
+        form: pointed(0.3, true),
+        load: Load::Point { at_deg },
+        lambda: 0.0,
+    };
+    let sol = scene::solve(&s);
+    assert_eq!(sol.outcome, Some(Outcome::Found), "{at_deg}° {joints:?}");
+    sol.load_factor.unwrap()
+}
+
+/// Loads on the keystone off the apex, and one beyond it: the continuum's λ_max against 2001
+/// and 4001 voussoirs. The discrete values lie above the continuum and converge to it at
+/// first order in 1/N (their gap, about 1.8e-3 and 0.9e-3, halves); the Richardson
+/// extrapolation 2λ₄₀₀₁ − λ₂₀₀₁ meets the continuum within 1e-5.
+#[test]
+fn loads_on_the_keystone_converge_to_the_continuum() {
+    for (at_deg, expected) in [
+        (0.0, 0.7532291),
+        (17.0, 0.6605207),
+        (18.0, 0.5616365),
+        (-17.5, 0.6073713),
+        (25.0, 0.2053250),
+    ] {
+        let c = keystone_lambda(at_deg, Discretisation::Continuum);
+        let a = keystone_lambda(at_deg, Discretisation::Voussoirs(2001));
+        let b = keystone_lambda(at_deg, Discretisation::Voussoirs(4001));
+        approx::assert_abs_diff_eq!(c, expected, epsilon = 1e-6);
+        assert!(a > b && b > c, "{at_deg}°: {a} {b} {c}");
+        approx::assert_abs_diff_eq!(2.0 * b - a, c, epsilon = 1e-5);
+    }
+}
+
+/// Without the keystone a load between the crown joint and ψ₁ is refused; with it, a load
+/// nearer the crown than the extrados apex is refused (no extrados point is at that angle),
+/// as are the forms without a keystone.
+#[test]
+fn keystone_refusals() {
+    use archstudy::analysis::forms::{ArchModel, FormError};
+    use archstudy::model::KeystoneRefusal;
+    let arch = |joints| Arch::new(1.15, 90.0, WeightModel::Annular, joints).unwrap();
+    let c = Discretisation::Continuum;
+    let at = |at_deg| Load::Point { at_deg };
+    assert!(matches!(
+        ArchModel::new(arch(c), pointed(0.3, false), at(17.0)),
+        Err(FormError::LoadInsideKeystone { .. })
+    ));
+    assert!(matches!(
+        ArchModel::new(arch(c), pointed(0.3, true), at(16.0)),
+        Err(FormError::LoadOffExtrados { .. })
+    ));
+    let circular = ArchForm {
+        keystone: true,
+        ..ArchForm::default()
+    };
+    let vertical = ArchForm {
+        joints: JointOrientation::Vertical,
+        ..pointed(0.3, true)
+    };
+    for (form, joints, why) in [
+        (circular, c, KeystoneRefusal::Circular),
+        (vertical, c, KeystoneRefusal::Vertical),
+        (
+            pointed(0.3, true),
+            Discretisation::Voussoirs(20),
+            KeystoneRefusal::EvenVoussoirs(20),
+        ),
+    ] {
+        assert_eq!(
+            ArchModel::new(arch(joints), form, Load::SelfWeight).err(),
+            Some(FormError::NoKeystone(why))
+        );
+    }
+    // An odd count has a keystone whatever the form; loads between the vertical joints at
+    // ±ψ₁ (the crown plane) do not exist.
+    let odd = arch(Discretisation::Voussoirs(21));
+    assert!(ArchModel::new(odd, circular, Load::SelfWeight).is_ok());
+    assert!(matches!(
+        ArchModel::new(odd, vertical, at(10.0)),
+        Err(FormError::LoadInsideKeystone { .. })
+    ));
+}
+
+/// A load-factor study with `keystone: true`: every row says so in results.parquet, and the
+/// loads on the keystone (17° and 18°, inside ψ₁ = 18.814°) get the continuum's λ_max above.
+#[test]
+fn keystone_study_stores_its_column() {
+    use crate::common::{run_study, scratch};
+    use archstudy::store;
+    let dir = scratch("keystone-study");
+    let text = "name: ks
+arch: {shape: pointed, eccentricity: 0.3, keystone: true}
+grid:
+  at_deg: {values: [0, 17, 18]}
+  k: {values: [1.15]}
+  mu: {values: [0.6]}
+load_cases:
+  - {name: p, kind: point}
+find: load_factor
+";
+    let run = run_study(&dir, "ks.yaml", text);
+    let df = store::read_parquet(&run.join("results.parquet")).unwrap();
+    let keystone = store::bool_column(&df, "keystone").unwrap();
+    assert_eq!(keystone, vec![Some(true); 3]);
+    let lf = store::f64_column(&df, "load_factor").unwrap();
+    for (got, want) in lf.iter().zip([0.7532291, 0.6605207, 0.5616365]) {
+        approx::assert_abs_diff_eq!(got.unwrap(), want, epsilon = 1e-6);
+    }
+}
+
+/// The manifest refuses a keystone where the form has none, and a load on the keystone
+/// nearer the crown than the extrados apex; `solve --keystone` likewise.
+#[test]
+fn keystone_usage_errors() {
+    use crate::common::{archstudy, assert_usage_error, manifest, scratch};
+    let dir = scratch("keystone-refusals");
+    for (arch, at, names) in [
+        (
+            "{keystone: true}",
+            "30",
+            &["arch.keystone", "circular arch has no keystone"][..],
+        ),
+        (
+            "{shape: pointed, eccentricity: 0.3, keystone: true, voussoirs: 40}",
+            "30",
+            &["arch.keystone", "40 voussoirs"][..],
+        ),
+        (
+            "{shape: pointed, eccentricity: 0.3, keystone: true}",
+            "16",
+            &["grid.at_deg", "16", "extrados"][..],
+        ),
+        (
+            "{shape: pointed, eccentricity: 0.3}",
+            "17",
+            &["grid.at_deg", "17", "keystone: true"][..],
+        ),
+    ] {
+        let text = format!(
+            "name: bad\narch: {arch}\ngrid:\n  at_deg: {{values: [{at}]}}\n  k: {{values: [1.15]}}\n  mu: {{values: [0.6]}}\nload_cases:\n  - {{name: p, kind: point}}\nfind: load_factor\n"
+        );
+        let m = manifest(&dir, "bad.yaml", &text);
+        assert_usage_error(&archstudy(&["check", m.to_str().unwrap()]), names);
+    }
+    let o = archstudy(&[
+        "solve",
+        "--find",
+        "load-factor",
+        "--load",
+        "point",
+        "--at",
+        "10",
+        "--keystone",
+    ]);
+    assert_usage_error(&o, &["--keystone", "circular arch"]);
+}
