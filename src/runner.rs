@@ -96,29 +96,36 @@ pub fn load_manifest(path: &Path) -> Result<(Manifest, Vec<u8>)> {
     Ok((manifest::parse(&text, path)?, bytes))
 }
 
-/// Reads, validates and expands a manifest (every error here is bad input: exit 2). A plan
-/// whose run would not fit in memory is refused before it is expanded, naming `--shard`.
-pub fn load_plan(path: &Path) -> Result<(Plan, Vec<u8>)> {
+/// Reads and validates a manifest and checks that its run fits (every error here is bad
+/// input: exit 2): a plan whose run would not fit in memory, or that has more than
+/// [`plan::MAX_CASES`] cases, is refused before anything is expanded, naming `--shard`.
+pub fn load_runnable(path: &Path) -> Result<(Manifest, Vec<u8>)> {
     let (m, bytes) = load_manifest(path)?;
-    check_memory(plan::case_count(&m), available_memory()).map_err(|message| {
-        manifest::ManifestError {
-            path: path.to_path_buf(),
-            position: None,
-            key: Some("grid".into()),
-            message,
-        }
-    })?;
-    let plan = plan::build(m).map_err(|e| manifest::ManifestError {
+    let refuse = |message: String| manifest::ManifestError {
         path: path.to_path_buf(),
         position: None,
         key: Some("grid".into()),
-        message: format!(
-            "{e} (its run would need about {} of memory at {} kB a case)",
+        message,
+    };
+    let requested = plan::case_count(&m);
+    check_memory(requested, available_memory()).map_err(refuse)?;
+    if requested > u128::from(plan::MAX_CASES) {
+        let e = plan::PlanTooLarge { requested };
+        return Err(refuse(format!(
+            "{e} (its run would need about {} of memory at {} bytes a case)",
             gib(needed_bytes(u64::try_from(e.requested).unwrap_or(u64::MAX))),
-            BYTES_PER_CASE / 1000
-        ),
-    })?;
-    Ok((plan, bytes))
+            BYTES_PER_CASE
+        ))
+        .into());
+    }
+    Ok((m, bytes))
+}
+
+/// Reads, validates and expands a manifest, refused as by [`load_runnable`].
+pub fn load_plan(path: &Path) -> Result<(Plan, Vec<u8>)> {
+    let (m, bytes) = load_runnable(path)?;
+    let total = u64::try_from(plan::case_count(&m)).unwrap_or(u64::MAX);
+    Ok((plan::build_slice(m, 0..total), bytes))
 }
 
 /// Peak memory of a run per case, in bytes: the plan, the engine's rows, the results table
@@ -290,14 +297,14 @@ pub(crate) fn stage<T>(
 /// Figure data, figures and both reports, from the stored files of the run; run.json is
 /// written first (the reports read it) and again with the figure and report timings.
 fn publish(
-    plan: &Plan,
+    m: &Manifest,
     layout: &RunLayout,
     info: &mut RunInfo,
     progress: &dyn Progress,
 ) -> Result<()> {
     write_run_json(layout, info)?;
     let t = Instant::now();
-    stage(progress, Stage::FigureData, || figdata::run(plan, layout))?;
+    stage(progress, Stage::FigureData, || figdata::run(m, layout))?;
     let mut data = report::data::load(layout)?;
     let (figs, _) = stage(progress, Stage::Figures, || {
         report::draw_figures(&data, layout)
@@ -311,7 +318,7 @@ fn publish(
     info.stages.report_ms = report_ms;
     info.finished_at = now_rfc3339();
     write_run_json(layout, info)?;
-    citation::write_crate_metadata(layout, &plan.manifest, info)
+    citation::write_crate_metadata(layout, m, info)
 }
 
 /// The worker pool of a run: `jobs` threads, or one per core.
@@ -328,57 +335,170 @@ pub(crate) fn worker_pool(jobs: Option<usize>) -> Result<(rayon::ThreadPool, usi
     Ok((pool, threads))
 }
 
-/// What the stages after the engine start from: the plan, its manifest and every case's row
-/// in plan order (from the engine, or read back from the shards of a sharded run).
+/// Cases analysed and stored at a time: the engine's rows of one chunk are appended to
+/// results.parquet as row groups and dropped, so that the memory of a run does not grow with
+/// its number of cases. The rows are those of one pass (the engine's answer for a case does
+/// not depend on the other cases it runs with), and a chunk is a block of the results table
+/// ([`store::BLOCK_ROWS`]), so the file holds the data of one pass too.
+pub const CHUNK_CASES: u64 = store::BLOCK_ROWS as u64;
+
+/// results.parquet written chunk by chunk in plan order, with the count of the rows and the
+/// cell code ([`boundaries::cell_code`]) of each, all the boundaries stage reads of a row.
+pub(crate) struct ResultsWriter {
+    path: PathBuf,
+    appender: Option<store::ParquetAppender>,
+    /// One cell code per row written, in order.
+    pub codes: Vec<u8>,
+    /// Rows whose analysis ran.
+    pub ok: u64,
+    /// Rows written.
+    pub total: u64,
+}
+
+impl ResultsWriter {
+    /// A writer of `path` (nothing is written until the first chunk).
+    pub fn new(path: &Path) -> Self {
+        ResultsWriter {
+            path: path.to_path_buf(),
+            appender: None,
+            codes: Vec::new(),
+            ok: 0,
+            total: 0,
+        }
+    }
+
+    /// Appends the rows of the cases of `plan` (a slice), in its order.
+    pub fn push(
+        &mut self,
+        plan: &Plan,
+        rows: &[CaseResult],
+        pool: &rayon::ThreadPool,
+    ) -> Result<()> {
+        let mut df = pool.install(|| store::results_frame(plan, rows))?;
+        match self.appender.as_mut() {
+            Some(a) => a.append(&mut df)?,
+            None => self.appender = Some(store::ParquetAppender::create(&self.path, &mut df)?),
+        }
+        self.codes.extend(rows.iter().map(boundaries::cell_code));
+        self.ok += rows.iter().filter(|r| r.status == Status::Ok).count() as u64;
+        self.total += rows.len() as u64;
+        Ok(())
+    }
+
+    /// Writes the footer and moves the file into place.
+    pub fn finish(&mut self) -> Result<()> {
+        match self.appender.take() {
+            Some(a) => a.finish(),
+            None => Ok(()),
+        }
+    }
+}
+
+/// What analysing a slice of a plan in chunks produced.
+pub(crate) struct Chunked {
+    /// The rows written, their codes and counts.
+    pub written: ResultsWriter,
+    /// Time in the engine, ms.
+    pub engine_ms: f64,
+    /// Time writing results.parquet, ms.
+    pub store_ms: f64,
+}
+
+/// Analyses the cases `ids` of a manifest's plan chunk by chunk (`chunk` cases, the plan
+/// expanded one chunk at a time), appending each chunk's rows to `results` in plan order.
+pub(crate) fn analyse_in_chunks(
+    m: &Manifest,
+    ids: std::ops::Range<u64>,
+    pool: &rayon::ThreadPool,
+    progress: &dyn Progress,
+    (results, chunk): (&Path, u64),
+) -> Result<Chunked> {
+    let mut starts: Vec<u64> = ids.clone().step_by(chunk.max(1) as usize).collect();
+    if starts.is_empty() {
+        // An empty slice still writes its (empty) table.
+        starts.push(ids.start);
+    }
+    let mut out = Chunked {
+        written: ResultsWriter::new(results),
+        engine_ms: 0.0,
+        store_ms: 0.0,
+    };
+    // One progress stage over all chunks, so the bar and the rate do not restart.
+    progress.begin(Stage::Analyse, Some(ids.end - ids.start));
+    for start in starts {
+        let plan = plan::build_slice(m.clone(), start..(start + chunk).min(ids.end));
+        let t = Instant::now();
+        let rows: Vec<CaseResult> = pool.install(|| engine::analyse(&plan, progress));
+        out.engine_ms += ms(t);
+        let t = Instant::now();
+        out.written.push(&plan, &rows, pool)?;
+        out.store_ms += ms(t);
+    }
+    progress.end(Stage::Analyse);
+    let t = Instant::now();
+    out.written.finish()?;
+    out.store_ms += ms(t);
+    Ok(out)
+}
+
+/// What the stages after the engine start from: the manifest, and results.parquet written
+/// with the cell code of every case (by the engine, or from the shards of a sharded run).
 pub(crate) struct Analysed {
-    /// The whole plan.
-    pub plan: Plan,
+    /// The manifest of the plan.
+    pub manifest: Manifest,
     /// The manifest file's bytes.
     pub bytes: Vec<u8>,
     /// The manifest's path as given, recorded in run.json.
     pub manifest_path: String,
-    /// One row per case, in plan order.
-    pub results: Vec<CaseResult>,
-    /// Timings so far (plan, engine).
+    /// The cell code of every case, in plan order, and the counts of results.parquet.
+    pub written: ResultsWriter,
+    /// Timings so far (plan, engine, store).
     pub stages: StageTimings,
     /// When the run started (RFC 3339).
     pub started_at: String,
 }
 
-/// Runs a study end to end and moves the complete run directory into place.
+/// Runs a study end to end and moves the complete run directory into place. The plan is
+/// analysed and stored chunk by chunk ([`CHUNK_CASES`]): no stage holds every row.
 pub fn run_study(opts: &RunOptions) -> Result<RunSummary> {
     let t0 = Instant::now();
     let started_at = now_rfc3339();
     let progress = opts.progress.as_ref();
-    let (mut plan, bytes) = load_plan(&opts.study)?;
+    let (mut m, bytes) = load_runnable(&opts.study)?;
     if let Some(w) = opts.figure_width {
-        plan.manifest.figure_width = w;
+        m.figure_width = w;
     }
+    let total = u64::try_from(plan::case_count(&m)).unwrap_or(u64::MAX);
     let mut stages = StageTimings {
         plan_ms: ms(t0),
         ..Default::default()
     };
     let (pool, threads) = worker_pool(opts.jobs)?;
     // Output is staged first: a bad output path fails before any work.
-    let staged = StagedRun::create(&opts.out, &plan.manifest.name)?;
-
-    let t = Instant::now();
-    let results: Vec<CaseResult> = pool.install(|| engine::run(&plan, progress));
-    stages.engine_ms = ms(t);
+    let staged = StagedRun::create(&opts.out, &m.name)?;
+    write_atomic(&staged.layout.manifest(), &bytes)?;
+    let done = analyse_in_chunks(
+        &m,
+        0..total,
+        &pool,
+        progress,
+        (&staged.layout.results(), CHUNK_CASES),
+    )?;
+    (stages.engine_ms, stages.store_ms) = (done.engine_ms, done.store_ms);
     let analysed = Analysed {
-        plan,
+        manifest: m,
         bytes,
         manifest_path: opts.study.display().to_string(),
-        results,
+        written: done.written,
         stages,
         started_at,
     };
     finish_run(analysed, staged, (&pool, threads), opts, t0)
 }
 
-/// The stages after the engine, shared by `archstudy run` and `archstudy merge`: results,
-/// boundaries and bifurcations stored, run.json, figure data, figures and reports; then the
-/// staged run directory is moved into place.
+/// The stages after the engine and the store, shared by `archstudy run` and `archstudy
+/// merge`: boundaries and bifurcations located from the cell codes and stored, run.json,
+/// figure data, figures and reports; then the staged run directory is moved into place.
 pub(crate) fn finish_run(
     a: Analysed,
     staged: StagedRun,
@@ -388,42 +508,33 @@ pub(crate) fn finish_run(
 ) -> Result<RunSummary> {
     let progress = opts.progress.as_ref();
     let Analysed {
-        plan,
+        manifest: m,
         bytes,
         manifest_path,
-        results,
-        mut stages,
+        written,
+        stages,
         started_at,
     } = a;
     let layout = staged.layout.clone();
-    write_atomic(&layout.manifest(), &bytes)?;
-    ((), stages.store_ms) = stage(progress, Stage::Store, || {
-        let mut df = pool.install(|| store::results_frame(&plan, &results))?;
-        store::write_parquet(&mut df, &layout.results())
-    })?;
-
+    // The plan's description without its cases: they are expanded a chunk at a time.
+    let empty = plan::build_slice(m.clone(), 0..0);
     let (located, boundaries_ms) = stage(progress, Stage::Boundaries, || {
-        let located = pool.install(|| boundaries::locate_with(&plan, &results, progress));
+        let located = pool.install(|| boundaries::locate_codes(&m, &written.codes, progress));
         store::write_parquet(
-            &mut store::boundaries_frame(&plan, &located)?,
+            &mut store::boundaries_frame(&empty, &located)?,
             &layout.boundaries(),
         )?;
         store::write_parquet(
-            &mut store::bifurcations_frame(&plan, &located)?,
+            &mut store::bifurcations_frame(&empty, &located)?,
             &layout.bifurcations(),
         )?;
         Ok(located)
     })?;
-    stages.boundaries_ms = boundaries_ms;
-
-    let ok = results.iter().filter(|r| r.status == Status::Ok).count() as u64;
-    let total = results.len() as u64;
-    // Figures and reports read the stored files: the engine's rows (hundreds of bytes a case)
-    // are not needed past this point.
-    drop(results);
+    let (ok, total) = (written.ok, written.total);
+    drop(written);
     let mut info = RunInfo {
-        name: plan.manifest.name.clone(),
-        manifest: serde_json::to_value(&plan.manifest)?,
+        name: m.name.clone(),
+        manifest: serde_json::to_value(&m)?,
         manifest_sha256: sha256_hex(&bytes),
         manifest_path,
         archstudy_version: version().to_string(),
@@ -438,13 +549,16 @@ pub(crate) fn finish_run(
             ok,
             error: total - ok,
         },
-        separable: plan.is_separable_state_grid(),
-        grid_path: engine::GridPath::of(&plan).as_str().to_string(),
-        stages,
+        separable: empty.is_separable_state_grid(),
+        grid_path: engine::GridPath::of(&empty).as_str().to_string(),
+        stages: StageTimings {
+            boundaries_ms,
+            ..stages
+        },
         boundary_refinement_analyses: located.refinement_analyses,
     };
     // Figure data, figures and reports, from the stored files.
-    publish(&plan, &layout, &mut info, progress)?;
+    publish(&m, &layout, &mut info, progress)?;
     let dir = staged.commit()?;
     Ok(RunSummary {
         dir,

@@ -344,7 +344,7 @@ impl Stored {
 }
 
 /// Reads the rows of results.parquet written for (a slice of) `plan` back into the engine's
-/// rows, in file order. Every row's case id must be a case of `plan`, and its load case and
+/// rows, in file order. Every row's case id must be a case of `plan` (of the slice), and its load case and
 /// form must be that case's.
 pub fn read_case_results(plan: &Plan, path: &Path) -> Result<Vec<CaseResult>> {
     let df = read_parquet(path)?;
@@ -365,10 +365,13 @@ const READ_BLOCK_ROWS: usize = 1 << 16;
 fn read_frame(plan: &Plan, df: &DataFrame) -> Result<Vec<CaseResult>> {
     let stored = Stored::read(df)?;
     let mut out = Vec::with_capacity(stored.ids.len());
+    // A slice of a plan holds the cases from its first id on.
+    let first = plan.cases.first().map_or(0, |c| c.id);
     for (i, &id) in stored.ids.iter().enumerate() {
         let row = || format!("row {i} (case {id})");
-        let case = usize::try_from(id)
-            .ok()
+        let case = id
+            .checked_sub(first)
+            .and_then(|n| usize::try_from(n).ok())
             .and_then(|n| plan.cases.get(n))
             .filter(|case| case.id == id)
             .with_context(|| format!("{}: the manifest's plan has no such case", row()))?;
