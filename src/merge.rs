@@ -153,13 +153,14 @@ fn check_complete(dirs: &[PathBuf]) -> Result<Vec<(PathBuf, ShardRunInfo)>> {
     Ok(records)
 }
 
-/// The rows of one shard, checked against the slice of the plan it must hold; `plan` is
-/// that slice (its cases only).
+/// The rows of one shard, checked against the slice of the plan it must hold, handed to
+/// `each` a chunk of [`runner::CHUNK_CASES`] rows at a time (only those rows are decoded).
 fn shard_rows(
-    (plan, total): (&plan::Plan, u64),
+    (m, total): (&crate::manifest::Manifest, u64),
     dir: &Path,
     r: &ShardRunInfo,
-) -> Result<Vec<CaseResult>> {
+    mut each: impl FnMut(Vec<CaseResult>) -> Result<()>,
+) -> Result<()> {
     let ids = plan::shard_ids(total, r.shard.index, r.shard.count);
     let recorded = r.shard.first_case..r.shard.first_case + r.shard.cases;
     if r.shard.plan_cases != total || recorded != ids {
@@ -179,9 +180,9 @@ fn shard_rows(
             "incomplete shard: results.parquet is missing; re-run the shard",
         ));
     }
-    let rows = store::read_case_results(plan, &path)
-        .map_err(|e| bad_shard(dir, format!("unreadable shard: {e:#}; re-run the shard")))?;
-    let got: Vec<u64> = rows.iter().map(|c| c.case_id).collect();
+    let unreadable =
+        |e: anyhow::Error| bad_shard(dir, format!("unreadable shard: {e:#}; re-run the shard"));
+    let got = store::read_case_ids(&path).map_err(unreadable)?;
     if !got.iter().copied().eq(ids.clone()) {
         return Err(bad_shard(
             dir,
@@ -194,14 +195,26 @@ fn shard_rows(
             ),
         ));
     }
-    Ok(rows)
+    drop(got);
+    let n = ids.end - ids.start;
+    let mut offset = 0u64;
+    while offset < n {
+        let len = runner::CHUNK_CASES.min(n - offset);
+        let first = ids.start + offset;
+        let slice = plan::build_slice(m.clone(), first..first + len);
+        let rows = store::read_case_results_rows(&slice, &path, (offset as usize, len as usize))
+            .map_err(unreadable)?;
+        each(rows)?;
+        offset += len;
+    }
+    Ok(())
 }
 
 /// Merges the shards of one manifest into `OUT/<name>/`, the run directory an unsharded run
 /// writes. Missing, duplicated or foreign shards are refused (exit 2), naming the shard. The
-/// shards are read one at a time and their rows appended to results.parquet in chunks of
-/// [`runner::CHUNK_CASES`] and dropped: the merge holds one shard's rows, one chunk and one
-/// byte a case.
+/// shards are read a chunk of [`runner::CHUNK_CASES`] rows at a time, appended to
+/// results.parquet in the chunks of an unsharded run and dropped: the merge holds two chunks
+/// of rows, one shard's case ids and one byte a case.
 pub fn merge(opts: &MergeOptions) -> Result<RunSummary> {
     let t0 = Instant::now();
     let started_at = now_rfc3339();
@@ -238,13 +251,14 @@ pub fn merge(opts: &MergeOptions) -> Result<RunSummary> {
     };
     let chunk = runner::CHUNK_CASES as usize;
     for (dir, r) in &records {
-        let ids = plan::shard_ids(total, r.shard.index, r.shard.count);
-        let slice = plan::build_slice(m.clone(), ids);
-        pending.extend(shard_rows((&slice, total), dir, r)?);
-        while pending.len() >= chunk {
-            let rest = pending.split_off(chunk);
-            store_chunk(std::mem::replace(&mut pending, rest), &mut stored)?;
-        }
+        shard_rows((&m, total), dir, r, |rows| {
+            pending.extend(rows);
+            while pending.len() >= chunk {
+                let rest = pending.split_off(chunk);
+                store_chunk(std::mem::replace(&mut pending, rest), &mut stored)?;
+            }
+            Ok(())
+        })?;
         stages.engine_ms += r.info.stages.engine_ms;
     }
     if !pending.is_empty() || stored == 0 {

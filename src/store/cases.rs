@@ -10,7 +10,7 @@ use crate::model::WeightModel;
 use crate::plan::Plan;
 use crate::scene::{Find, Outcome, Solution};
 use anyhow::{Context, Result, bail};
-use polars::prelude::DataFrame;
+use polars::prelude::{DataFrame, SerReader};
 use std::path::Path;
 
 /// The columns of one results table, each read once; a column the study's finds do not fill
@@ -357,6 +357,28 @@ pub fn read_case_results(plan: &Plan, path: &Path) -> Result<Vec<CaseResult>> {
         out.extend(rows);
     }
     Ok(out)
+}
+
+/// [`read_case_results`] of the rows `offset .. offset + len` of the file only (the row
+/// groups that hold them are decoded); `plan` holds (at least) their cases.
+pub fn read_case_results_rows(
+    plan: &Plan,
+    path: &Path,
+    (offset, len): (usize, usize),
+) -> Result<Vec<CaseResult>> {
+    let file =
+        std::fs::File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
+    let df = polars::prelude::ParquetReader::new(file)
+        .with_slice(Some((offset, len)))
+        .finish()
+        .with_context(|| format!("cannot read {} as Parquet", path.display()))?;
+    read_frame(plan, &df).with_context(|| format!("in {} (rows from {offset})", path.display()))
+}
+
+/// The case ids of results.parquet, in file order (no other column is decoded).
+pub fn read_case_ids(path: &Path) -> Result<Vec<u64>> {
+    let df = super::read_parquet_columns(path, &["case_id"])?;
+    super::u64_column(&df, "case_id").with_context(|| format!("in {}", path.display()))
 }
 
 /// Rows of results.parquet typed at a time by [`read_case_results`].

@@ -10,7 +10,7 @@ mod schema;
 mod table;
 
 pub use boundaries::{bifurcations_frame, boundaries_frame};
-pub use cases::read_case_results;
+pub use cases::{read_case_ids, read_case_results, read_case_results_rows};
 pub use figures::{
     BifurcationGroup, CurvePoint, LoadFactorCase, MechanismRow, ReferenceRow, RowArch, StateRow,
     curves_frame, mechanisms_frame, read_bifurcation_groups, read_curves, read_load_factor_cases,
