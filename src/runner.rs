@@ -108,13 +108,16 @@ pub fn load_runnable(path: &Path) -> Result<(Manifest, Vec<u8>)> {
         message,
     };
     let requested = plan::case_count(&m);
-    check_memory(requested, available_memory()).map_err(refuse)?;
+    check_memory_at(requested, bytes_per_case(&m), available_memory()).map_err(refuse)?;
     if requested > u128::from(plan::MAX_CASES) {
         let e = plan::PlanTooLarge { requested };
         return Err(refuse(format!(
             "{e} (its run would need about {} of memory at {} bytes a case)",
-            gib(needed_bytes(u64::try_from(e.requested).unwrap_or(u64::MAX))),
-            BYTES_PER_CASE
+            gib(u64::try_from(e.requested)
+                .unwrap_or(u64::MAX)
+                .saturating_mul(bytes_per_case(&m))
+                .saturating_add(BASE_BYTES)),
+            bytes_per_case(&m)
         ))
         .into());
     }
@@ -128,13 +131,17 @@ pub fn load_plan(path: &Path) -> Result<(Plan, Vec<u8>)> {
     Ok((plan::build_slice(m, 0..total), bytes))
 }
 
-/// Peak memory of a run per case, in bytes: the plan, the engine's rows, the results table
-/// and the figure data. Measured: a 700 × 700 grid (490,000 cases) peaks at 832 MB resident,
-/// 1.7 kB a case; 2 kB leaves a margin.
-pub const BYTES_PER_CASE: u64 = 2_000;
+/// Memory of a run per case, in bytes: the case's cell code, its cell in the boundaries'
+/// grid and its solve time in the report's totals (the rows themselves are stored and
+/// dropped chunk by chunk). Measured (release build): a 1001² state map peaks at 583 MB and a
+/// 4001² one at 790 MB, 14 bytes more a case; 64 leaves a margin.
+pub const BYTES_PER_CASE: u64 = 64;
 
-/// Memory of a run besides its cases (the program, thread stacks, figures), in bytes.
-pub const BASE_BYTES: u64 = 200 << 20;
+/// Memory of a run besides its cases, in bytes: the program and its thread stacks, one chunk
+/// of [`CHUNK_CASES`] engine rows with its table, and the rows of the figure lattice (at most
+/// 1001² of a map). Measured: a 1001² state map peaks at 583 MB, a 1001² load-factor map
+/// (whose report still reads every case's load factor) at 1.03 GB.
+pub const BASE_BYTES: u64 = 768 << 20;
 
 /// The memory this process may use, in bytes: the smaller of the available memory
 /// (/proc/meminfo MemAvailable) and the address-space limit (`ulimit -v`), when known.
@@ -171,28 +178,51 @@ pub fn needed_bytes(cases: u64) -> u64 {
         .saturating_add(BASE_BYTES)
 }
 
+/// Memory of a run per case when a load case finds a load factor, in bytes: the figure data
+/// and the report read every case's load factor and position (a 1001² load-factor map peaks
+/// at 1.03 GB, 450 bytes a case more than a state map of that size).
+pub const LOAD_FACTOR_BYTES_PER_CASE: u64 = 512;
+
+/// The memory per case of a manifest's run ([`BYTES_PER_CASE`], or
+/// [`LOAD_FACTOR_BYTES_PER_CASE`] for a study that finds load factors).
+pub fn bytes_per_case(m: &Manifest) -> u64 {
+    if m.load_cases
+        .iter()
+        .any(|l| l.find == crate::scene::Find::LoadFactor)
+    {
+        LOAD_FACTOR_BYTES_PER_CASE
+    } else {
+        BYTES_PER_CASE
+    }
+}
+
 /// Refuses a plan of `cases` cases whose run would need more memory than `available`
 /// (see [`BYTES_PER_CASE`]), naming both, before anything is allocated.
 pub fn check_memory(cases: u128, available: Option<u64>) -> Result<(), String> {
+    check_memory_at(cases, BYTES_PER_CASE, available)
+}
+
+/// [`check_memory`] at `per_case` bytes a case.
+pub fn check_memory_at(cases: u128, per_case: u64, available: Option<u64>) -> Result<(), String> {
     let Some(available) = available else {
         return Ok(());
     };
     let cases = u64::try_from(cases).unwrap_or(u64::MAX);
-    let needed = needed_bytes(cases);
+    let needed = cases.saturating_mul(per_case).saturating_add(BASE_BYTES);
     if needed <= available {
         return Ok(());
     }
-    let fits = (available.saturating_sub(BASE_BYTES) / BYTES_PER_CASE).max(1);
+    let fits = (available.saturating_sub(BASE_BYTES) / per_case.max(1)).max(1);
     let shards = cases.div_ceil(fits);
     Err(format!(
-        "the study has {cases} cases, whose run needs about {} of memory ({} kB per case and {} \
+        "the study has {cases} cases, whose run needs about {} of memory ({} bytes per case and {} \
          besides), but {} is available (the smaller of the free memory and `ulimit -v`): run \
          it in shards of at most {fits} cases, `archstudy run STUDY --shard I/N` with N ≥ \
          {shards} (one process or cluster task per shard, then `archstudy merge` on a machine \
          with that memory; `archstudy slurm STUDY --shards N` writes the job array), or \
          reduce the steps of the grid axes",
         gib(needed),
-        BYTES_PER_CASE / 1000,
+        per_case,
         gib(BASE_BYTES),
         gib(available)
     ))
@@ -573,20 +603,48 @@ mod tests {
 
     #[test]
     fn a_plan_too_large_for_the_memory_is_refused_naming_shards_and_the_memory() {
-        let gib16 = 16u64 << 30;
-        assert!(check_memory(1_000_000, Some(gib16)).is_ok());
+        let gib4 = 4u64 << 30;
+        assert!(check_memory(16_008_001, Some(gib4)).is_ok());
         assert!(check_memory(100_000_000, None).is_ok());
-        let e = check_memory(100_000_000, Some(gib16)).unwrap_err();
-        // 10⁸ cases at 2 kB need 186.5 GiB; 16 GiB less 200 MiB holds 8,485,076 cases, so 12 shards.
+        let e = check_memory(100_000_000, Some(gib4)).unwrap_err();
+        // 10⁸ cases at 64 bytes and 0.75 GiB besides need 6.71 GiB; 4 GiB less 768 MiB holds
+        // 54,525,952 cases, so 2 shards.
         for part in [
             "100000000 cases",
-            "186.5 GiB",
-            "16.0 GiB is available",
-            "shards of at most 8485076 cases",
-            "--shard I/N` with N ≥ 12",
+            "6.7 GiB",
+            "64 bytes per case",
+            "4.0 GiB is available",
+            "shards of at most 54525952 cases",
+            "--shard I/N` with N ≥ 2",
             "archstudy merge",
         ] {
             assert!(e.contains(part), "{part}: {e}");
         }
+    }
+
+    #[test]
+    fn a_load_factor_map_is_estimated_at_its_own_cost_per_case() {
+        let gib4 = 4u64 << 30;
+        let m = |find: &str, kind: &str| {
+            crate::manifest::parse(
+                &format!("name: a\nfind: {find}\nload_cases:\n  - {{name: h, kind: {kind}}}\ngrid:\n  k: {{from: 1.1, to: 1.6, steps: 3}}\n  mu: {{values: [0.4]}}\n"),
+                Path::new("a.yaml"),
+            )
+            .unwrap()
+        };
+        assert_eq!(
+            bytes_per_case(&m("load_factor", "horizontal")),
+            LOAD_FACTOR_BYTES_PER_CASE
+        );
+        assert_eq!(bytes_per_case(&m("state", "self_weight")), BYTES_PER_CASE);
+        // 10⁷ load factors at 512 bytes need 5.5 GiB: refused at 4 GiB, in 2 shards of at
+        // most (4 GiB − 768 MiB)/512 = 6,815,744 cases; the same count of states fits.
+        let e = check_memory_at(10_000_000, LOAD_FACTOR_BYTES_PER_CASE, Some(gib4)).unwrap_err();
+        assert!(
+            e.contains("512 bytes per case") && e.contains("at most 6815744 cases"),
+            "{e}"
+        );
+        assert!(e.contains("5.5 GiB"), "{e}");
+        assert!(check_memory_at(10_000_000, BYTES_PER_CASE, Some(gib4)).is_ok());
     }
 }
