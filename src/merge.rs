@@ -153,9 +153,14 @@ fn check_complete(dirs: &[PathBuf]) -> Result<Vec<(PathBuf, ShardRunInfo)>> {
     Ok(records)
 }
 
-/// The rows of one shard, checked against the slice of the plan it must hold.
-fn shard_rows(plan: &plan::Plan, dir: &Path, r: &ShardRunInfo) -> Result<Vec<CaseResult>> {
-    let total = plan.cases.len() as u64;
+/// The rows of one shard, checked against the slice of the plan it must hold, handed to
+/// `each` a chunk of [`runner::CHUNK_CASES`] rows at a time (only those rows are decoded).
+fn shard_rows(
+    (m, total): (&crate::manifest::Manifest, u64),
+    dir: &Path,
+    r: &ShardRunInfo,
+    mut each: impl FnMut(Vec<CaseResult>) -> Result<()>,
+) -> Result<()> {
     let ids = plan::shard_ids(total, r.shard.index, r.shard.count);
     let recorded = r.shard.first_case..r.shard.first_case + r.shard.cases;
     if r.shard.plan_cases != total || recorded != ids {
@@ -175,9 +180,9 @@ fn shard_rows(plan: &plan::Plan, dir: &Path, r: &ShardRunInfo) -> Result<Vec<Cas
             "incomplete shard: results.parquet is missing; re-run the shard",
         ));
     }
-    let rows = store::read_case_results(plan, &path)
-        .map_err(|e| bad_shard(dir, format!("unreadable shard: {e:#}; re-run the shard")))?;
-    let got: Vec<u64> = rows.iter().map(|c| c.case_id).collect();
+    let unreadable =
+        |e: anyhow::Error| bad_shard(dir, format!("unreadable shard: {e:#}; re-run the shard"));
+    let got = store::read_case_ids(&path).map_err(unreadable)?;
     if !got.iter().copied().eq(ids.clone()) {
         return Err(bad_shard(
             dir,
@@ -190,18 +195,33 @@ fn shard_rows(plan: &plan::Plan, dir: &Path, r: &ShardRunInfo) -> Result<Vec<Cas
             ),
         ));
     }
-    Ok(rows)
+    drop(got);
+    let n = ids.end - ids.start;
+    let mut offset = 0u64;
+    while offset < n {
+        let len = runner::CHUNK_CASES.min(n - offset);
+        let first = ids.start + offset;
+        let slice = plan::build_slice(m.clone(), first..first + len);
+        let rows = store::read_case_results_rows(&slice, &path, (offset as usize, len as usize))
+            .map_err(unreadable)?;
+        each(rows)?;
+        offset += len;
+    }
+    Ok(())
 }
 
 /// Merges the shards of one manifest into `OUT/<name>/`, the run directory an unsharded run
-/// writes. Missing, duplicated or foreign shards are refused (exit 2), naming the shard.
+/// writes. Missing, duplicated or foreign shards are refused (exit 2), naming the shard. The
+/// shards are read a chunk of [`runner::CHUNK_CASES`] rows at a time, appended to
+/// results.parquet in the chunks of an unsharded run and dropped: the merge holds two chunks
+/// of rows, one shard's case ids and one byte a case.
 pub fn merge(opts: &MergeOptions) -> Result<RunSummary> {
     let t0 = Instant::now();
     let started_at = now_rfc3339();
     let records = check_complete(&opts.shards)?;
     let (first_dir, first) = &records[0];
     let manifest_file = first_dir.join("manifest.yaml");
-    let (plan, bytes) = runner::load_plan(&manifest_file)?;
+    let (m, bytes) = runner::load_runnable(&manifest_file)?;
     if crate::provenance::sha256_hex(&bytes) != first.info.manifest_sha256 {
         return Err(bad_shard(
             first_dir,
@@ -209,17 +229,43 @@ pub fn merge(opts: &MergeOptions) -> Result<RunSummary> {
              re-run the shard",
         ));
     }
+    let total = u64::try_from(plan::case_count(&m)).unwrap_or(u64::MAX);
     let mut stages = StageTimings {
         plan_ms: ms(t0),
         ..Default::default()
     };
     let (pool, threads) = worker_pool(opts.jobs)?;
-    let staged = StagedRun::create(&opts.out, &plan.manifest.name)?;
-    let mut results = Vec::with_capacity(plan.cases.len());
+    let staged = StagedRun::create(&opts.out, &m.name)?;
+    crate::output::write_atomic(&staged.layout.manifest(), &bytes)?;
+    let t = Instant::now();
+    let mut written = runner::ResultsWriter::new(&staged.layout.results());
+    // The shards' rows are stored in the chunks of an unsharded run, so that the table is
+    // that run's to the byte of every value.
+    let mut pending: Vec<CaseResult> = Vec::new();
+    let mut stored = 0u64;
+    let mut store_chunk = |rows: Vec<CaseResult>, stored: &mut u64| -> Result<()> {
+        let ids = *stored..*stored + rows.len() as u64;
+        written.push(&plan::build_slice(m.clone(), ids), &rows, &pool)?;
+        *stored += rows.len() as u64;
+        Ok(())
+    };
+    let chunk = runner::CHUNK_CASES as usize;
     for (dir, r) in &records {
-        results.extend(shard_rows(&plan, dir, r)?);
+        shard_rows((&m, total), dir, r, |rows| {
+            pending.extend(rows);
+            while pending.len() >= chunk {
+                let rest = pending.split_off(chunk);
+                store_chunk(std::mem::replace(&mut pending, rest), &mut stored)?;
+            }
+            Ok(())
+        })?;
         stages.engine_ms += r.info.stages.engine_ms;
     }
+    if !pending.is_empty() || stored == 0 {
+        store_chunk(pending, &mut stored)?;
+    }
+    written.finish()?;
+    stages.store_ms = ms(t);
     let run_opts = RunOptions {
         study: manifest_file.clone(),
         out: opts.out.clone(),
@@ -229,10 +275,10 @@ pub fn merge(opts: &MergeOptions) -> Result<RunSummary> {
         figure_width: None,
     };
     let analysed = Analysed {
-        plan,
+        manifest: m,
         bytes,
         manifest_path: first.info.manifest_path.clone(),
-        results,
+        written,
         stages,
         started_at,
     };

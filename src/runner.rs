@@ -96,38 +96,52 @@ pub fn load_manifest(path: &Path) -> Result<(Manifest, Vec<u8>)> {
     Ok((manifest::parse(&text, path)?, bytes))
 }
 
-/// Reads, validates and expands a manifest (every error here is bad input: exit 2). A plan
-/// whose run would not fit in memory is refused before it is expanded, naming `--shard`.
-pub fn load_plan(path: &Path) -> Result<(Plan, Vec<u8>)> {
+/// Reads and validates a manifest and checks that its run fits (every error here is bad
+/// input: exit 2): a plan whose run would not fit in memory, or that has more than
+/// [`plan::MAX_CASES`] cases, is refused before anything is expanded, naming `--shard`.
+pub fn load_runnable(path: &Path) -> Result<(Manifest, Vec<u8>)> {
     let (m, bytes) = load_manifest(path)?;
-    check_memory(plan::case_count(&m), available_memory()).map_err(|message| {
-        manifest::ManifestError {
-            path: path.to_path_buf(),
-            position: None,
-            key: Some("grid".into()),
-            message,
-        }
-    })?;
-    let plan = plan::build(m).map_err(|e| manifest::ManifestError {
+    let refuse = |message: String| manifest::ManifestError {
         path: path.to_path_buf(),
         position: None,
         key: Some("grid".into()),
-        message: format!(
-            "{e} (its run would need about {} of memory at {} kB a case)",
-            gib(needed_bytes(u64::try_from(e.requested).unwrap_or(u64::MAX))),
-            BYTES_PER_CASE / 1000
-        ),
-    })?;
-    Ok((plan, bytes))
+        message,
+    };
+    let requested = plan::case_count(&m);
+    check_memory_at(requested, bytes_per_case(&m), available_memory()).map_err(refuse)?;
+    if requested > u128::from(plan::MAX_CASES) {
+        let e = plan::PlanTooLarge { requested };
+        return Err(refuse(format!(
+            "{e} (its run would need about {} of memory at {} bytes a case)",
+            gib(u64::try_from(e.requested)
+                .unwrap_or(u64::MAX)
+                .saturating_mul(bytes_per_case(&m))
+                .saturating_add(BASE_BYTES)),
+            bytes_per_case(&m)
+        ))
+        .into());
+    }
+    Ok((m, bytes))
 }
 
-/// Peak memory of a run per case, in bytes: the plan, the engine's rows, the results table
-/// and the figure data. Measured: a 700 × 700 grid (490,000 cases) peaks at 832 MB resident,
-/// 1.7 kB a case; 2 kB leaves a margin.
-pub const BYTES_PER_CASE: u64 = 2_000;
+/// Reads, validates and expands a manifest, refused as by [`load_runnable`].
+pub fn load_plan(path: &Path) -> Result<(Plan, Vec<u8>)> {
+    let (m, bytes) = load_runnable(path)?;
+    let total = u64::try_from(plan::case_count(&m)).unwrap_or(u64::MAX);
+    Ok((plan::build_slice(m, 0..total), bytes))
+}
 
-/// Memory of a run besides its cases (the program, thread stacks, figures), in bytes.
-pub const BASE_BYTES: u64 = 200 << 20;
+/// Memory of a run per case, in bytes: the case's cell code, its cell in the boundaries'
+/// grid and its solve time in the report's totals (the rows themselves are stored and
+/// dropped chunk by chunk). Measured (release build): a 1001² state map peaks at 583 MB and a
+/// 4001² one at 790 MB, 14 bytes more a case; 64 leaves a margin.
+pub const BYTES_PER_CASE: u64 = 64;
+
+/// Memory of a run besides its cases, in bytes: the program and its thread stacks, one chunk
+/// of [`CHUNK_CASES`] engine rows with its table, and the rows of the figure lattice (at most
+/// 1001² of a map). Measured: a 1001² state map peaks at 583 MB, a 1001² load-factor map
+/// (whose report still reads every case's load factor) at 1.03 GB.
+pub const BASE_BYTES: u64 = 768 << 20;
 
 /// The memory this process may use, in bytes: the smaller of the available memory
 /// (/proc/meminfo MemAvailable) and the address-space limit (`ulimit -v`), when known.
@@ -164,28 +178,51 @@ pub fn needed_bytes(cases: u64) -> u64 {
         .saturating_add(BASE_BYTES)
 }
 
+/// Memory of a run per case when a load case finds a load factor, in bytes: the figure data
+/// and the report read every case's load factor and position (a 1001² load-factor map peaks
+/// at 1.03 GB, 450 bytes a case more than a state map of that size).
+pub const LOAD_FACTOR_BYTES_PER_CASE: u64 = 512;
+
+/// The memory per case of a manifest's run ([`BYTES_PER_CASE`], or
+/// [`LOAD_FACTOR_BYTES_PER_CASE`] for a study that finds load factors).
+pub fn bytes_per_case(m: &Manifest) -> u64 {
+    if m.load_cases
+        .iter()
+        .any(|l| l.find == crate::scene::Find::LoadFactor)
+    {
+        LOAD_FACTOR_BYTES_PER_CASE
+    } else {
+        BYTES_PER_CASE
+    }
+}
+
 /// Refuses a plan of `cases` cases whose run would need more memory than `available`
 /// (see [`BYTES_PER_CASE`]), naming both, before anything is allocated.
 pub fn check_memory(cases: u128, available: Option<u64>) -> Result<(), String> {
+    check_memory_at(cases, BYTES_PER_CASE, available)
+}
+
+/// [`check_memory`] at `per_case` bytes a case.
+pub fn check_memory_at(cases: u128, per_case: u64, available: Option<u64>) -> Result<(), String> {
     let Some(available) = available else {
         return Ok(());
     };
     let cases = u64::try_from(cases).unwrap_or(u64::MAX);
-    let needed = needed_bytes(cases);
+    let needed = cases.saturating_mul(per_case).saturating_add(BASE_BYTES);
     if needed <= available {
         return Ok(());
     }
-    let fits = (available.saturating_sub(BASE_BYTES) / BYTES_PER_CASE).max(1);
+    let fits = (available.saturating_sub(BASE_BYTES) / per_case.max(1)).max(1);
     let shards = cases.div_ceil(fits);
     Err(format!(
-        "the study has {cases} cases, whose run needs about {} of memory ({} kB per case and {} \
+        "the study has {cases} cases, whose run needs about {} of memory ({} bytes per case and {} \
          besides), but {} is available (the smaller of the free memory and `ulimit -v`): run \
          it in shards of at most {fits} cases, `archstudy run STUDY --shard I/N` with N ≥ \
          {shards} (one process or cluster task per shard, then `archstudy merge` on a machine \
          with that memory; `archstudy slurm STUDY --shards N` writes the job array), or \
          reduce the steps of the grid axes",
         gib(needed),
-        BYTES_PER_CASE / 1000,
+        per_case,
         gib(BASE_BYTES),
         gib(available)
     ))
@@ -290,14 +327,14 @@ pub(crate) fn stage<T>(
 /// Figure data, figures and both reports, from the stored files of the run; run.json is
 /// written first (the reports read it) and again with the figure and report timings.
 fn publish(
-    plan: &Plan,
+    m: &Manifest,
     layout: &RunLayout,
     info: &mut RunInfo,
     progress: &dyn Progress,
 ) -> Result<()> {
     write_run_json(layout, info)?;
     let t = Instant::now();
-    stage(progress, Stage::FigureData, || figdata::run(plan, layout))?;
+    stage(progress, Stage::FigureData, || figdata::run(m, layout))?;
     let mut data = report::data::load(layout)?;
     let (figs, _) = stage(progress, Stage::Figures, || {
         report::draw_figures(&data, layout)
@@ -311,7 +348,7 @@ fn publish(
     info.stages.report_ms = report_ms;
     info.finished_at = now_rfc3339();
     write_run_json(layout, info)?;
-    citation::write_crate_metadata(layout, &plan.manifest, info)
+    citation::write_crate_metadata(layout, m, info)
 }
 
 /// The worker pool of a run: `jobs` threads, or one per core.
@@ -328,57 +365,170 @@ pub(crate) fn worker_pool(jobs: Option<usize>) -> Result<(rayon::ThreadPool, usi
     Ok((pool, threads))
 }
 
-/// What the stages after the engine start from: the plan, its manifest and every case's row
-/// in plan order (from the engine, or read back from the shards of a sharded run).
+/// Cases analysed and stored at a time: the engine's rows of one chunk are appended to
+/// results.parquet as row groups and dropped, so that the memory of a run does not grow with
+/// its number of cases. The rows are those of one pass (the engine's answer for a case does
+/// not depend on the other cases it runs with), and a chunk is a block of the results table
+/// ([`store::BLOCK_ROWS`]), so the file holds the data of one pass too.
+pub const CHUNK_CASES: u64 = store::BLOCK_ROWS as u64;
+
+/// results.parquet written chunk by chunk in plan order, with the count of the rows and the
+/// cell code ([`boundaries::cell_code`]) of each, all the boundaries stage reads of a row.
+pub(crate) struct ResultsWriter {
+    path: PathBuf,
+    appender: Option<store::ParquetAppender>,
+    /// One cell code per row written, in order.
+    pub codes: Vec<u8>,
+    /// Rows whose analysis ran.
+    pub ok: u64,
+    /// Rows written.
+    pub total: u64,
+}
+
+impl ResultsWriter {
+    /// A writer of `path` (nothing is written until the first chunk).
+    pub fn new(path: &Path) -> Self {
+        ResultsWriter {
+            path: path.to_path_buf(),
+            appender: None,
+            codes: Vec::new(),
+            ok: 0,
+            total: 0,
+        }
+    }
+
+    /// Appends the rows of the cases of `plan` (a slice), in its order.
+    pub fn push(
+        &mut self,
+        plan: &Plan,
+        rows: &[CaseResult],
+        pool: &rayon::ThreadPool,
+    ) -> Result<()> {
+        let mut df = pool.install(|| store::results_frame(plan, rows))?;
+        match self.appender.as_mut() {
+            Some(a) => a.append(&mut df)?,
+            None => self.appender = Some(store::ParquetAppender::create(&self.path, &mut df)?),
+        }
+        self.codes.extend(rows.iter().map(boundaries::cell_code));
+        self.ok += rows.iter().filter(|r| r.status == Status::Ok).count() as u64;
+        self.total += rows.len() as u64;
+        Ok(())
+    }
+
+    /// Writes the footer and moves the file into place.
+    pub fn finish(&mut self) -> Result<()> {
+        match self.appender.take() {
+            Some(a) => a.finish(),
+            None => Ok(()),
+        }
+    }
+}
+
+/// What analysing a slice of a plan in chunks produced.
+pub(crate) struct Chunked {
+    /// The rows written, their codes and counts.
+    pub written: ResultsWriter,
+    /// Time in the engine, ms.
+    pub engine_ms: f64,
+    /// Time writing results.parquet, ms.
+    pub store_ms: f64,
+}
+
+/// Analyses the cases `ids` of a manifest's plan chunk by chunk (`chunk` cases, the plan
+/// expanded one chunk at a time), appending each chunk's rows to `results` in plan order.
+pub(crate) fn analyse_in_chunks(
+    m: &Manifest,
+    ids: std::ops::Range<u64>,
+    pool: &rayon::ThreadPool,
+    progress: &dyn Progress,
+    (results, chunk): (&Path, u64),
+) -> Result<Chunked> {
+    let mut starts: Vec<u64> = ids.clone().step_by(chunk.max(1) as usize).collect();
+    if starts.is_empty() {
+        // An empty slice still writes its (empty) table.
+        starts.push(ids.start);
+    }
+    let mut out = Chunked {
+        written: ResultsWriter::new(results),
+        engine_ms: 0.0,
+        store_ms: 0.0,
+    };
+    // One progress stage over all chunks, so the bar and the rate do not restart.
+    progress.begin(Stage::Analyse, Some(ids.end - ids.start));
+    for start in starts {
+        let plan = plan::build_slice(m.clone(), start..(start + chunk).min(ids.end));
+        let t = Instant::now();
+        let rows: Vec<CaseResult> = pool.install(|| engine::analyse(&plan, progress));
+        out.engine_ms += ms(t);
+        let t = Instant::now();
+        out.written.push(&plan, &rows, pool)?;
+        out.store_ms += ms(t);
+    }
+    progress.end(Stage::Analyse);
+    let t = Instant::now();
+    out.written.finish()?;
+    out.store_ms += ms(t);
+    Ok(out)
+}
+
+/// What the stages after the engine start from: the manifest, and results.parquet written
+/// with the cell code of every case (by the engine, or from the shards of a sharded run).
 pub(crate) struct Analysed {
-    /// The whole plan.
-    pub plan: Plan,
+    /// The manifest of the plan.
+    pub manifest: Manifest,
     /// The manifest file's bytes.
     pub bytes: Vec<u8>,
     /// The manifest's path as given, recorded in run.json.
     pub manifest_path: String,
-    /// One row per case, in plan order.
-    pub results: Vec<CaseResult>,
-    /// Timings so far (plan, engine).
+    /// The cell code of every case, in plan order, and the counts of results.parquet.
+    pub written: ResultsWriter,
+    /// Timings so far (plan, engine, store).
     pub stages: StageTimings,
     /// When the run started (RFC 3339).
     pub started_at: String,
 }
 
-/// Runs a study end to end and moves the complete run directory into place.
+/// Runs a study end to end and moves the complete run directory into place. The plan is
+/// analysed and stored chunk by chunk ([`CHUNK_CASES`]): no stage holds every row.
 pub fn run_study(opts: &RunOptions) -> Result<RunSummary> {
     let t0 = Instant::now();
     let started_at = now_rfc3339();
     let progress = opts.progress.as_ref();
-    let (mut plan, bytes) = load_plan(&opts.study)?;
+    let (mut m, bytes) = load_runnable(&opts.study)?;
     if let Some(w) = opts.figure_width {
-        plan.manifest.figure_width = w;
+        m.figure_width = w;
     }
+    let total = u64::try_from(plan::case_count(&m)).unwrap_or(u64::MAX);
     let mut stages = StageTimings {
         plan_ms: ms(t0),
         ..Default::default()
     };
     let (pool, threads) = worker_pool(opts.jobs)?;
     // Output is staged first: a bad output path fails before any work.
-    let staged = StagedRun::create(&opts.out, &plan.manifest.name)?;
-
-    let t = Instant::now();
-    let results: Vec<CaseResult> = pool.install(|| engine::run(&plan, progress));
-    stages.engine_ms = ms(t);
+    let staged = StagedRun::create(&opts.out, &m.name)?;
+    write_atomic(&staged.layout.manifest(), &bytes)?;
+    let done = analyse_in_chunks(
+        &m,
+        0..total,
+        &pool,
+        progress,
+        (&staged.layout.results(), CHUNK_CASES),
+    )?;
+    (stages.engine_ms, stages.store_ms) = (done.engine_ms, done.store_ms);
     let analysed = Analysed {
-        plan,
+        manifest: m,
         bytes,
         manifest_path: opts.study.display().to_string(),
-        results,
+        written: done.written,
         stages,
         started_at,
     };
     finish_run(analysed, staged, (&pool, threads), opts, t0)
 }
 
-/// The stages after the engine, shared by `archstudy run` and `archstudy merge`: results,
-/// boundaries and bifurcations stored, run.json, figure data, figures and reports; then the
-/// staged run directory is moved into place.
+/// The stages after the engine and the store, shared by `archstudy run` and `archstudy
+/// merge`: boundaries and bifurcations located from the cell codes and stored, run.json,
+/// figure data, figures and reports; then the staged run directory is moved into place.
 pub(crate) fn finish_run(
     a: Analysed,
     staged: StagedRun,
@@ -388,42 +538,33 @@ pub(crate) fn finish_run(
 ) -> Result<RunSummary> {
     let progress = opts.progress.as_ref();
     let Analysed {
-        plan,
+        manifest: m,
         bytes,
         manifest_path,
-        results,
-        mut stages,
+        written,
+        stages,
         started_at,
     } = a;
     let layout = staged.layout.clone();
-    write_atomic(&layout.manifest(), &bytes)?;
-    ((), stages.store_ms) = stage(progress, Stage::Store, || {
-        let mut df = pool.install(|| store::results_frame(&plan, &results))?;
-        store::write_parquet(&mut df, &layout.results())
-    })?;
-
+    // The plan's description without its cases: they are expanded a chunk at a time.
+    let empty = plan::build_slice(m.clone(), 0..0);
     let (located, boundaries_ms) = stage(progress, Stage::Boundaries, || {
-        let located = pool.install(|| boundaries::locate_with(&plan, &results, progress));
+        let located = pool.install(|| boundaries::locate_codes(&m, &written.codes, progress));
         store::write_parquet(
-            &mut store::boundaries_frame(&plan, &located)?,
+            &mut store::boundaries_frame(&empty, &located)?,
             &layout.boundaries(),
         )?;
         store::write_parquet(
-            &mut store::bifurcations_frame(&plan, &located)?,
+            &mut store::bifurcations_frame(&empty, &located)?,
             &layout.bifurcations(),
         )?;
         Ok(located)
     })?;
-    stages.boundaries_ms = boundaries_ms;
-
-    let ok = results.iter().filter(|r| r.status == Status::Ok).count() as u64;
-    let total = results.len() as u64;
-    // Figures and reports read the stored files: the engine's rows (hundreds of bytes a case)
-    // are not needed past this point.
-    drop(results);
+    let (ok, total) = (written.ok, written.total);
+    drop(written);
     let mut info = RunInfo {
-        name: plan.manifest.name.clone(),
-        manifest: serde_json::to_value(&plan.manifest)?,
+        name: m.name.clone(),
+        manifest: serde_json::to_value(&m)?,
         manifest_sha256: sha256_hex(&bytes),
         manifest_path,
         archstudy_version: version().to_string(),
@@ -438,13 +579,16 @@ pub(crate) fn finish_run(
             ok,
             error: total - ok,
         },
-        separable: plan.is_separable_state_grid(),
-        grid_path: engine::GridPath::of(&plan).as_str().to_string(),
-        stages,
+        separable: empty.is_separable_state_grid(),
+        grid_path: engine::GridPath::of(&empty).as_str().to_string(),
+        stages: StageTimings {
+            boundaries_ms,
+            ..stages
+        },
         boundary_refinement_analyses: located.refinement_analyses,
     };
     // Figure data, figures and reports, from the stored files.
-    publish(&plan, &layout, &mut info, progress)?;
+    publish(&m, &layout, &mut info, progress)?;
     let dir = staged.commit()?;
     Ok(RunSummary {
         dir,
@@ -459,20 +603,48 @@ mod tests {
 
     #[test]
     fn a_plan_too_large_for_the_memory_is_refused_naming_shards_and_the_memory() {
-        let gib16 = 16u64 << 30;
-        assert!(check_memory(1_000_000, Some(gib16)).is_ok());
+        let gib4 = 4u64 << 30;
+        assert!(check_memory(16_008_001, Some(gib4)).is_ok());
         assert!(check_memory(100_000_000, None).is_ok());
-        let e = check_memory(100_000_000, Some(gib16)).unwrap_err();
-        // 10⁸ cases at 2 kB need 186.5 GiB; 16 GiB less 200 MiB holds 8,485,076 cases, so 12 shards.
+        let e = check_memory(100_000_000, Some(gib4)).unwrap_err();
+        // 10⁸ cases at 64 bytes and 0.75 GiB besides need 6.71 GiB; 4 GiB less 768 MiB holds
+        // 54,525,952 cases, so 2 shards.
         for part in [
             "100000000 cases",
-            "186.5 GiB",
-            "16.0 GiB is available",
-            "shards of at most 8485076 cases",
-            "--shard I/N` with N ≥ 12",
+            "6.7 GiB",
+            "64 bytes per case",
+            "4.0 GiB is available",
+            "shards of at most 54525952 cases",
+            "--shard I/N` with N ≥ 2",
             "archstudy merge",
         ] {
             assert!(e.contains(part), "{part}: {e}");
         }
+    }
+
+    #[test]
+    fn a_load_factor_map_is_estimated_at_its_own_cost_per_case() {
+        let gib4 = 4u64 << 30;
+        let m = |find: &str, kind: &str| {
+            crate::manifest::parse(
+                &format!("name: a\nfind: {find}\nload_cases:\n  - {{name: h, kind: {kind}}}\ngrid:\n  k: {{from: 1.1, to: 1.6, steps: 3}}\n  mu: {{values: [0.4]}}\n"),
+                Path::new("a.yaml"),
+            )
+            .unwrap()
+        };
+        assert_eq!(
+            bytes_per_case(&m("load_factor", "horizontal")),
+            LOAD_FACTOR_BYTES_PER_CASE
+        );
+        assert_eq!(bytes_per_case(&m("state", "self_weight")), BYTES_PER_CASE);
+        // 10⁷ load factors at 512 bytes need 5.5 GiB: refused at 4 GiB, in 2 shards of at
+        // most (4 GiB − 768 MiB)/512 = 6,815,744 cases; the same count of states fits.
+        let e = check_memory_at(10_000_000, LOAD_FACTOR_BYTES_PER_CASE, Some(gib4)).unwrap_err();
+        assert!(
+            e.contains("512 bytes per case") && e.contains("at most 6815744 cases"),
+            "{e}"
+        );
+        assert!(e.contains("5.5 GiB"), "{e}");
+        assert!(check_memory_at(10_000_000, BYTES_PER_CASE, Some(gib4)).is_ok());
     }
 }

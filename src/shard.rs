@@ -6,16 +6,14 @@
 //! come from `archstudy merge` over the N directories (src/merge.rs). A shard directory is
 //! staged and renamed like a run: an interrupted shard leaves nothing behind.
 
-use crate::engine::{self, CaseResult, Status};
+use crate::engine;
 use crate::error::UsageError;
 use crate::output::{StagedRun, write_atomic};
 use crate::plan;
-use crate::progress::Stage;
 use crate::provenance::{
     CaseCounts, RunInfo, StageTimings, git_commit, now_rfc3339, rustc_version, sha256_hex, version,
 };
-use crate::runner::{self, RunOptions, RunSummary, ms, worker_pool};
-use crate::store;
+use crate::runner::{self, RunOptions, RunSummary, analyse_in_chunks, ms, worker_pool};
 use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
@@ -108,11 +106,9 @@ fn plan_cases(m: &crate::manifest::Manifest) -> Result<u64, UsageError> {
     })
 }
 
-/// Cases a shard analyses and stores at a time: the engine's rows of one chunk are appended
-/// to results.parquet as row groups and dropped, so a shard's memory does not grow with its
-/// size (the rows are the same as those of one pass: the engine's answer for a case does not
-/// depend on the other cases it runs with).
-pub const CHUNK_CASES: u64 = 1 << 18;
+/// Cases a shard analyses and stores at a time ([`runner::CHUNK_CASES`]): a shard's memory
+/// does not grow with its size.
+pub const CHUNK_CASES: u64 = runner::CHUNK_CASES;
 
 /// Refuses a shard when even one chunk of it would not fit in memory.
 fn check_chunk(shard: Shard, cases: u64) -> Result<()> {
@@ -138,59 +134,6 @@ pub fn peak_rss_bytes() -> Option<u64> {
         .parse()
         .ok()?;
     Some(kb.saturating_mul(1024))
-}
-
-/// What analysing a shard in chunks produced.
-struct Chunked {
-    ok: u64,
-    total: u64,
-    engine_ms: f64,
-    store_ms: f64,
-}
-
-/// Analyses the cases `ids` of a manifest's plan chunk by chunk ([`CHUNK_CASES`]), appending
-/// each chunk's rows to `results` in plan order.
-fn analyse_in_chunks(
-    m: &crate::manifest::Manifest,
-    ids: std::ops::Range<u64>,
-    pool: &rayon::ThreadPool,
-    progress: &dyn crate::progress::Progress,
-    (results, chunk): (&std::path::Path, u64),
-) -> Result<Chunked> {
-    let mut starts: Vec<u64> = ids.clone().step_by(chunk.max(1) as usize).collect();
-    if starts.is_empty() {
-        // An empty shard still writes its (empty) table.
-        starts.push(ids.start);
-    }
-    let mut out = Chunked {
-        ok: 0,
-        total: 0,
-        engine_ms: 0.0,
-        store_ms: 0.0,
-    };
-    let mut appender: Option<store::ParquetAppender> = None;
-    // One progress stage over all chunks, so the bar and the rate do not restart.
-    progress.begin(Stage::Analyse, Some(ids.end - ids.start));
-    for start in starts {
-        let plan = plan::build_slice(m.clone(), start..(start + chunk).min(ids.end));
-        let t = Instant::now();
-        let rows: Vec<CaseResult> = pool.install(|| engine::analyse(&plan, progress));
-        out.engine_ms += ms(t);
-        let t = Instant::now();
-        let mut df = pool.install(|| store::results_frame(&plan, &rows))?;
-        match appender.as_mut() {
-            Some(a) => a.append(&mut df)?,
-            None => appender = Some(store::ParquetAppender::create(results, &mut df)?),
-        }
-        out.store_ms += ms(t);
-        out.ok += rows.iter().filter(|r| r.status == Status::Ok).count() as u64;
-        out.total += rows.len() as u64;
-    }
-    progress.end(Stage::Analyse);
-    if let Some(a) = appender {
-        a.finish()?;
-    }
-    Ok(out)
 }
 
 /// Runs one shard of a study into `OUT/<name>.shard-I-of-N/` (staged, then renamed).
@@ -223,7 +166,7 @@ pub fn run_shard(opts: &RunOptions, shard: Shard) -> Result<RunSummary> {
         (&layout.results(), CHUNK_CASES),
     )?;
     (stages.engine_ms, stages.store_ms) = (done.engine_ms, done.store_ms);
-    let (ok, count) = (done.ok, done.total);
+    let (ok, count) = (done.written.ok, done.written.total);
     let info = RunInfo {
         name: m.name.clone(),
         manifest: serde_json::to_value(&m)?,
@@ -272,6 +215,8 @@ pub fn run_shard(opts: &RunOptions, shard: Shard) -> Result<RunSummary> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::progress::Stage;
+    use crate::store;
 
     #[test]
     fn a_shard_is_i_of_n_with_one_based_index() {
@@ -356,7 +301,7 @@ mod tests {
         let (chunked, whole) = (dir.join("chunked.parquet"), dir.join("whole.parquet"));
         let seen = Recorded::default();
         let done = analyse_in_chunks(&m, 20..120, &pool, &seen, (&chunked, 7)).unwrap();
-        assert_eq!((done.total, done.ok), (100, 100));
+        assert_eq!((done.written.total, done.written.ok), (100, 100));
         // One stage over the 15 chunks: the bar neither restarts nor loses its total.
         assert_eq!(
             *seen.events.lock().unwrap(),

@@ -73,6 +73,15 @@ fn mem_for(cases: u64) -> String {
     format!("{}M", runner::needed_bytes(cases).div_ceil(1 << 20))
 }
 
+/// The memory estimate of the merge of a manifest's `cases` cases, at its own cost per case,
+/// as a Slurm `--mem` value in megabytes.
+fn merge_mem_for(m: &crate::manifest::Manifest, cases: u64) -> String {
+    let bytes = cases
+        .saturating_mul(runner::bytes_per_case(m))
+        .saturating_add(runner::BASE_BYTES);
+    format!("{}M", bytes.div_ceil(1 << 20))
+}
+
 fn absolute(p: &Path) -> Result<PathBuf> {
     std::path::absolute(p).with_context(|| format!("cannot resolve {}", p.display()))
 }
@@ -155,7 +164,7 @@ pub fn write_scripts(o: &SlurmOptions) -> Result<SlurmScripts> {
         name = m.name,
         run = out.join(&m.name).display(),
         logs = dir.join("logs").display(),
-        common = common_lines(o, &mem_for(total)),
+        common = common_lines(o, &merge_mem_for(&m, total)),
         bin = quote_path(&binary),
         out = quote_path(&out),
     );
@@ -221,10 +230,11 @@ mod tests {
 
     #[test]
     fn the_memory_estimate_is_the_runners() {
-        assert_eq!(mem_for(0), "200M");
+        assert_eq!(mem_for(0), "768M");
+        // 64 bytes a case and 768 MiB besides.
         assert_eq!(
             mem_for(1_000_000),
-            format!("{}M", (2_000_000_000u64 + (200 << 20)).div_ceil(1 << 20))
+            format!("{}M", (64_000_000u64 + (768 << 20)).div_ceil(1 << 20))
         );
     }
 }

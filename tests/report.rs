@@ -222,7 +222,7 @@ fn with_boundaries(run: &Path) {
     let (ks, mus) = grid_of(run);
     write_boundary_fixture(run, &ks, &mus);
     let (plan, _) = runner::load_plan(&run.join("manifest.yaml")).unwrap();
-    archstudy::figdata::run(&plan, &RunLayout::at(run)).unwrap();
+    archstudy::figdata::run(&plan.manifest, &RunLayout::at(run)).unwrap();
     archstudy::report::render_run(run).unwrap();
 }
 

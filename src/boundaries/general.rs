@@ -13,13 +13,13 @@
 //!   the joints of both sides and the edge's axis. Changes to or from an unbounded load
 //!   factor, or an arch that never stands, are not recorded.
 
-use super::grid::{Grid, ok_result};
+use super::cells::Cell;
+use super::grid::Grid;
 use super::{Bifurcation, BoundaryPoint, Counter, EdgeAxis};
 use crate::analysis::forms::ArchModel;
 use crate::analysis::general::{self, Settings};
 use crate::analysis::symmetric::CriticalState;
 use crate::analysis::{Mechanism, MechanismKind, Regime};
-use crate::engine::CaseResult;
 use crate::model::Friction;
 use crate::scene::{self, Find, Outcome, Scene, Solution};
 use std::f64::consts::FRAC_PI_2;
@@ -33,6 +33,16 @@ enum Label {
     Found(Option<MechanismKind>),
     /// Any other outcome (unbounded, never or always stands, failed).
     Other(Outcome),
+}
+
+impl From<Cell> for Label {
+    fn from(c: Cell) -> Self {
+        match c {
+            Cell::Regime(g) => Label::Regime(g),
+            Cell::Found(m) => Label::Found(m),
+            Cell::Other(o) => Label::Other(o),
+        }
+    }
 }
 
 fn label(find: Find, s: &Solution) -> Option<Label> {
@@ -108,9 +118,6 @@ fn to_x(axis: EdgeAxis, t: f64) -> f64 {
 
 /// An answer at one end of an edge: its label and the stored or computed solution.
 type Answer = (Label, Solution);
-
-/// A grid edge whose ends differ: its axis, the fixed coordinate and both ends.
-type Edge = (EdgeAxis, f64, (f64, Answer), (f64, Answer));
 
 /// One located change: a bracket no wider than the tolerance and the answers at its ends.
 struct Change {
@@ -306,24 +313,26 @@ impl Refiner<'_> {
     }
 }
 
-/// Boundary points and bifurcations of one grid of the general route.
+/// A grid edge whose ends differ: its axis, the fixed coordinate and both ends with their
+/// labels.
+type LabelledEdge = (EdgeAxis, f64, (f64, Label), (f64, Label));
+
+/// Boundary points and bifurcations of one grid of the general route. The grid holds the
+/// label of every case; the answers at the ends of an edge whose labels differ are solved
+/// again (the same scene by the same route as the engine's, so the same answer).
 pub(crate) fn locate(
     grid: &Grid,
-    results: &[CaseResult],
     tol: f64,
     counter: &Counter,
 ) -> (Vec<BoundaryPoint>, Vec<Bifurcation>) {
     let r = Refiner { grid, tol, counter };
     let find = grid.scene.find;
-    let stored = |i: usize, j: usize| {
-        let s = &ok_result(results, grid, i, j)?.solution;
-        Some((label(find, s)?, s.clone()))
-    };
-    let mut edges: Vec<Edge> = Vec::new();
+    let stored = |i: usize, j: usize| grid.cell(i, j).map(Label::from);
+    let mut edges: Vec<LabelledEdge> = Vec::new();
     for j in 0..grid.mus.len() {
         for i in 1..grid.ks.len() {
             if let (Some(a), Some(b)) = (stored(i - 1, j), stored(i, j))
-                && a.0 != b.0
+                && a != b
             {
                 edges.push((
                     EdgeAxis::K,
@@ -337,7 +346,7 @@ pub(crate) fn locate(
     for i in 0..grid.ks.len() {
         for j in 1..grid.mus.len() {
             if let (Some(a), Some(b)) = (stored(i, j - 1), stored(i, j))
-                && a.0 != b.0
+                && a != b
             {
                 edges.push((
                     EdgeAxis::Mu,
@@ -348,10 +357,18 @@ pub(crate) fn locate(
             }
         }
     }
+    let answer = |axis: EdgeAxis, fixed: f64, (x, l): (f64, Label)| -> (f64, Answer) {
+        let (k, mu) = match axis {
+            EdgeAxis::K => (x, fixed),
+            EdgeAxis::Mu => (fixed, x),
+        };
+        (x, (l, scene::solve(&r.scene(k, mu))))
+    };
     use rayon::prelude::*;
     let found: Vec<(Vec<BoundaryPoint>, Vec<Bifurcation>)> = edges
         .into_par_iter()
         .map(|(axis, fixed, a, b)| {
+            let (a, b) = (answer(axis, fixed, a), answer(axis, fixed, b));
             let mut points = Vec::new();
             let mut bifs = Vec::new();
             for c in r.changes(axis, fixed, a, b) {

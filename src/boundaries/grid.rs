@@ -1,14 +1,17 @@
-//! The results of a run as K × μ grids: one per load case and per value of the other axes
+//! The answers of a run as K × μ grids: one per load case and per value of the other axes
 //! (half-angle, voussoirs, position of a point load), with the K and μ values sorted (a
-//! `values:` list may be in any order).
+//! `values:` list may be in any order). A grid holds one byte per case, the case's
+//! [cell code](super::cells), read from the plan chunk by chunk: neither the whole plan nor
+//! the engine's rows are held.
 
-use crate::engine::{CaseResult, Status};
+use super::cells::{self, NO_CELL};
+use crate::manifest::Manifest;
 use crate::model::Arch;
-use crate::plan::Plan;
+use crate::plan;
 use crate::scene::Scene;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
-/// One K × μ grid of results.
+/// One K × μ grid of answers.
 #[derive(Debug, Clone)]
 pub(crate) struct Grid {
     /// Index of the load case in the manifest.
@@ -22,26 +25,23 @@ pub(crate) struct Grid {
     pub ks: Vec<f64>,
     /// Distinct μ values, increasing (may end with +∞).
     pub mus: Vec<f64>,
-    /// Index into the results of the case at (K index i, μ index j): `cells[j * ks.len() + i]`.
-    cells: Vec<Option<usize>>,
+    /// The cell code of the case at (K index i, μ index j): `codes[j * ks.len() + i]`.
+    codes: Vec<u8>,
 }
 
 impl Grid {
-    /// The result index at (K index, μ index), when that case exists.
-    pub fn cell(&self, i: usize, j: usize) -> Option<usize> {
-        self.cells.get(j * self.ks.len() + i).copied().flatten()
+    /// The cell code at (K index, μ index), [`NO_CELL`] when that case is missing or failed.
+    pub fn code(&self, i: usize, j: usize) -> u8 {
+        self.codes
+            .get(j * self.ks.len() + i)
+            .copied()
+            .unwrap_or(NO_CELL)
     }
-}
 
-/// The result of a cell when its analysis ran.
-pub(crate) fn ok_result<'a>(
-    results: &'a [CaseResult],
-    grid: &Grid,
-    i: usize,
-    j: usize,
-) -> Option<&'a CaseResult> {
-    let r = results.get(grid.cell(i, j)?)?;
-    (r.status == Status::Ok).then_some(r)
+    /// The compared answer at (K index, μ index), when the case ran.
+    pub fn cell(&self, i: usize, j: usize) -> Option<cells::Cell> {
+        cells::decode(self.code(i, j))
+    }
 }
 
 /// Group key: load case, half-angle bits, discretisation and point-load position bits (as
@@ -54,55 +54,93 @@ type Key = (
     Option<u64>,
 );
 
-fn sorted_distinct(mut v: Vec<f64>) -> Vec<f64> {
+fn key_of(case: &plan::Case) -> Key {
+    let a = &case.scene.arch;
+    // A group per position as given: an x/L position's angle moves with K.
+    let at = case.scene.load.at_deg().map(f64::to_bits);
+    let at_x = case.scene.load.at_x().map(f64::to_bits);
+    (case.load_case, a.half_angle.to_bits(), a.joints, at, at_x)
+}
+
+fn sorted_distinct(set: &HashSet<u64>) -> Vec<f64> {
+    let mut v: Vec<f64> = set.iter().map(|&b| f64::from_bits(b)).collect();
     v.sort_by(f64::total_cmp);
-    v.dedup_by(|a, b| a.to_bits() == b.to_bits());
     v
 }
 
-/// Splits the cases of a plan into grids, in order of first appearance. `results[n]` must be
-/// the result of `plan.cases[n]`; cases without a matching result are left empty.
-pub(crate) fn groups(plan: &Plan, results: &[CaseResult]) -> Vec<Grid> {
-    let mut index: HashMap<Key, usize> = HashMap::new();
-    let mut members: Vec<Vec<usize>> = Vec::new();
-    let mut grids: Vec<Grid> = Vec::new();
-    for (n, case) in plan.cases.iter().enumerate() {
-        if results.get(n).map(|r| r.case_id) != Some(case.id) {
-            continue;
+/// Cases of the plan expanded at a time while the grids are built.
+const PLAN_CHUNK: u64 = 1 << 16;
+
+/// Calls `each` on every case of a manifest's plan, in id order, expanding a chunk at a time.
+fn for_each_case(m: &Manifest, mut each: impl FnMut(&plan::Case)) {
+    let total = u64::try_from(plan::case_count(m)).unwrap_or(u64::MAX);
+    let mut start = 0;
+    while start < total {
+        let end = (start + PLAN_CHUNK).min(total);
+        for case in &plan::build_slice(m.clone(), start..end).cases {
+            each(case);
         }
-        let a = &case.scene.arch;
-        // A group per position as given: an x/L position's angle moves with K.
-        let at = case.scene.load.at_deg().map(f64::to_bits);
-        let at_x = case.scene.load.at_x().map(f64::to_bits);
-        let key = (case.load_case, a.half_angle.to_bits(), a.joints, at, at_x);
+        start = end;
+    }
+}
+
+/// Splits the cases of a manifest's plan into grids, in order of first appearance;
+/// `codes[n]` is the cell code of case n ([`NO_CELL`] past the end of `codes`).
+pub(crate) fn groups(m: &Manifest, codes: &[u8]) -> Vec<Grid> {
+    let mut index: HashMap<Key, usize> = HashMap::new();
+    let mut grids: Vec<Grid> = Vec::new();
+    let mut values: Vec<(HashSet<u64>, HashSet<u64>)> = Vec::new();
+    let mut last: Option<(Key, usize)> = None;
+    let mut group_of = |case: &plan::Case, grids: &mut Vec<Grid>| -> usize {
+        let key = key_of(case);
+        if let Some((k, g)) = last
+            && k == key
+        {
+            return g;
+        }
         let g = *index.entry(key).or_insert_with(|| {
             grids.push(Grid {
                 load_case: case.load_case,
-                arch: *a,
+                arch: case.scene.arch,
                 scene: case.scene,
                 ks: Vec::new(),
                 mus: Vec::new(),
-                cells: Vec::new(),
+                codes: Vec::new(),
             });
-            members.push(Vec::new());
             grids.len() - 1
         });
-        members[g].push(n);
-    }
-    for (grid, cases) in grids.iter_mut().zip(&members) {
-        let k_of = |n: usize| plan.cases[n].scene.arch.k;
-        let mu_of = |n: usize| plan.cases[n].scene.friction.mu();
-        grid.ks = sorted_distinct(cases.iter().map(|&n| k_of(n)).collect());
-        grid.mus = sorted_distinct(cases.iter().map(|&n| mu_of(n)).collect());
-        grid.cells = vec![None; grid.ks.len() * grid.mus.len()];
-        for &n in cases {
-            let i = grid.ks.binary_search_by(|x| x.total_cmp(&k_of(n)));
-            let j = grid.mus.binary_search_by(|x| x.total_cmp(&mu_of(n)));
-            if let (Ok(i), Ok(j)) = (i, j) {
-                grid.cells[j * grid.ks.len() + i] = Some(n);
-            }
+        last = Some((key, g));
+        g
+    };
+    for_each_case(m, |case| {
+        let g = group_of(case, &mut grids);
+        if values.len() <= g {
+            values.resize_with(g + 1, Default::default);
         }
+        values[g].0.insert(case.scene.arch.k.to_bits());
+        values[g].1.insert(case.scene.friction.mu().to_bits());
+    });
+    for (grid, (ks, mus)) in grids.iter_mut().zip(&values) {
+        grid.ks = sorted_distinct(ks);
+        grid.mus = sorted_distinct(mus);
+        grid.codes = vec![NO_CELL; grid.ks.len() * grid.mus.len()];
     }
+    for_each_case(m, |case| {
+        let g = group_of(case, &mut grids);
+        let grid = &mut grids[g];
+        let (k, mu) = (case.scene.arch.k, case.scene.friction.mu());
+        let i = grid.ks.binary_search_by(|x| x.total_cmp(&k));
+        let j = grid.mus.binary_search_by(|x| x.total_cmp(&mu));
+        let code = usize::try_from(case.id)
+            .ok()
+            .and_then(|n| codes.get(n))
+            .copied()
+            .unwrap_or(NO_CELL);
+        if let (Ok(i), Ok(j)) = (i, j) {
+            let nk = grid.ks.len();
+            grid.codes[j * nk + i] = code;
+        }
+    });
     grids
 }
 
@@ -122,10 +160,6 @@ where
 }
 
 /// The regime of every cell, μ row by μ row (`None` where the case failed or is missing).
-pub(crate) fn regimes(grid: &Grid, results: &[CaseResult]) -> Vec<Option<crate::analysis::Regime>> {
-    let (nk, nmu) = (grid.ks.len(), grid.mus.len());
-    (0..nmu)
-        .flat_map(|j| (0..nk).map(move |i| (i, j)))
-        .map(|(i, j)| ok_result(results, grid, i, j).and_then(|r| r.solution.regime()))
-        .collect()
+pub(crate) fn regimes(grid: &Grid) -> Vec<Option<crate::analysis::Regime>> {
+    grid.codes.iter().map(|&c| cells::regime(c)).collect()
 }

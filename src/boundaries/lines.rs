@@ -28,7 +28,6 @@ use crate::analysis::general::{self, RowSet, Settings};
 use crate::analysis::settings::LineSettings;
 use crate::analysis::symmetric::CriticalState;
 use crate::analysis::{MechanismKind, Regime};
-use crate::engine::CaseResult;
 use rayon::prelude::*;
 
 fn stable(r: Regime) -> bool {
@@ -133,9 +132,9 @@ struct Refiner<'a> {
 }
 
 impl<'a> Refiner<'a> {
-    fn new(grid: &'a Grid, results: &[CaseResult], tol: f64, counter: &'a Counter) -> Self {
+    fn new(grid: &'a Grid, tol: f64, counter: &'a Counter) -> Self {
         let (nk, nmu) = (grid.ks.len(), grid.mus.len());
-        let regimes = super::grid::regimes(grid, results);
+        let regimes = super::grid::regimes(grid);
         let settings = Settings {
             lambda: grid.scene.lambda,
             ..Settings::default()
@@ -420,11 +419,10 @@ fn mixed_sliding(m: &Margins, (lo, hi): (f64, f64)) -> Option<CriticalState> {
 /// Boundary points and bifurcations of one symmetric self-weight state grid.
 pub(crate) fn locate(
     grid: &Grid,
-    results: &[CaseResult],
     tol: f64,
     counter: &Counter,
 ) -> (Vec<BoundaryPoint>, Vec<Bifurcation>) {
-    let r = Refiner::new(grid, results, tol, counter);
+    let r = Refiner::new(grid, tol, counter);
     let found = super::grid::every_line(grid, |j| r.row(j), |i| r.column(i));
     let bifs = bifurcations(&r, &found);
     (found, bifs)

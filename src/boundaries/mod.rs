@@ -34,6 +34,7 @@
 //! results.parquet). `thrust` studies have neither.
 
 mod bifurcation;
+mod cells;
 mod general;
 mod grid;
 mod lines;
@@ -42,8 +43,10 @@ mod state_grid;
 mod sweep;
 
 pub use crate::records::{Bifurcation, BoundaryPoint, EdgeAxis, Located};
+pub use cells::{NO_CELL, cell_code};
 
 use crate::engine::CaseResult;
+use crate::manifest::Manifest;
 use crate::model::Load;
 use crate::plan::Plan;
 use crate::progress::{Progress, Silent};
@@ -92,28 +95,44 @@ pub fn locate(plan: &Plan, results: &[CaseResult]) -> Located {
 /// [`locate`], advancing `progress` by one per refinement analysis (the caller begins and
 /// ends the [`Stage::Boundaries`](crate::progress::Stage::Boundaries) stage).
 pub fn locate_with(plan: &Plan, results: &[CaseResult], progress: &dyn Progress) -> Located {
+    let total = usize::try_from(crate::plan::case_count(&plan.manifest)).unwrap_or(usize::MAX);
+    let mut codes = vec![NO_CELL; total];
+    for (case, r) in plan.cases.iter().zip(results) {
+        if r.case_id == case.id
+            && let Some(slot) = usize::try_from(case.id).ok().and_then(|n| codes.get_mut(n))
+        {
+            *slot = cell_code(r);
+        }
+    }
+    locate_codes(&plan.manifest, &codes, progress)
+}
+
+/// Locates the regime boundaries and bifurcations of a manifest's plan from the
+/// [cell code](cell_code) of every case (`codes[n]` of case n): the plan is read a chunk at a
+/// time and only the cells of each grid are held, one byte a case.
+pub fn locate_codes(manifest: &Manifest, codes: &[u8], progress: &dyn Progress) -> Located {
     let counter = Counter::new(progress);
-    let tol = plan.manifest.boundary_tolerance;
-    let groups = grid::groups(plan, results);
+    let tol = manifest.boundary_tolerance;
+    let groups = grid::groups(manifest, codes);
     let mut boundaries = Vec::new();
     let mut bifurcations = Vec::new();
     for g in &groups {
         let one = std::slice::from_ref(g);
         let symmetric_state = g.scene.find == Find::State && g.scene.load == Load::SelfWeight;
         let (b, f) = if !g.scene.uses_closed_forms() && symmetric_state {
-            lines::locate(g, results, tol, &counter)
+            lines::locate(g, tol, &counter)
         } else if !g.scene.uses_closed_forms() {
-            general::locate(g, results, tol, &counter)
+            general::locate(g, tol, &counter)
         } else {
             match g.scene.find {
-                Find::State => state_grid::locate(one, results, tol, &counter),
+                Find::State => state_grid::locate(one, tol, &counter),
                 Find::Thickness => (
                     Vec::new(),
-                    sweep::locate(one, results, sweep::Swept::Mu, tol, &counter),
+                    sweep::locate(one, sweep::Swept::Mu, tol, &counter),
                 ),
                 Find::Friction => (
                     Vec::new(),
-                    sweep::locate(one, results, sweep::Swept::K, tol, &counter),
+                    sweep::locate(one, sweep::Swept::K, tol, &counter),
                 ),
                 // Thresholds are the bifurcations themselves, one set per row.
                 Find::Thrust | Find::Thresholds | Find::LoadFactor => (Vec::new(), Vec::new()),

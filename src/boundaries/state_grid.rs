@@ -13,7 +13,6 @@ use super::probe::{Probe, root, rotational_margin, sliding_margin, stable_margin
 use super::{Bifurcation, BoundaryPoint, Counter, EdgeAxis};
 use crate::analysis::symmetric::{Critical, CriticalState, RotationalDomain, SlidingDomain};
 use crate::analysis::{MechanismKind, Regime};
-use crate::engine::CaseResult;
 use std::cell::OnceCell;
 
 pub(super) fn h_r_nonempty(r: Regime) -> bool {
@@ -113,9 +112,9 @@ struct GridRefiner<'a> {
 }
 
 impl<'a> GridRefiner<'a> {
-    fn new(grid: &'a Grid, results: &[CaseResult], tol: f64, counter: &'a Counter) -> Self {
+    fn new(grid: &'a Grid, tol: f64, counter: &'a Counter) -> Self {
         let (nk, nmu) = (grid.ks.len(), grid.mus.len());
-        let regimes = super::grid::regimes(grid, results);
+        let regimes = super::grid::regimes(grid);
         let mut g = GridRefiner {
             grid,
             lm: Landmarks::new(Probe::new(grid.arch, counter)),
@@ -314,14 +313,13 @@ impl<'a> GridRefiner<'a> {
 /// Boundary points and bifurcations of every grid of a `state` study.
 pub(crate) fn locate(
     grids: &[Grid],
-    results: &[CaseResult],
     tol: f64,
     counter: &Counter,
 ) -> (Vec<BoundaryPoint>, Vec<Bifurcation>) {
     let mut points = Vec::new();
     let mut bifurcations = Vec::new();
     for grid in grids {
-        let g = GridRefiner::new(grid, results, tol, counter);
+        let g = GridRefiner::new(grid, tol, counter);
         let found = super::grid::every_line(grid, |j| g.row(j), |i| g.column(i));
         bifurcations.extend(bifurcation::on_collapse_curve(grid, &g.lm, &found, tol));
         points.extend(found);

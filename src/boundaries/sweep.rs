@@ -9,13 +9,13 @@
 //! known kind is reported at the bisection point with the union of both sides' joints.
 
 use super::bifurcation::{Kind, Landmarks, merge_coincident, record, slack};
-use super::grid::{Grid, ok_result};
+use super::cells::Cell;
+use super::grid::Grid;
 use super::probe::Probe;
 use super::{Bifurcation, Counter};
 use crate::analysis::symmetric::{Critical, CriticalState};
 use crate::analysis::{Mechanism, MechanismKind};
-use crate::engine::CaseResult;
-use crate::scene::{Outcome as Answered, Solution};
+use crate::scene::Outcome as Answered;
 use std::f64::consts::FRAC_PI_2;
 
 /// The parameter a one-dimensional study sweeps.
@@ -43,11 +43,11 @@ fn outcome(c: &Critical) -> Outcome {
     }
 }
 
-fn stored_outcome(s: &Solution) -> Option<Outcome> {
-    match s.outcome? {
-        Answered::Found => Some(Outcome::Found(s.mechanism?)),
-        Answered::NeverStands => Some(Outcome::Never),
-        Answered::AlwaysStands => Some(Outcome::Always),
+fn stored_outcome(cell: Option<Cell>) -> Option<Outcome> {
+    match cell? {
+        Cell::Found(m) => Some(Outcome::Found(m?)),
+        Cell::Other(Answered::NeverStands) => Some(Outcome::Never),
+        Cell::Other(Answered::AlwaysStands) => Some(Outcome::Always),
         _ => None,
     }
 }
@@ -170,21 +170,13 @@ fn union(a: &CriticalState, b: &CriticalState) -> CriticalState {
 }
 
 /// Bifurcations of one sweep of one grid.
-fn sweep(
-    grid: &Grid,
-    results: &[CaseResult],
-    swept: Swept,
-    tol: f64,
-    lm: &Landmarks,
-) -> Vec<Bifurcation> {
+fn sweep(grid: &Grid, swept: Swept, tol: f64, lm: &Landmarks) -> Vec<Bifurcation> {
     let line: Vec<(f64, Option<Outcome>)> = match swept {
         Swept::Mu => (0..grid.mus.len())
-            .map(|j| (grid.mus[j], ok_result(results, grid, 0, j)))
-            .map(|(x, r)| (x, r.and_then(|r| stored_outcome(&r.solution))))
+            .map(|j| (grid.mus[j], stored_outcome(grid.cell(0, j))))
             .collect(),
         Swept::K => (0..grid.ks.len())
-            .map(|i| (grid.ks[i], ok_result(results, grid, i, 0)))
-            .map(|(x, r)| (x, r.and_then(|r| stored_outcome(&r.solution))))
+            .map(|i| (grid.ks[i], stored_outcome(grid.cell(i, 0))))
             .collect(),
     };
     let critical = |x: f64| match swept {
@@ -260,7 +252,6 @@ fn sweep(
 /// Bifurcations of every grid of a `thickness` (swept μ) or `friction` (swept K) study.
 pub(crate) fn locate(
     grids: &[Grid],
-    results: &[CaseResult],
     swept: Swept,
     tol: f64,
     counter: &Counter,
@@ -269,7 +260,7 @@ pub(crate) fn locate(
         .iter()
         .flat_map(|g| {
             let lm = Landmarks::new(Probe::new(g.arch, counter));
-            sweep(g, results, swept, tol, &lm)
+            sweep(g, swept, tol, &lm)
         })
         .collect()
 }

@@ -16,7 +16,6 @@ use crate::analysis::symmetric;
 use crate::manifest::{AxisName, LoadCase, Manifest};
 use crate::model::{Arch, Discretisation, Friction};
 use crate::output::RunLayout;
-use crate::plan::Plan;
 use crate::scene::Find;
 use crate::store::{self, BifurcationGroup, BifurcationRow, CurvePoint, JointLists, StateRow};
 use anyhow::{Context, Result};
@@ -448,8 +447,7 @@ fn symmetric_states(
 }
 
 /// Runs the stage: computes the figure data of a run and writes it into its directory.
-pub fn run(plan: &Plan, layout: &RunLayout) -> Result<FigureDataSummary> {
-    let manifest = &plan.manifest;
+pub fn run(manifest: &Manifest, layout: &RunLayout) -> Result<FigureDataSummary> {
     let bifurcations = if layout.bifurcations().exists() {
         store::read_bifurcations(&layout.bifurcations())?
     } else {
@@ -512,7 +510,7 @@ pub fn run(plan: &Plan, layout: &RunLayout) -> Result<FigureDataSummary> {
             critical_curves(manifest, &lc.name, &own, &mut out)?;
         }
     }
-    let refs = reference::continuum_references(plan, layout)?;
+    let refs = reference::continuum_references(manifest, layout)?;
     store::write_parquet(&mut store::curves_frame(&out.points)?, &layout.curves())?;
     store::write_parquet(&mut store::states_frame(&states)?, &layout.states())?;
     store::write_parquet(&mut store::reference_frame(&refs)?, &layout.reference())?;

@@ -1,9 +1,9 @@
 //! Continuum reference values for the cases of a discrete arch: the error of each critical
 //! value against the continuum and the cost of both, for the speed-and-accuracy figure.
 
+use crate::manifest::{AxisName, Manifest};
 use crate::model::Discretisation;
 use crate::output::RunLayout;
-use crate::plan::Plan;
 use crate::scene::{self, Scene, Solution};
 use crate::store::{self, ReferenceRow, ResultRow};
 use anyhow::Result;
@@ -72,14 +72,18 @@ fn key_of(load_case: usize, s: &Scene) -> SceneKey {
 /// used when it has one (the `continuum` entry of a `voussoirs` axis: same load case, K, μ,
 /// half-angle, load position and λ); otherwise each distinct continuum scene is solved once
 /// here, by the same route as the run's own cases.
-pub fn continuum_references(plan: &Plan, layout: &RunLayout) -> Result<Vec<ReferenceRow>> {
-    let discrete = plan
-        .cases
-        .iter()
-        .any(|c| c.scene.arch.joints != Discretisation::Continuum);
+pub fn continuum_references(manifest: &Manifest, layout: &RunLayout) -> Result<Vec<ReferenceRow>> {
+    // A study without voussoirs has nothing to compare; only then is its plan expanded.
+    let discrete = manifest.arch.voussoirs != Discretisation::Continuum
+        || manifest
+            .grid
+            .iter()
+            .any(|a| a.name == AxisName::Voussoirs && a.values.iter().any(|v| v.is_finite()));
     if !discrete {
         return Ok(Vec::new());
     }
+    let total = u64::try_from(crate::plan::case_count(manifest)).unwrap_or(u64::MAX);
+    let plan = crate::plan::build_slice(manifest.clone(), 0..total);
     let rows = store::read_results(&layout.results())?;
     let case_of = |r: &ResultRow| {
         usize::try_from(r.case_id)

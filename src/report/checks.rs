@@ -6,6 +6,7 @@
 use super::data::RunData;
 use crate::analysis::{MechanismKind, Regime};
 use crate::scene::{Find, Outcome};
+use crate::store::ResultRow;
 use std::path::{Path, PathBuf};
 
 /// A stored table that the report refuses.
@@ -25,6 +26,8 @@ pub struct TableError {
 /// The checks of one table, naming its file.
 struct Table<'a> {
     file: &'a Path,
+    /// The index in the file of the first row checked.
+    offset: usize,
 }
 
 impl Table<'_> {
@@ -32,7 +35,7 @@ impl Table<'_> {
         TableError {
             file: self.file.to_path_buf(),
             column: column.into(),
-            row,
+            row: row.map(|r| r + self.offset),
             problem: problem.into(),
         }
     }
@@ -91,31 +94,33 @@ fn is_mechanism(s: &str) -> bool {
     .any(|m| m.as_str() == s)
 }
 
-/// Checks every table a report draws from; `data` was read from `dir`.
+/// Checks the tables a report draws from besides results.parquet (checked as it is read,
+/// [`check_result_count`] and [`check_result_rows`]); `data` was read from `dir`.
 pub fn check_tables(dir: &Path, data: &RunData) -> Result<(), TableError> {
-    check_results(&dir.join("results.parquet"), data)?;
     check_boundaries(&dir.join("boundaries.parquet"), data)?;
     check_mechanisms(&dir.join("mechanisms.parquet"), data)
 }
 
-fn check_results(file: &Path, data: &RunData) -> Result<(), TableError> {
-    let t = Table { file };
-    let rows = &data.results;
-    let total = data.info.cases.total;
-    if rows.len() as u64 != total {
-        return Err(t.err(
+/// Refuses a results table whose number of rows is not the number of cases run.json records.
+pub fn check_result_count(file: &Path, rows: usize, total: u64) -> Result<(), TableError> {
+    if rows as u64 != total {
+        return Err(Table { file, offset: 0 }.err(
             "case_id",
             None,
-            format!(
-                "the table has {} rows, run.json records {total} cases",
-                rows.len()
-            ),
+            format!("the table has {rows} rows, run.json records {total} cases"),
         ));
     }
+    Ok(())
+}
+
+/// Checks a block of rows of results.parquet, the first of which is row `offset` of the file:
+/// case ids in order and every column in its domain.
+pub fn check_result_rows(file: &Path, offset: usize, rows: &[ResultRow]) -> Result<(), TableError> {
+    let t = Table { file, offset };
     if let Some(i) = rows
         .iter()
         .enumerate()
-        .position(|(i, r)| r.case_id != i as u64)
+        .position(|(i, r)| r.case_id != (offset + i) as u64)
     {
         return Err(t.err("case_id", Some(i), "case ids are not 0, 1, 2, … in order"));
     }
@@ -139,10 +144,7 @@ fn check_results(file: &Path, data: &RunData) -> Result<(), TableError> {
     )?;
     let finite = |x: f64| x.is_finite();
     for (column, get) in [
-        (
-            "k_crit",
-            (|r: &crate::store::ResultRow| r.k_crit) as fn(&_) -> _,
-        ),
+        ("k_crit", (|r: &ResultRow| r.k_crit) as fn(&_) -> _),
         ("mu_crit", |r| r.mu_crit),
         ("thrust_r_min", |r| r.thrust_r_min),
         ("load_factor", |r| r.load_factor),
@@ -169,7 +171,7 @@ fn check_boundaries(file: &Path, data: &RunData) -> Result<(), TableError> {
     let Some(rows) = &data.boundaries else {
         return Ok(());
     };
-    let t = Table { file };
+    let t = Table { file, offset: 0 };
     t.values(
         "k",
         rows.iter().map(|r| Some(r.k)),
@@ -200,7 +202,7 @@ fn check_boundaries(file: &Path, data: &RunData) -> Result<(), TableError> {
 }
 
 fn check_mechanisms(file: &Path, data: &RunData) -> Result<(), TableError> {
-    let t = Table { file };
+    let t = Table { file, offset: 0 };
     for (i, m) in data.mechanisms.iter().enumerate() {
         if serde_json::from_str::<serde_json::Value>(&m.drawing_json).is_err() {
             return Err(t.err("drawing_json", Some(i), "the drawing is not valid JSON"));

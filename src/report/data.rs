@@ -149,8 +149,12 @@ pub struct RunData {
     pub info: RunInfo,
     /// The resolved manifest from run.json.
     pub manifest: ManifestView,
-    /// results.parquet.
+    /// The rows of results.parquet the figures are drawn from: every row, or those of the
+    /// figure lattice when an axis is longer than the figures' resolution
+    /// ([`FigureLattice`](super::reduce::FigureLattice)).
     pub results: Vec<ResultRow>,
+    /// What the tables give over every row of results.parquet.
+    pub totals: super::reduce::ResultTotals,
     /// boundaries.parquet (`None` when the run has none).
     pub boundaries: Option<Vec<BoundaryRow>>,
     /// bifurcations.parquet (`None` when the run has none).
@@ -219,7 +223,17 @@ pub fn load_info(layout: &RunLayout) -> Result<RunInfo> {
     })
 }
 
-/// Reads the stored files of a run directory.
+/// The figure lattice of a run, from its manifest.yaml (every case when it cannot be read).
+fn lattice_of(layout: &RunLayout) -> super::reduce::FigureLattice {
+    std::fs::read_to_string(layout.manifest())
+        .ok()
+        .and_then(|text| crate::manifest::parse(&text, &layout.manifest()).ok())
+        .map(|m| super::reduce::FigureLattice::of(&m))
+        .unwrap_or_default()
+}
+
+/// Reads the stored files of a run directory: results.parquet a block at a time, checked and
+/// reduced to the figure lattice as it is read.
 pub fn load(layout: &RunLayout) -> Result<RunData> {
     let info = load_info(layout)?;
     let manifest: ManifestView =
@@ -236,7 +250,18 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
         }
         .into());
     }
-    let results = store::read_results(&layout.results())?;
+    let lattice = lattice_of(layout);
+    let file = layout.results();
+    super::checks::check_result_count(&file, store::parquet_rows(&file)?, info.cases.total)?;
+    let mut results = Vec::new();
+    let mut totals = super::reduce::ResultTotals::default();
+    store::read_results_in_blocks(&file, super::reduce::READ_BLOCK_ROWS, |offset, block| {
+        super::checks::check_result_rows(&file, offset, &block)?;
+        totals.add(&block);
+        results.extend(block.into_iter().filter(|r| lattice.keeps(r.case_id)));
+        Ok(())
+    })?;
+    totals.finish();
     let load_factors = if manifest
         .load_cases
         .iter()
@@ -251,8 +276,15 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
         .iter()
         .any(|a| a.name == "voussoirs" || a.name == "half_angle_deg");
     let (result_arches, boundary_arches) = if arch_axis {
+        // Rows are in case-id order (checked above): the arch of row i is case i's.
+        let arches = store::read_row_arches(&layout.results())?;
         (
-            store::read_row_arches(&layout.results())?,
+            arches
+                .into_iter()
+                .enumerate()
+                .filter(|(i, _)| lattice.keeps(*i as u64))
+                .map(|(_, a)| a)
+                .collect(),
             optional(&layout.boundaries(), store::read_row_arches)?.unwrap_or_default(),
         )
     } else {
@@ -262,6 +294,7 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
         info,
         manifest,
         results,
+        totals,
         boundaries: optional(&layout.boundaries(), store::read_boundaries)?,
         bifurcations: optional(&layout.bifurcations(), store::read_bifurcations)?,
         curves: optional(&layout.curves(), store::read_curves)?.unwrap_or_default(),

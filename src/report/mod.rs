@@ -10,6 +10,7 @@ pub mod convergence;
 pub mod data;
 pub mod format;
 pub mod paper;
+pub mod reduce;
 pub mod tables;
 pub mod view;
 

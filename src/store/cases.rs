@@ -10,7 +10,7 @@ use crate::model::WeightModel;
 use crate::plan::Plan;
 use crate::scene::{Find, Outcome, Solution};
 use anyhow::{Context, Result, bail};
-use polars::prelude::DataFrame;
+use polars::prelude::{DataFrame, SerReader};
 use std::path::Path;
 
 /// The columns of one results table, each read once; a column the study's finds do not fill
@@ -356,7 +356,7 @@ impl Stored {
 }
 
 /// Reads the rows of results.parquet written for (a slice of) `plan` back into the engine's
-/// rows, in file order. Every row's case id must be a case of `plan`, and its load case and
+/// rows, in file order. Every row's case id must be a case of `plan` (of the slice), and its load case and
 /// form must be that case's.
 pub fn read_case_results(plan: &Plan, path: &Path) -> Result<Vec<CaseResult>> {
     let df = read_parquet(path)?;
@@ -371,16 +371,41 @@ pub fn read_case_results(plan: &Plan, path: &Path) -> Result<Vec<CaseResult>> {
     Ok(out)
 }
 
+/// [`read_case_results`] of the rows `offset .. offset + len` of the file only (the row
+/// groups that hold them are decoded); `plan` holds (at least) their cases.
+pub fn read_case_results_rows(
+    plan: &Plan,
+    path: &Path,
+    (offset, len): (usize, usize),
+) -> Result<Vec<CaseResult>> {
+    let file =
+        std::fs::File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
+    let df = polars::prelude::ParquetReader::new(file)
+        .with_slice(Some((offset, len)))
+        .finish()
+        .with_context(|| format!("cannot read {} as Parquet", path.display()))?;
+    read_frame(plan, &df).with_context(|| format!("in {} (rows from {offset})", path.display()))
+}
+
+/// The case ids of results.parquet, in file order (no other column is decoded).
+pub fn read_case_ids(path: &Path) -> Result<Vec<u64>> {
+    let df = super::read_parquet_columns(path, &["case_id"])?;
+    super::u64_column(&df, "case_id").with_context(|| format!("in {}", path.display()))
+}
+
 /// Rows of results.parquet typed at a time by [`read_case_results`].
 const READ_BLOCK_ROWS: usize = 1 << 16;
 
 fn read_frame(plan: &Plan, df: &DataFrame) -> Result<Vec<CaseResult>> {
     let stored = Stored::read(df)?;
     let mut out = Vec::with_capacity(stored.ids.len());
+    // A slice of a plan holds the cases from its first id on.
+    let first = plan.cases.first().map_or(0, |c| c.id);
     for (i, &id) in stored.ids.iter().enumerate() {
         let row = || format!("row {i} (case {id})");
-        let case = usize::try_from(id)
-            .ok()
+        let case = id
+            .checked_sub(first)
+            .and_then(|n| usize::try_from(n).ok())
             .and_then(|n| plan.cases.get(n))
             .filter(|case| case.id == id)
             .with_context(|| format!("{}: the manifest's plan has no such case", row()))?;

@@ -10,16 +10,16 @@ mod schema;
 mod table;
 
 pub use boundaries::{bifurcations_frame, boundaries_frame};
-pub use cases::read_case_results;
+pub use cases::{read_case_ids, read_case_results, read_case_results_rows};
 pub use figures::{
     BifurcationGroup, CurvePoint, LoadFactorCase, MechanismRow, ReferenceRow, RowArch, StateRow,
     curves_frame, mechanisms_frame, read_bifurcation_groups, read_curves, read_load_factor_cases,
     read_mechanisms, read_reference, read_row_arches, read_states, reference_frame, states_frame,
 };
-pub use results::{filled_by, results_frame};
+pub use results::{BLOCK_ROWS, filled_by, results_frame};
 pub use rows::{
     BifurcationRow, BoundaryRow, JointLists, ResultRow, read_bifurcations, read_boundaries,
-    read_results,
+    read_results, read_results_in_blocks,
 };
 pub use schema::column_doc;
 pub use table::{ColumnData, Table, TableColumn, read_table, table_from_frame};
@@ -289,6 +289,16 @@ pub fn parquet_rows(path: &Path) -> Result<usize> {
 /// Reads those of the named columns that a Parquet file has (the others are not decoded; a
 /// study's results hold only the columns its finds fill).
 pub fn read_parquet_columns(path: &Path, columns: &[&str]) -> Result<DataFrame> {
+    read_parquet_rows(path, columns, None)
+}
+
+/// [`read_parquet_columns`] of the rows `slice` (offset, length) only: only the row groups
+/// that hold them are decoded.
+pub fn read_parquet_rows(
+    path: &Path,
+    columns: &[&str],
+    slice: Option<(usize, usize)>,
+) -> Result<DataFrame> {
     let file = File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
     let mut reader = ParquetReader::new(file);
     let schema = reader
@@ -301,6 +311,7 @@ pub fn read_parquet_columns(path: &Path, columns: &[&str]) -> Result<DataFrame> 
         .collect();
     reader
         .with_columns(Some(present))
+        .with_slice(slice)
         .finish()
         .with_context(|| format!("cannot read {} as Parquet", path.display()))
 }

@@ -124,8 +124,10 @@ column!(list_f64, ListF64, Vec<f64>);
 column!(list_str, ListStr, Vec<&'static str>);
 
 /// Rows per independently built block of the results table: a fixed size, so that the
-/// blocks, and the file written from them, do not depend on the number of threads.
-const BLOCK_ROWS: usize = 1 << 18;
+/// blocks, and the file written from them, do not depend on the number of threads. (A list
+/// column that no row of a block fills is stored as nulls in that block: a table written in
+/// chunks holds the data of one pass when its chunks start at multiples of this.)
+pub const BLOCK_ROWS: usize = 1 << 18;
 
 /// The results table: one row per case (schema in the README).
 ///

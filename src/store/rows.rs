@@ -220,6 +220,32 @@ const RESULT_ROW_COLUMNS: [&str; 20] = [
 /// Reads results.parquet (the columns of [`ResultRow`] only).
 pub fn read_results(path: &Path) -> Result<Vec<ResultRow>> {
     let df = read_parquet_columns(path, &RESULT_ROW_COLUMNS)?;
+    rows_of_frame(&df, path)
+}
+
+/// Reads results.parquet (the columns of [`ResultRow`] only) `block` rows at a time, in
+/// order, handing each block and the index of its first row to `each`: the rows of a large
+/// run need not be in memory at once.
+pub fn read_results_in_blocks(
+    path: &Path,
+    block: usize,
+    mut each: impl FnMut(usize, Vec<ResultRow>) -> Result<()>,
+) -> Result<()> {
+    let rows = super::parquet_rows(path)?;
+    let block = block.max(1);
+    let mut offset = 0;
+    loop {
+        let df = super::read_parquet_rows(path, &RESULT_ROW_COLUMNS, Some((offset, block)))?;
+        let n = df.height();
+        each(offset, rows_of_frame(&df, path)?)?;
+        offset += n;
+        if n == 0 || offset >= rows {
+            return Ok(());
+        }
+    }
+}
+
+fn rows_of_frame(df: &polars::prelude::DataFrame, path: &Path) -> Result<Vec<ResultRow>> {
     let cx = || format!("in {}", path.display());
     // An answer column the study's finds do not fill is not stored: all null.
     let absent = |name: &str| df.column(name).is_err() && filled_by(name).is_some();
@@ -227,15 +253,15 @@ pub fn read_results(path: &Path) -> Result<Vec<ResultRow>> {
         if absent(name) {
             return Ok(vec![None; df.height()]);
         }
-        f64_column(&df, name).with_context(cx)
+        f64_column(df, name).with_context(cx)
     };
     let s = |name: &str| {
         if absent(name) {
             return Ok(vec![None; df.height()]);
         }
-        shared_str_column(&df, name).with_context(cx)
+        shared_str_column(df, name).with_context(cx)
     };
-    let case_id = u64_column(&df, "case_id").with_context(cx)?;
+    let case_id = u64_column(df, "case_id").with_context(cx)?;
     let load_case = required(s("load_case")?, "load_case", path)?;
     let find = required(s("find")?, "find", path)?;
     let (k, t_over_r, mu) = (f("k")?, f("t_over_r")?, f("mu")?);

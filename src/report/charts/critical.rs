@@ -59,10 +59,7 @@ fn critical(data: &RunData, lc: &str, on: &str) -> Option<CriticalChart> {
         let mut panel = marks.panel(Axes::COLLAPSE_THICKNESS, a);
         // A state study covers a range of K: K_c(μ) above it is off the map too.
         if data.manifest.find_of(lc) == "state" {
-            panel.y_max = (data.results.iter())
-                .filter(|r| &*r.load_case == lc)
-                .filter_map(|r| r.k.filter(|k| k.is_finite()))
-                .reduce(f64::max);
+            panel.y_max = data.totals.k_max.get(lc).copied();
         }
         panels.push(panel);
     }

@@ -5,7 +5,6 @@ use super::{Item, item};
 use crate::report::data::{ManifestView, RunData};
 use crate::report::format::given;
 use serde::Serialize;
-use std::collections::BTreeMap;
 
 /// A grid axis as described in the report.
 #[derive(Debug, Clone, Serialize, PartialEq)]
@@ -201,23 +200,11 @@ pub fn load_cases(m: &ManifestView) -> Vec<String> {
 /// The number of cases, of failed cases and of cases per regime or outcome.
 pub fn cases(data: &RunData) -> Vec<Item> {
     let info = &data.info;
-    let mut by_outcome: BTreeMap<String, usize> = BTreeMap::new();
-    for r in &data.results {
-        let key = if &*r.status != "ok" {
-            "failed".to_string()
-        } else if let Some(g) = &r.regime {
-            format!("regime {g}")
-        } else if let Some(o) = &r.outcome {
-            o.replace('_', " ")
-        } else {
-            "ok".to_string()
-        };
-        *by_outcome.entry(key).or_default() += 1;
-    }
+    let by_outcome = &data.totals.by_outcome;
     let mut cases = vec![
         item("cases", info.cases.total.to_string()),
         item("failed", info.cases.error.to_string()),
     ];
-    cases.extend(by_outcome.into_iter().map(|(k, v)| item(k, v.to_string())));
+    cases.extend(by_outcome.iter().map(|(k, v)| item(k, v.to_string())));
     cases
 }

@@ -3,7 +3,6 @@
 use crate::report::data::RunData;
 use crate::report::format::{self, micros, millis};
 use serde::Serialize;
-use std::collections::BTreeMap;
 
 /// Solve-time statistics of a group of cases.
 #[derive(Debug, Clone, Serialize, PartialEq)]
@@ -24,28 +23,19 @@ pub struct TimingRow {
 
 /// Solve-time statistics per model and find, over the cases that succeeded.
 pub fn timing(data: &RunData) -> Vec<TimingRow> {
-    let mut groups: BTreeMap<(Option<u32>, std::sync::Arc<str>), Vec<f64>> = BTreeMap::new();
-    for r in data.results.iter().filter(|r| &*r.status == "ok") {
-        groups
-            .entry((r.voussoirs, r.find.clone()))
-            .or_default()
-            .push(r.solve_time_us);
-    }
-    groups
-        .into_iter()
-        .map(|((n, find), mut t)| {
-            t.sort_by(f64::total_cmp);
-            TimingRow {
-                group: format!(
-                    "{}, {find}",
-                    n.map_or("continuum".to_string(), |n| format!("N = {n}"))
-                ),
-                cases: t.len().to_string(),
-                median: micros(format::quantile(&t, 0.5)),
-                p90: micros(format::quantile(&t, 0.9)),
-                max: micros(t.last().copied().unwrap_or(f64::NAN)),
-                total: millis(t.iter().sum::<f64>() / 1e3),
-            }
+    data.totals
+        .solve_times
+        .iter()
+        .map(|((n, find), t)| TimingRow {
+            group: format!(
+                "{}, {find}",
+                n.map_or("continuum".to_string(), |n| format!("N = {n}"))
+            ),
+            cases: t.len().to_string(),
+            median: micros(format::quantile(t, 0.5)),
+            p90: micros(format::quantile(t, 0.9)),
+            max: micros(t.last().copied().unwrap_or(f64::NAN)),
+            total: millis(t.iter().sum::<f64>() / 1e3),
         })
         .collect()
 }

@@ -1,0 +1,182 @@
+//! results.parquet reduced to what the report shows: every row is read once, a block at a
+//! time, into the totals the tables give over all cases (cases per regime or outcome, solve
+//! times, the largest K) and the rows of the figure lattice, those the figures and the other
+//! tables are drawn from. A K or μ axis longer than [`FIGURE_AXIS_POINTS`] keeps every s-th
+//! value (and its last), so a map of 4001² cases is drawn from 1001² of them: more cells than
+//! the pixels of the widest figure, and a run's memory that does not grow with its cases.
+
+use crate::manifest::{AxisName, Manifest};
+use crate::store::ResultRow;
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+/// Most values of a K or μ axis the figures are drawn from: a longer axis keeps every s-th
+/// value, s = ⌈(n − 1)/(FIGURE_AXIS_POINTS − 1)⌉, and its last.
+pub const FIGURE_AXIS_POINTS: u64 = 1001;
+
+/// Rows of results.parquet read at a time.
+pub const READ_BLOCK_ROWS: usize = 1 << 18;
+
+/// One load case in the lattice: its first case id, its number of cases and, per grid axis,
+/// the number of positions and the step kept.
+type LoadCaseLattice = (u64, u64, Vec<(u64, u64)>);
+
+/// The cases of a plan the figures are drawn from, decided from a case id alone.
+#[derive(Debug, Clone, Default)]
+pub struct FigureLattice {
+    /// Per load case, in plan order.
+    load_cases: Vec<LoadCaseLattice>,
+}
+
+impl FigureLattice {
+    /// The lattice of a manifest's plan.
+    pub fn of(m: &Manifest) -> Self {
+        let mut first = 0u64;
+        let mut load_cases = Vec::new();
+        for lc in &m.load_cases {
+            let axes: Vec<(u64, u64)> = m
+                .grid
+                .iter()
+                .map(|a| {
+                    let n = if lc.spans(a.name) {
+                        a.values.len() as u64
+                    } else {
+                        1
+                    };
+                    let reduced = matches!(a.name, AxisName::K | AxisName::TOverR | AxisName::Mu)
+                        && n > FIGURE_AXIS_POINTS;
+                    let step = if reduced {
+                        (n - 1).div_ceil(FIGURE_AXIS_POINTS - 1)
+                    } else {
+                        1
+                    };
+                    (n, step)
+                })
+                .collect();
+            let count: u64 = axes.iter().map(|&(n, _)| n).product();
+            load_cases.push((first, count, axes));
+            first += count;
+        }
+        FigureLattice { load_cases }
+    }
+
+    /// True when some axis is reduced.
+    pub fn reduces(&self) -> bool {
+        self.load_cases
+            .iter()
+            .any(|(_, _, axes)| axes.iter().any(|&(_, s)| s > 1))
+    }
+
+    /// Whether the figures show case `id` (every case when nothing is reduced).
+    pub fn keeps(&self, id: u64) -> bool {
+        let Some((first, _, axes)) = self
+            .load_cases
+            .iter()
+            .find(|(first, count, _)| id >= *first && id - first < *count)
+        else {
+            return true;
+        };
+        // The odometer position of the case, last axis fastest.
+        let mut rest = id - first;
+        for &(n, step) in axes.iter().rev() {
+            let i = rest % n;
+            rest /= n;
+            if step > 1 && !i.is_multiple_of(step) && i != n - 1 {
+                return false;
+            }
+        }
+        true
+    }
+}
+
+/// What the report gives over every row of results.parquet.
+#[derive(Debug, Clone, Default)]
+pub struct ResultTotals {
+    /// Rows read.
+    pub rows: u64,
+    /// Cases per regime or outcome (`regime stable`, `never stands`, `failed`, …).
+    pub by_outcome: BTreeMap<String, usize>,
+    /// Solve times of the cases that succeeded, per voussoir count and find, increasing once
+    /// [`ResultTotals::finish`] has run.
+    pub solve_times: BTreeMap<(Option<u32>, Arc<str>), Vec<f64>>,
+    /// The largest finite K per load case.
+    pub k_max: BTreeMap<String, f64>,
+}
+
+impl ResultTotals {
+    /// Adds a block of rows.
+    pub fn add(&mut self, rows: &[ResultRow]) {
+        self.rows += rows.len() as u64;
+        for r in rows {
+            let key = if &*r.status != "ok" {
+                "failed".to_string()
+            } else if let Some(g) = &r.regime {
+                format!("regime {g}")
+            } else if let Some(o) = &r.outcome {
+                o.replace('_', " ")
+            } else {
+                "ok".to_string()
+            };
+            *self.by_outcome.entry(key).or_default() += 1;
+            if &*r.status == "ok" {
+                self.solve_times
+                    .entry((r.voussoirs, r.find.clone()))
+                    .or_default()
+                    .push(r.solve_time_us);
+            }
+            if let Some(k) = r.k.filter(|k| k.is_finite()) {
+                let m = self.k_max.entry(r.load_case.to_string()).or_insert(k);
+                *m = m.max(k);
+            }
+        }
+    }
+}
+
+impl ResultTotals {
+    /// Sorts the solve times, once every block is added.
+    pub fn finish(&mut self) {
+        for t in self.solve_times.values_mut() {
+            t.sort_by(f64::total_cmp);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    fn manifest(steps: u64) -> Manifest {
+        crate::manifest::parse(
+            &format!(
+                "name: a\ngrid:\n  k: {{from: 1.05, to: 1.5, steps: {steps}}}\n  mu: {{from: 0.2, to: 0.8, steps: {steps}}}\n"
+            ),
+            Path::new("a.yaml"),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn a_map_of_4001_squared_cases_is_drawn_from_1001_squared() {
+        let l = FigureLattice::of(&manifest(4001));
+        assert!(l.reduces());
+        let kept: Vec<u64> = (0..4001u64 * 4001).filter(|&id| l.keeps(id)).collect();
+        assert_eq!(kept.len(), 1001 * 1001);
+        // Every 4th μ of every 4th K, the last of each axis among them.
+        assert_eq!(&kept[..3], &[0, 4, 8]);
+        assert_eq!(kept[1000], 4000);
+        assert_eq!(kept[1001], 4 * 4001);
+        assert_eq!(*kept.last().unwrap(), 4001 * 4001 - 1);
+    }
+
+    #[test]
+    fn a_map_within_the_figure_resolution_keeps_every_case() {
+        let l = FigureLattice::of(&manifest(1001));
+        assert!(!l.reduces());
+        assert!((0..1001u64 * 1001).all(|id| l.keeps(id)));
+        // 2001 values keep every other one: 1001 of them.
+        let l = FigureLattice::of(&manifest(2001));
+        let kept = (0..2001u64 * 2001).filter(|&id| l.keeps(id)).count();
+        assert_eq!(kept, 1001 * 1001);
+    }
+}
