@@ -389,6 +389,7 @@ fn scene_of(joints: Discretisation) -> Scene {
         find: Find::Friction,
         form: ArchForm {
             shape: Shape::Pointed { eccentricity: E },
+            keystone: false,
             joints: JointOrientation::Radial,
         },
         load: Load::Point { at_deg: 0.0 },
