@@ -183,6 +183,11 @@ pub fn needed_bytes(cases: u64) -> u64 {
 /// at 1.03 GB, 450 bytes a case more than a state map of that size).
 pub const LOAD_FACTOR_BYTES_PER_CASE: u64 = 512;
 
+/// Memory of `archstudy verify` per case, in bytes: it re-runs the study and compares every
+/// stored table with the new one whole, both in memory (the measured cost of a run that held
+/// every row, 1.7 kB a case, with a margin).
+pub const VERIFY_BYTES_PER_CASE: u64 = 2_000;
+
 /// The memory per case of a manifest's run ([`BYTES_PER_CASE`], or
 /// [`LOAD_FACTOR_BYTES_PER_CASE`] for a study that finds load factors).
 pub fn bytes_per_case(m: &Manifest) -> u64 {

@@ -79,9 +79,12 @@ pub fn verify(opts: &VerifyOptions, out: &mut dyn Write) -> Result<bool> {
         return Ok(false);
     };
     // Drawing the reports again and re-running both hold every case in memory.
-    let needed = runner::needed_bytes(u64::try_from(cases).unwrap_or(u64::MAX));
+    let needed = u64::try_from(cases)
+        .unwrap_or(u64::MAX)
+        .saturating_mul(runner::VERIFY_BYTES_PER_CASE)
+        .saturating_add(runner::BASE_BYTES);
     let available = runner::available_memory();
-    let too_big = runner::check_memory(cases, available).is_err();
+    let too_big = runner::check_memory_at(cases, runner::VERIFY_BYTES_PER_CASE, available).is_err();
     if too_big && opts.rerun {
         let gib = |b: u64| b as f64 / f64::from(1u32 << 30);
         return Err(UsageError::new(

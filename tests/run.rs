@@ -391,7 +391,6 @@ load_cases:
     for line in [
         "analysing: 12 cases",
         "analysing: done, 12/12 cases in",
-        "storing results: done in",
         "figure data: done in",
         "drawing figures: done",
         "writing reports: done in",

@@ -38,6 +38,16 @@ pub fn short(v: f64) -> String {
     num(Some(v), 4)
 }
 
+/// A load position in degrees: as given when the manifest wrote it (a few decimals), to
+/// 0.01° when it was computed (from an x/L position, where it moves with K).
+pub fn position_deg(v: f64) -> String {
+    let s = given(v);
+    match s.split_once('.') {
+        Some((_, decimals)) if decimals.len() > 4 => format!("{v:.2}"),
+        _ => s,
+    }
+}
+
 /// A grid or scene value as given: shortest round-trip form, `∞` for infinity.
 pub fn given(v: f64) -> String {
     if v.is_infinite() {
@@ -124,6 +134,14 @@ pub fn quantile(sorted: &[f64], q: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_computed_position_is_printed_to_a_hundredth_of_a_degree() {
+        assert_eq!(position_deg(-19.97063320488878), "-19.97");
+        assert_eq!(position_deg(30.000000000000004), "30.00");
+        assert_eq!(position_deg(-45.0), "-45");
+        assert_eq!(position_deg(12.5), "12.5");
+    }
 
     #[test]
     fn a_value_that_rounds_to_zero_has_no_sign() {

@@ -11,7 +11,7 @@ use super::{Chart, FigureSpec, LoadCaseFigure};
 use crate::plot::lambda_map::{LambdaMap, LambdaStrip};
 use crate::plot::regime_map::{Crossing, RegimeMap};
 use crate::report::data::RunData;
-use crate::report::format::given;
+use crate::report::format::position_deg;
 use crate::store::LoadFactorCase;
 use std::sync::Arc;
 
@@ -84,7 +84,7 @@ pub fn figures(data: &RunData, lc: &LoadCaseFigure) -> Vec<FigureSpec> {
         let at = own
             .iter()
             .find_map(|c| c.at_deg)
-            .map_or(String::new(), |a| format!(", load at {}°", given(a)));
+            .map_or(String::new(), |a| format!(", load at {}°", position_deg(a)));
         let title = format!("Collapse load factor over μ and K{on}{at}");
         let Some(map) = lambda_map(data, lc.name, &own, several.then_some(g), title) else {
             continue;

@@ -5,7 +5,7 @@
 use super::{Chart, FigureSpec, LoadCaseFigure, mu_text};
 use crate::plot::lines::{Line, LinePanel, LinePoint, LinesChart};
 use crate::report::data::{ArchView, RunData};
-use crate::report::format::given;
+use crate::report::format::{given, position_deg};
 use crate::store::LoadFactorCase;
 
 /// At most this many lines per panel.
@@ -220,7 +220,7 @@ fn lambda_curves(
     let at = own
         .iter()
         .find_map(|c| c.at_deg)
-        .map_or(String::new(), |a| format!(", load at {}°", given(a)));
+        .map_or(String::new(), |a| format!(", load at {}°", position_deg(a)));
     Some(FigureSpec {
         stem: format!("load-factor{stem}"),
         title: format!("Collapse load factor λ{}{on}{at}", lc.title_suffix),

@@ -5,7 +5,7 @@ use super::{Chart, FigureSpec, mu_text, safe};
 use crate::figdata;
 use crate::plot::state::StateDrawing;
 use crate::report::data::RunData;
-use crate::report::format::{given, short};
+use crate::report::format::{given, position_deg, short};
 use crate::store::StateRow;
 
 pub mod geometry;
@@ -171,7 +171,7 @@ impl StateTexts {
         };
         let at = s
             .at_deg
-            .map_or(String::new(), |a| format!(", load at {}°", given(a)));
+            .map_or(String::new(), |a| format!(", load at {}°", position_deg(a)));
         StateTexts {
             title: format!("Collapse at λ_max: {mech} mechanism"),
             heading: format!(

@@ -3,7 +3,7 @@
 //! is the paper's case. Every value is one stored cell, named in its source.
 
 use crate::report::data::RunData;
-use crate::report::format::{self, diff, given, value};
+use crate::report::format::{self, diff, given, position_deg, value};
 use crate::report::paper::{self, Printed};
 use crate::store::{BoundaryRow, ResultRow};
 use serde::Serialize;
@@ -317,7 +317,7 @@ fn group_text(data: &RunData, g: &crate::store::BifurcationGroup) -> String {
         });
     }
     if let Some(a) = g.at_deg {
-        parts.push(format!("load at {}°", given(a)));
+        parts.push(format!("load at {}°", position_deg(a)));
     }
     if parts.is_empty() {
         String::new()

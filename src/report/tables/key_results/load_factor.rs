@@ -6,7 +6,7 @@
 use super::{Rows, group_text};
 use crate::report::charts::load_factor::{compact, spread, x_over_l};
 use crate::report::data::RunData;
-use crate::report::format::{given, short};
+use crate::report::format::{given, position_deg, short};
 use crate::store::LoadFactorCase;
 
 /// At most this many K and μ values in the table of λ.
@@ -24,7 +24,11 @@ fn case_text(data: &RunData, c: &LoadFactorCase) -> String {
     ];
     if let Some(a) = c.at_deg {
         let xl = x_over_l(&data.manifest.arch, c.k, c.half_angle_deg, a);
-        parts.push(format!("load at {}° (x/L = {})", given(a), short(xl)));
+        parts.push(format!(
+            "load at {}° (x/L = {})",
+            position_deg(a),
+            short(xl)
+        ));
     }
     if has("half_angle_deg") {
         parts.push(format!("α = {}°", given(c.half_angle_deg)));
