@@ -195,8 +195,17 @@ fn draw_points<DB: DrawingBackend>(
     }
     let (xr, yr) = chart.plotting_area().get_pixel_range();
     let mut placer = LabelPlacer::new((xr.start, yr.start, xr.end + ctx.px(68.0), yr.end));
-
+    // Every drawn point keeps labels off it: a label over another line's points reads as
+    // naming that line.
+    let rr = ctx.px(r);
+    for l in &p.lines {
+        for q in l.points.iter().filter(|q| p.y_of(q.y).is_finite()) {
+            let c = chart.backend_coord(&(q.x, p.y_of(q.y)));
+            placer.block((c.0 - rr, c.1 - rr, c.0 + rr, c.1 + rr));
+        }
+    }
     let font = ctx.font(11.5);
+    let mut placed: Vec<(String, (i32, i32))> = Vec::new();
     for l in &p.lines {
         let Some(last) = l.points.iter().rev().find(|q| p.y_of(q.y).is_finite()) else {
             continue;
@@ -210,15 +219,18 @@ fn draw_points<DB: DrawingBackend>(
             (c.0 + g, c.1 - th - g),
             (c.0 + g, c.1 + g),
         ];
-        // Where no place right of its end is free, a line the legend names goes unlabelled;
-        // any other line takes the nearest free place.
+        // Lines the legend names are labelled all or none: where one has no free place
+        // right of its end, end labels would name some lines and not others.
         let at = match placer.try_place(tw, th, &cands) {
             Some(at) => at,
-            None if named_in_legend => continue,
+            None if named_in_legend => return Ok(()),
             None => placer.place(tw, th, &cands),
         };
+        placed.push((l.label.clone(), at));
+    }
+    for (label, at) in placed {
         root.draw(&Text::new(
-            l.label.clone(),
+            label,
             at,
             font.color(&palette::INK)
                 .pos(Pos::new(HPos::Left, VPos::Top)),

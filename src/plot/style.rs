@@ -621,8 +621,8 @@ pub fn title<DB: DrawingBackend>(
 }
 
 /// The ticks of a logarithmic axis over [lo, hi] (lo > 0), each with its label: every
-/// power of ten, with 2 and 5 times each where the range spans less than about two
-/// decades, and every integer multiple where it spans less than one (so that a short axis
+/// power of ten, with 2 and 5 times each where the range spans less than about three
+/// decades (so that it carries more than two or three labels), and every integer multiple where it spans less than one (so that a short axis
 /// still carries three labels or more); every other power of ten beyond eight decades.
 /// Powers of ten are written `1e-2` (typeset as 10 with the superscript −2), multiples
 /// `2×10^-2`; ten to the 0 and 1 as `1` and `10`, their multiples as plain numbers.
@@ -633,7 +633,7 @@ pub fn log_ticks(lo: f64, hi: f64) -> Vec<(f64, String)> {
     let span = (hi / lo).log10();
     let mantissas: &[u32] = if span < 1.0 {
         &[1, 2, 3, 4, 5, 6, 7, 8, 9]
-    } else if span < 2.2 {
+    } else if span < 3.2 {
         &[1, 2, 5]
     } else {
         &[1]
@@ -740,6 +740,11 @@ mod tests {
         assert_eq!(
             labels(1e-3, 1e2),
             ["1e-3", "1e-2", "1e-1", "1", "10", "1e2"]
+        );
+        // From 0.15 to 80 (2.7 decades): 2 and 5 times each decade too, not 1 and 10 alone.
+        assert_eq!(
+            labels(0.15, 80.0),
+            ["2×10^-1", "5×10^-1", "1", "2", "5", "10", "20", "50"]
         );
         // From 0.012 to 0.86 (under two decades): 2 and 5 times each decade too.
         let t = log_ticks(0.012, 0.86);

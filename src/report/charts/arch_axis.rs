@@ -147,7 +147,7 @@ fn collapse_overlay(
         stem: format!("collapse-curves{}", lc.stem_suffix),
         title: format!("Collapse curves by {axis_name}{on}"),
         caption: format!(
-            "The collapse curve K_c(μ) of every {axis_name} (the located collapse points of boundaries.parquet joined in order along the curve), one grey line each, labelled at its end; each point is coloured by its collapse mechanism (rotational, mixed, sliding). Below its curve an arch does not stand."
+            "The collapse curve K_c(μ) of every {axis_name} (the located collapse points of boundaries.parquet joined in order along the curve), one grey line each, named in the legend and, where every end has room, labelled at its end; each point is coloured by its collapse mechanism (rotational, mixed, sliding). Below its curve an arch does not stand."
         ),
         chart: Chart::Lines(LinesChart {
             title: format!("Collapse thickness K_c against μ{on}"),
