@@ -201,21 +201,7 @@ impl Figure for LambdaMap {
             .y_label_area_size(ctx.px(72.0))
             .build_cartesian_2d(mu0..mu1, k0..k1)?;
         self.draw_raster(&mut chart, window)?;
-        let fmt_mu = |v: &f64| format!("{:.*}", decimals_for(mu1 - mu0), v);
-        let fmt_k = |v: &f64| format!("{:.*}", decimals_for(k1 - k0), v);
-        chart
-            .configure_mesh()
-            .x_desc("friction coefficient μ")
-            .y_desc("thickness ratio K = R/r")
-            .x_label_formatter(&fmt_mu)
-            .y_label_formatter(&fmt_k)
-            .label_style(ctx.font(13.0))
-            .axis_desc_style(ctx.font(14.0))
-            .set_all_tick_mark_size(ctx.px(5.0))
-            .light_line_style(TRANSPARENT)
-            .bold_line_style(TRANSPARENT)
-            .axis_style(BLACK.stroke_width(ctx.upx(1.0).max(1)))
-            .draw()?;
+        super::draw_mu_k_mesh(&mut chart, ctx, window, false)?;
         for line in &self.boundaries {
             for piece in clip_polyline(line, (mu0, mu1), (k0, k1)) {
                 // A white line with a dark core reads on every colour of the scale.

@@ -141,6 +141,36 @@ pub(crate) type XyChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf6
 /// The data ranges of a chart: (x0, x1) and (y0, y1).
 pub(crate) type Window = ((f64, f64), (f64, f64));
 
+/// The μ and K axes of a map over (μ, K), with faint grid lines where `grid_lines` (none
+/// over a colour scale).
+pub(crate) fn draw_mu_k_mesh<DB: DrawingBackend>(
+    chart: &mut XyChart<DB>,
+    ctx: &PlotContext,
+    ((mu0, mu1), (k0, k1)): Window,
+    grid_lines: bool,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let fmt_mu = |v: &f64| format!("{:.*}", style::decimals_for(mu1 - mu0), v);
+    let fmt_k = |v: &f64| format!("{:.*}", style::decimals_for(k1 - k0), v);
+    let grid = if grid_lines {
+        BLACK.mix(0.10).stroke_width(1)
+    } else {
+        TRANSPARENT.stroke_width(1)
+    };
+    chart
+        .configure_mesh()
+        .x_desc("friction coefficient μ")
+        .y_desc("thickness ratio K = R/r")
+        .x_label_formatter(&fmt_mu)
+        .y_label_formatter(&fmt_k)
+        .label_style(ctx.font(13.0))
+        .axis_desc_style(ctx.font(14.0))
+        .set_all_tick_mark_size(ctx.px(5.0))
+        .light_line_style(TRANSPARENT)
+        .bold_line_style(grid)
+        .axis_style(BLACK.stroke_width(ctx.upx(1.0).max(1)))
+        .draw()
+}
+
 /// Drawing failed (a backend error, reported as text).
 #[derive(Debug, thiserror::Error)]
 #[error("cannot draw the figure: {0}")]

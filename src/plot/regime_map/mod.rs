@@ -225,7 +225,7 @@ impl RegimeMap {
             .y_label_area_size(ctx.px(72.0))
             .build_cartesian_2d(mu0..mu1, k0..k1)?;
         self.draw_regions(&mut chart, ctx, window)?;
-        draw_mesh(&mut chart, ctx, window)?;
+        super::draw_mu_k_mesh(&mut chart, ctx, window, true)?;
         self.draw_strip(root, &chart, ctx, window)?;
         draw_t_axis(root, &chart, ctx, window, ctx.px(strip))?;
         self.draw_curves(&mut chart, ctx, window)?;
@@ -322,29 +322,6 @@ impl RegimeMap {
         }
         Ok(())
     }
-}
-
-/// The axes and the grid lines of μ and K.
-fn draw_mesh<DB: DrawingBackend>(
-    chart: &mut Chart<DB>,
-    ctx: &PlotContext,
-    ((mu0, mu1), (k0, k1)): Window,
-) -> DrawResult<(), DB> {
-    let fmt_mu = |v: &f64| format!("{:.*}", decimals_for(mu1 - mu0), v);
-    let fmt_k = |v: &f64| format!("{:.*}", decimals_for(k1 - k0), v);
-    chart
-        .configure_mesh()
-        .x_desc("friction coefficient μ")
-        .y_desc("thickness ratio K = R/r")
-        .x_label_formatter(&fmt_mu)
-        .y_label_formatter(&fmt_k)
-        .label_style(ctx.font(13.0))
-        .axis_desc_style(ctx.font(14.0))
-        .set_all_tick_mark_size(ctx.px(5.0))
-        .light_line_style(TRANSPARENT)
-        .bold_line_style(BLACK.mix(0.10).stroke_width(1))
-        .axis_style(BLACK.stroke_width(ctx.upx(1.0).max(1)))
-        .draw()
 }
 
 /// The t/R_c axis at the right edge, ticks at round values of t/R_c.
