@@ -7,6 +7,18 @@ use crate::manifest::{AxisName, LoadCase, Manifest};
 use crate::model::{Arch, Discretisation, Friction, Load, k_from_t_over_r};
 use crate::scene::{Find, Scene};
 
+/// The index of `x` among the increasing values `v` of a grid axis, within a relative
+/// tolerance of 1e-9 (a value read back from a file or computed from the axis).
+pub fn axis_index(v: &[f64], x: f64) -> Option<usize> {
+    let i = v.partition_point(|&g| g < x);
+    let tol = 1e-9 * (1.0 + x.abs());
+    [i.checked_sub(1), Some(i)]
+        .into_iter()
+        .flatten()
+        .filter(|&i| i < v.len())
+        .find(|&i| (v[i] - x).abs() <= tol)
+}
+
 /// Largest number of cases a study may ask for.
 pub const MAX_CASES: u64 = 20_000_000;
 

@@ -9,6 +9,7 @@
 //! a located boundary, whatever the grid's size.
 
 use super::{Crossing, RegimeMap};
+use crate::plan;
 use std::collections::HashMap;
 
 /// A point in a cell's unit coordinates (s along μ, t along K, both in [0, 1]).
@@ -80,17 +81,6 @@ fn dist2(a: Pt, b: Pt) -> f64 {
     (a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)
 }
 
-/// The index of `x` in the increasing grid `v` within a relative tolerance.
-fn grid_index(v: &[f64], x: f64) -> Option<usize> {
-    let i = v.partition_point(|&g| g < x);
-    let tol = 1e-9 * (1.0 + x.abs());
-    [i.checked_sub(1), Some(i)]
-        .into_iter()
-        .flatten()
-        .filter(|&i| i < v.len())
-        .find(|&i| (v[i] - x).abs() <= tol)
-}
-
 /// The cell (its lower index) of `x` in the grid `v` (clamped to the grid).
 fn cell_of(v: &[f64], x: f64) -> usize {
     v.partition_point(|&g| g <= x).clamp(1, v.len() - 1) - 1
@@ -112,7 +102,7 @@ impl<'a> Classifier<'a> {
         let mut along_k: HashMap<(usize, usize), Vec<&Crossing>> = HashMap::new();
         if map.mu.len() >= 2 && map.k.len() >= 2 {
             for c in map.crossings_along_mu.iter().filter(|c| c.at.is_finite()) {
-                if let Some(j) = grid_index(&map.k, c.fixed) {
+                if let Some(j) = plan::axis_index(&map.k, c.fixed) {
                     along_mu
                         .entry((j, cell_of(&map.mu, c.at)))
                         .or_default()
@@ -120,7 +110,7 @@ impl<'a> Classifier<'a> {
                 }
             }
             for c in &map.crossings_along_k {
-                if let Some(i) = grid_index(&map.mu, c.fixed) {
+                if let Some(i) = plan::axis_index(&map.mu, c.fixed) {
                     along_k
                         .entry((i, cell_of(&map.k, c.at)))
                         .or_default()

@@ -8,6 +8,7 @@
 use super::load_factor::{Cases, distinct, group_stem, group_text};
 use super::regime_map::{ArchKey, bifurcations_of_arch};
 use super::{Chart, FigureSpec, LoadCaseFigure};
+use crate::plan;
 use crate::plot::lambda_map::{LambdaMap, LambdaStrip};
 use crate::plot::regime_map::{Crossing, RegimeMap};
 use crate::report::data::RunData;
@@ -28,17 +29,6 @@ const LOG_RATIO: f64 = 30.0;
 /// A logarithmic colour scale spans at most this ratio below the largest λ; smaller values
 /// take its lowest colour.
 const LOG_SPAN: f64 = 100.0;
-
-/// The index of `x` in the increasing grid `v`, within a relative tolerance.
-fn grid_index(v: &[f64], x: f64) -> Option<usize> {
-    let i = v.partition_point(|&g| g < x);
-    let tol = 1e-9 * (1.0 + x.abs());
-    [i.checked_sub(1), Some(i)]
-        .into_iter()
-        .flatten()
-        .filter(|&i| i < v.len())
-        .find(|&i| (v[i] - x).abs() <= tol)
-}
 
 /// The grid cell of `x` (its lower index) and the place in it, 0 to 1.
 fn cell(v: &[f64], x: f64) -> (usize, f64) {
@@ -149,13 +139,13 @@ fn grid_of(own: &[&LoadFactorCase]) -> Option<Grid> {
         k,
     };
     for c in own {
-        let Some(j) = grid_index(&g.k, c.k) else {
+        let Some(j) = plan::axis_index(&g.k, c.k) else {
             continue;
         };
         let lambda = c.load_factor.unwrap_or(f64::NAN);
         if c.mu.is_infinite() {
             g.infinite.get_or_insert_with(|| vec![f64::NAN; g.k.len()])[j] = lambda;
-        } else if let Some(i) = grid_index(&g.mu, c.mu) {
+        } else if let Some(i) = plan::axis_index(&g.mu, c.mu) {
             g.lambda[j * g.mu.len() + i] = lambda;
             g.mechanism[j * g.mu.len() + i] = c.mechanism.as_deref().and_then(intern);
         }
@@ -269,7 +259,7 @@ fn mechanism_map(g: &Grid, changes: &[(f64, f64, &str, &str)]) -> RegimeMap {
     let mut along_mu = Vec::new();
     let mut along_k = Vec::new();
     for &(mu, k, a, b) in changes.iter().filter(|c| c.0.is_finite()) {
-        if let Some(j) = grid_index(&g.k, k) {
+        if let Some(j) = plan::axis_index(&g.k, k) {
             let (low, high) = oriented(at(cell(&g.mu, mu).0, j), a, b);
             along_mu.push(Crossing {
                 fixed: g.k[j],
@@ -277,7 +267,7 @@ fn mechanism_map(g: &Grid, changes: &[(f64, f64, &str, &str)]) -> RegimeMap {
                 low: low.into(),
                 high: high.into(),
             });
-        } else if let Some(i) = grid_index(&g.mu, mu) {
+        } else if let Some(i) = plan::axis_index(&g.mu, mu) {
             let (low, high) = oriented(at(i, cell(&g.k, k).0), a, b);
             along_k.push(Crossing {
                 fixed: g.mu[i],
@@ -317,9 +307,9 @@ fn boundaries(g: &Grid, changes: &[(f64, f64, &str, &str)]) -> Vec<Vec<(f64, f64
     let (dm, dk) = (step(&g.mu), step(&g.k));
     let mut pts: Vec<Located> = Vec::new();
     for &(mu, k, a, b) in changes.iter().filter(|c| c.0.is_finite()) {
-        if let Some(j) = grid_index(&g.k, k) {
+        if let Some(j) = plan::axis_index(&g.k, k) {
             pts.push((true, pair(a, b), j, mu, (mu, k)));
-        } else if let Some(i) = grid_index(&g.mu, mu) {
+        } else if let Some(i) = plan::axis_index(&g.mu, mu) {
             pts.push((false, pair(a, b), i, k, (mu, k)));
         }
     }
