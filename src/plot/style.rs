@@ -396,7 +396,9 @@ pub fn clip_polyline(pts: &[(f64, f64)], x: (f64, f64), y: (f64, f64)) -> Vec<Ve
     out
 }
 
-fn clip_segment(
+/// The part of the segment from `a` to `b` inside the box `x` × `y` (Liang–Barsky), `None`
+/// when it misses the box.
+pub(crate) fn clip_segment(
     a: (f64, f64),
     b: (f64, f64),
     x: (f64, f64),

@@ -123,28 +123,7 @@ fn inside(p: Xy, poly: &[Xy]) -> bool {
 
 /// Whether the segment a–b meets the box [x0, x1, y0, y1] (Liang–Barsky clipping).
 fn segment_meets_box(a: Xy, b: Xy, bx: [f64; 4]) -> bool {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let (mut t0, mut t1) = (0.0f64, 1.0f64);
-    for (p, q) in [
-        (-dx, a.0 - bx[0]),
-        (dx, bx[1] - a.0),
-        (-dy, a.1 - bx[2]),
-        (dy, bx[3] - a.1),
-    ] {
-        if p == 0.0 {
-            if q < 0.0 {
-                return false;
-            }
-        } else {
-            let r = q / p;
-            if p < 0.0 {
-                t0 = t0.max(r);
-            } else {
-                t1 = t1.min(r);
-            }
-        }
-    }
-    t0 <= t1
+    crate::plot::style::clip_segment(a, b, (bx[0], bx[1]), (bx[2], bx[3])).is_some()
 }
 
 /// Whether the box [x0, x1, y0, y1] meets the closed polygon `poly` (its edges or inside).
