@@ -113,8 +113,8 @@ fn draw<DB: DrawingBackend>(
     let room = (w - 2.0 * margin).max(1.0);
     let (titles, subtitles) = match ctx {
         Some(_) => (
-            wrap(&fonts.0, &fig.title, room),
-            wrap(&fonts.1, &fig.subtitle, room),
+            super::style::wrap(&fonts.0, &fig.title, room),
+            super::style::wrap(&fonts.1, &fig.subtitle, room),
         ),
         None => (vec![fig.title.clone()], vec![fig.subtitle.clone()]),
     };
@@ -173,26 +173,6 @@ fn draw<DB: DrawingBackend>(
         ))?;
     }
     Ok(())
-}
-
-/// `text` in lines no wider than `room` pixels in `font`, broken at spaces (a word wider
-/// than `room` keeps a line of its own).
-fn wrap(font: &TextStyle, text: &str, room: f64) -> Vec<String> {
-    let width = |t: &str| f64::from(font.font.box_size(t).map_or(0, |b| b.0));
-    let mut lines: Vec<String> = Vec::new();
-    for word in text.split(' ') {
-        match lines.last_mut() {
-            Some(l) if width(&format!("{l} {word}")) <= room => {
-                l.push(' ');
-                l.push_str(word);
-            }
-            _ => lines.push(word.to_string()),
-        }
-    }
-    if lines.is_empty() {
-        lines.push(String::new());
-    }
-    lines
 }
 
 /// One mechanism drawn in a drawing area: the area, the map to its pixels, the geometry and

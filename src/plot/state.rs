@@ -235,12 +235,15 @@ impl StateDrawing {
             y = ctx.px(36.0);
         }
         let sub_font = ctx.font(13.5).pos(Pos::new(HPos::Center, VPos::Top));
-        for line in &self.subtitle {
-            upper.draw(&Text::new(
-                line.clone(),
-                (w as i32 / 2, y),
-                sub_font.clone(),
-            ))?;
+        // A line wider than the figure (a single-column paper file) wraps at spaces.
+        let room = f64::from(w) - 2.0 * f64::from(ctx.px(8.0));
+        let lines: Vec<String> = self
+            .subtitle
+            .iter()
+            .flat_map(|l| super::style::wrap(&sub_font, l, room))
+            .collect();
+        for line in lines {
+            upper.draw(&Text::new(line, (w as i32 / 2, y), sub_font.clone()))?;
             y += ctx.px(19.0);
         }
         Ok(y + ctx.px(6.0))

@@ -396,6 +396,26 @@ pub fn clip_polyline(pts: &[(f64, f64)], x: (f64, f64), y: (f64, f64)) -> Vec<Ve
     out
 }
 
+/// `text` in lines no wider than `room` pixels in `font`, broken at spaces (a word wider
+/// than `room` keeps a line of its own).
+pub(crate) fn wrap(font: &TextStyle, text: &str, room: f64) -> Vec<String> {
+    let width = |t: &str| f64::from(font.font.box_size(t).map_or(0, |b| b.0));
+    let mut lines: Vec<String> = Vec::new();
+    for word in text.split(' ') {
+        match lines.last_mut() {
+            Some(l) if width(&format!("{l} {word}")) <= room => {
+                l.push(' ');
+                l.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    if lines.is_empty() {
+        lines.push(String::new());
+    }
+    lines
+}
+
 /// The part of the segment from `a` to `b` inside the box `x` × `y` (Liang–Barsky), `None`
 /// when it misses the box.
 pub(crate) fn clip_segment(
