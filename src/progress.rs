@@ -4,10 +4,8 @@
 /// The stages of a run that report progress.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Stage {
-    /// Analysing every case of the plan.
+    /// Analysing every case of the plan and appending its rows to results.parquet.
     Analyse,
-    /// Writing results.parquet.
-    Store,
     /// Locating regime boundaries and bifurcations.
     Boundaries,
     /// Computing and storing the figure data.
@@ -23,7 +21,6 @@ impl Stage {
     pub fn as_str(self) -> &'static str {
         match self {
             Stage::Analyse => "analysing",
-            Stage::Store => "storing results",
             Stage::Boundaries => "locating boundaries",
             Stage::FigureData => "figure data",
             Stage::Figures => "drawing figures",
