@@ -243,3 +243,40 @@ fn x_over_l_bounds_the_thickness_where_the_point_meets_the_first_joint() {
         keystone.max_k(half)
     );
 }
+
+/// `solve` names an x/L position as given, with its computed angle rounded: on the
+/// semicircle x/L = 0.75 is the extrados point at 30° (sin θ = 2·0.75 − 1 = 0.5), and its
+/// λ_max is that of the load given as 30°.
+#[test]
+fn solve_names_an_x_over_l_position_and_its_angle() {
+    use crate::common::{archstudy, stdout};
+    let solve = |at: &[&str]| {
+        let mut args = vec![
+            "solve",
+            "--find",
+            "load-factor",
+            "--k",
+            "1.3",
+            "--mu",
+            "0.5",
+        ];
+        args.extend_from_slice(&["--load", "point"]);
+        args.extend_from_slice(at);
+        let o = archstudy(&args);
+        let text = stdout(&o);
+        assert!(o.status.success(), "{text}");
+        text
+    };
+    let by_x = solve(&["--at-x", "0.75"]);
+    assert!(
+        by_x.contains("a point load at x/L = 0.75 (30.000000°)"),
+        "{by_x}"
+    );
+    let lambda = |t: &str| {
+        t.lines()
+            .find(|l| l.starts_with("λ_max = "))
+            .map(str::to_string)
+            .unwrap()
+    };
+    assert_eq!(lambda(&by_x), lambda(&solve(&["--at", "30"])));
+}

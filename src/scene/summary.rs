@@ -74,10 +74,14 @@ fn arch_lines(o: &mut String, s: &Solution) {
         if let Some(e) = s.eccentricity {
             form.push_str(&format!(" (e = {e})"));
         }
-        let mut load = match s.at_deg {
-            Some(a) => format!("self-weight and a point load at {a}°"),
-            None if s.load == "horizontal" => "self-weight and a horizontal load".to_string(),
-            None => "self-weight".to_string(),
+        let mut load = match (s.at_deg, s.at_x) {
+            // An x/L position's angle is computed: shown to 1e-6°, beside the x/L given.
+            (Some(a), Some(x)) => {
+                format!("self-weight and a point load at x/L = {x} ({a:.6}°)")
+            }
+            (Some(a), None) => format!("self-weight and a point load at {a}°"),
+            (None, _) if s.load == "horizontal" => "self-weight and a horizontal load".to_string(),
+            (None, _) => "self-weight".to_string(),
         };
         if let Some(l) = s.lambda {
             load.push_str(&format!(", λ = {l}"));
