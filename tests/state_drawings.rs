@@ -89,3 +89,51 @@ fn springing_labels_clear_the_supports_and_the_masonry() {
     }
     assert!(springing >= 4, "{springing} springing labels checked");
 }
+
+/// The mechanisms of an arch with vertical joints are drawn on its own arch: each stands on
+/// its radial springings (the horizontal beds from (±1, 0) to (±K, 0) of the semicircle, not
+/// the vertical sections through the intrados springings), and its parts together cover the
+/// arch, the wedges between those sections and the springings included: their areas add up
+/// to π(K² − 1)/2 (the extrados and intrados drawn by chords of at most 1°, so to 1e-4).
+#[test]
+fn vertical_joint_mechanisms_stand_on_their_radial_springings_and_cover_the_arch() {
+    use archstudy::analysis::kinematics::MechanismDrawing;
+    let run = run_example("vertical-joints-horizontal");
+    let data = data::load(&RunLayout::at(&run)).expect("the run reads back");
+    assert!(!data.mechanisms.is_empty(), "no mechanisms stored");
+    let area = |poly: &[[f64; 2]]| -> f64 {
+        let n = poly.len();
+        0.5 * (0..n)
+            .map(|i| {
+                let (p, q) = (poly[i], poly[(i + 1) % n]);
+                p[0] * q[1] - q[0] * p[1]
+            })
+            .sum::<f64>()
+            .abs()
+    };
+    for m in &data.mechanisms {
+        let d: MechanismDrawing = serde_json::from_str(&m.drawing_json).expect("a drawing");
+        for (s, side) in d.supports.iter().zip([-1.0, 1.0]) {
+            for (p, x) in [(s.intrados, side), (s.extrados, side * m.k)] {
+                assert!(
+                    (p[0] - x).abs() < 1e-12 && p[1].abs() < 1e-12,
+                    "{p:?} at K {}",
+                    m.k
+                );
+            }
+        }
+        let covered: f64 = d.outlines.iter().map(|o| area(&o.original)).sum();
+        let exact = 0.5 * std::f64::consts::PI * (m.k * m.k - 1.0);
+        assert!(
+            (covered - exact).abs() < 1e-4 * exact,
+            "{}: parts cover {covered}, the arch {exact}",
+            m.state_id
+        );
+    }
+    // Their figures are drawn.
+    let stems: Vec<String> = charts::build(&data).into_iter().map(|f| f.stem).collect();
+    assert!(
+        stems.iter().any(|s| s.starts_with("mechanisms-")),
+        "{stems:?}"
+    );
+}

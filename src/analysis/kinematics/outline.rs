@@ -130,14 +130,112 @@ pub fn displace(
     ]
 }
 
-/// The outline polygon of the arch between two joints, `step` radians between samples.
-fn polygon<G: ArchGeometry + ?Sized>(geom: &G, from: f64, to: f64, step: f64) -> Vec<Point> {
+/// The joint the arch stands on at side `sign` (±1): the joint at ±α, or the springing plane
+/// beyond it when the form has one there (the radial support of an arch with vertical
+/// joints, whose joint at ±α is the vertical section through the intrados springing).
+fn support_joint<G: ArchGeometry + ?Sized>(
+    geom: &G,
+    sign: f64,
+    settings: &KinematicsSettings,
+) -> crate::analysis::statics::Joint {
+    let a = geom.half_angle();
+    if plane_beyond(geom, sign, settings) {
+        geom.joint(sign * a.next_up())
+    } else {
+        geom.joint(sign * a)
+    }
+}
+
+/// Whether the form has a springing plane beyond ±α other than the joint at ±α.
+fn plane_beyond<G: ArchGeometry + ?Sized>(
+    geom: &G,
+    sign: f64,
+    settings: &KinematicsSettings,
+) -> bool {
+    let a = geom.half_angle();
+    let (u, v) = (
+        geom.joint(sign * a).along(),
+        geom.joint(sign * a.next_up()).along(),
+    );
+    (u[0] - v[0]).abs() + (u[1] - v[1]).abs() > settings.tol_same_ray
+}
+
+/// Points of the circle through `p`, `q` and `r` from `p` towards `q` (both excluded), at
+/// most `step` radians apart; none when the three are collinear or `p` is `q`.
+fn arc_between(p: Point, q: Point, r: Point, step: f64) -> Vec<Point> {
+    let d = 2.0 * (p[0] * (q[1] - r[1]) + q[0] * (r[1] - p[1]) + r[0] * (p[1] - q[1]));
+    if d.abs() < f64::EPSILON || p == q {
+        return Vec::new();
+    }
+    let n = |a: Point| a[0] * a[0] + a[1] * a[1];
+    let c = [
+        (n(p) * (q[1] - r[1]) + n(q) * (r[1] - p[1]) + n(r) * (p[1] - q[1])) / d,
+        (n(p) * (r[0] - q[0]) + n(q) * (p[0] - r[0]) + n(r) * (q[0] - p[0])) / d,
+    ];
+    let rho = n([p[0] - c[0], p[1] - c[1]]).sqrt();
+    let (a0, a1) = (
+        (p[1] - c[1]).atan2(p[0] - c[0]),
+        (q[1] - c[1]).atan2(q[0] - c[0]),
+    );
+    let mut da = a1 - a0;
+    if da > std::f64::consts::PI {
+        da -= std::f64::consts::TAU;
+    } else if da < -std::f64::consts::PI {
+        da += std::f64::consts::TAU;
+    }
+    let m = ((da.abs() / step).ceil() as usize).max(1);
+    (1..m)
+        .map(|i| {
+            let t = a0 + da * i as f64 / m as f64;
+            [c[0] + rho * t.cos(), c[1] + rho * t.sin()]
+        })
+        .collect()
+}
+
+/// The outline polygon of the arch between two joints, `step` radians between samples. An
+/// end beyond ±α (a springing plane past the joint at ±α) meets the joint at ±α along the
+/// extrados arc: the circle through that end's extrados point and two extrados points at
+/// and just inside ±α.
+fn polygon<G: ArchGeometry + ?Sized>(
+    geom: &G,
+    (from, to): (f64, f64),
+    step: f64,
+    beyond: [bool; 2],
+) -> Vec<Point> {
     let n = (((to - from).abs() / step).ceil() as usize).max(1);
     let ts: Vec<f64> = (0..=n)
         .map(|i| from + (to - from) * i as f64 / n as f64)
         .collect();
+    let a = geom.half_angle();
+    // The extrados from the springing plane beyond ±α to the joint at ±α: the plane's
+    // extrados point, the arc, the joint's extrados point.
+    let wedge = |sign: f64| -> Vec<Point> {
+        let inner = if sign > 0.0 { from.max(-a) } else { to.min(a) };
+        let h = 0.5 * step.min((sign * a - inner).abs());
+        let e = geom.joint(sign * a.next_up()).extrados;
+        let at = geom.joint(sign * a).extrados;
+        let near = geom.joint(sign * (a - h)).extrados;
+        let mut v = vec![e];
+        v.extend(arc_between(e, at, near, step));
+        v.push(at);
+        v
+    };
+    let right_end = to >= a && beyond[1];
+    let left_end = from <= -a && beyond[0];
     let mut out: Vec<Point> = ts.iter().map(|&t| geom.joint(t).intrados).collect();
-    out.extend(ts.iter().rev().map(|&t| geom.joint(t).extrados));
+    let mut extrados: Vec<Point> = Vec::new();
+    if right_end {
+        extrados.extend(wedge(1.0));
+    } else {
+        extrados.push(geom.joint(ts[n]).extrados);
+    }
+    extrados.extend(ts[1..n].iter().rev().map(|&t| geom.joint(t).extrados));
+    if left_end {
+        extrados.extend(wedge(-1.0).into_iter().rev());
+    } else {
+        extrados.push(geom.joint(ts[0]).extrados);
+    }
+    out.extend(extrados);
     out
 }
 
@@ -159,12 +257,13 @@ pub fn drawing_with<G: ArchGeometry + ?Sized>(
     settings: &KinematicsSettings,
 ) -> MechanismDrawing {
     let step = 1.0_f64.to_radians();
+    let beyond = [-1.0, 1.0].map(|sign| plane_beyond(geom, sign, settings));
     let outlines = field
         .parts
         .iter()
         .filter(|p| p.theta_to > p.theta_from)
         .map(|p| {
-            let original = polygon(geom, p.theta_from, p.theta_to, step);
+            let original = polygon(geom, (p.theta_from, p.theta_to), step, beyond);
             let displaced = original
                 .iter()
                 .map(|&q| displace(&p.velocity, q, amplitude, settings))
@@ -223,9 +322,8 @@ pub fn drawing_with<G: ArchGeometry + ?Sized>(
             displace(&p.velocity, j.extrados, amplitude, settings),
         ]);
     }
-    let alpha = geom.half_angle();
-    let support = |theta: f64, sign: f64| {
-        let j = geom.joint(theta);
+    let support = |sign: f64| {
+        let j = support_joint(geom, sign, settings);
         let n = j.normal();
         SupportMark {
             intrados: j.intrados,
@@ -237,7 +335,7 @@ pub fn drawing_with<G: ArchGeometry + ?Sized>(
         outlines,
         hinges,
         slides,
-        supports: [support(-alpha, -1.0), support(alpha, 1.0)],
+        supports: [support(-1.0), support(1.0)],
         voussoir_joints,
         amplitude,
     }

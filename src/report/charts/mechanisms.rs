@@ -20,14 +20,8 @@ pub fn flow_rule_text(rule: &str) -> &str {
     }
 }
 
-/// The mechanisms figure of a bifurcation state, when its mechanisms were stored. Blocks
-/// cut by vertical joints are not drawn: the drawing knows radial joints and supports only
-/// (the mechanism's joints and work equation stay in mechanisms.parquet, and the state
-/// figure shows its hinges and sliding joints on the vertical sections).
+/// The mechanisms figure of a bifurcation state, when its mechanisms were stored.
 pub fn figure(data: &RunData, s: &StateRow) -> Option<FigureSpec> {
-    if s.joint_orientation == "vertical" {
-        return None;
-    }
     let rows: Vec<_> = data
         .mechanisms
         .iter()
