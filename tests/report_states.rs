@@ -111,11 +111,10 @@ fn assert_case_states(run: &Path, form: (&str, f64, &str), load: &str) {
             s.state_id,
             m.work_residual
         );
-        // Drawn on radial blocks only (vertical joints: see below).
-        assert_eq!(
+        // Drawn for radial and vertical joints alike.
+        assert!(
             run.join(format!("plots/mechanisms-{}.png", s.state_id))
                 .is_file(),
-            s.joint_orientation == "radial",
             "{}",
             s.state_id
         );
@@ -193,7 +192,7 @@ fn vertical_joints_under_a_horizontal_load_draw_vertical_joints_and_the_load() {
             .count();
         assert_eq!(on_joints, 11, "{}", s.state_id);
     }
-    // Their mechanisms stay in mechanisms.parquet but are not drawn on radial blocks.
+    // Their states and mechanisms are drawn.
     let plots: Vec<String> = std::fs::read_dir(run.join("plots"))
         .expect("plots")
         .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
@@ -203,7 +202,7 @@ fn vertical_joints_under_a_horizontal_load_draw_vertical_joints_and_the_load() {
         "{plots:?}"
     );
     assert!(
-        !plots.iter().any(|p| p.starts_with("mechanisms-")),
+        plots.iter().any(|p| p.starts_with("mechanisms-")),
         "{plots:?}"
     );
 }
