@@ -195,17 +195,24 @@ fn lambda_map_draws_the_stored_load_factors_and_the_located_mechanism_changes() 
             .expect("a case at μ = ∞")
             .load_factor
     };
-    // K = 1.1 lies below K_c = 1.1136 of the semicircle: no state stands, no λ; the cells
-    // between it and K = 1.15 take the λ of K = 1.15.
+    // K = 1.1 lies below K_c = 1.1136 of the semicircle: no state stands, no λ. The cells
+    // nearer K = 1.1 than K = 1.15 are grey; the others up to K = 1.15 take the λ of 1.15.
     assert_eq!(inf(1.1), None);
     let (Some(l155), Some(l160), Some(l115)) = (inf(1.55), inf(1.6), inf(1.15)) else {
         panic!("λ at μ = ∞ for K = 1.15, 1.55 and 1.6");
     };
-    assert!(
-        (strip.lambda[0] - l115).abs() < 1e-12,
-        "{}",
-        strip.lambda[0]
-    );
+    let centre = |j: usize| 1.1 + 0.5 * (j as f64 + 0.5) / map.ny as f64;
+    let mut grey = 0;
+    for (j, l) in strip.lambda.iter().enumerate() {
+        let k = centre(j);
+        if k < 1.125 {
+            assert!(l.is_nan(), "K = {k}: {l}");
+            grey += 1;
+        } else if k < 1.15 {
+            assert!((l - l115).abs() < 1e-12, "K = {k}: {l}");
+        }
+    }
+    assert!(grey > 0, "no grey cell below K = 1.125");
     let half = 0.5 / map.ny as f64 * 0.5 / 0.05;
     let expect_last = l160 - (l160 - l155) * half;
     let last = strip.lambda[map.ny - 1];

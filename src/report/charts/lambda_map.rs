@@ -47,16 +47,22 @@ fn weighted(pairs: &[(f64, f64)]) -> f64 {
 }
 
 /// λ at (μ, K), bilinear between the four grid points round it (over those with a finite
-/// λ); `values` is K-major over the grid `mu` × `k`.
-pub fn bilinear(mu: &[f64], k: &[f64], values: &[f64], at: (f64, f64)) -> f64 {
-    let ((i, s), (j, t)) = (cell(mu, at.0), cell(k, at.1));
-    let v = |i: usize, j: usize| values[j * mu.len() + i];
-    weighted(&[
+/// λ); NaN (no finite λ) when the nearest of them has none, so that a grid line where the
+/// arch never stands (or stands under every λ) is drawn as such, not blended from its
+/// neighbours.
+fn bilinear(g: &Grid, at: (f64, f64)) -> f64 {
+    let ((i, s), (j, t)) = (cell(&g.mu, at.0), cell(&g.k, at.1));
+    let v = |i: usize, j: usize| g.lambda[j * g.mu.len() + i];
+    let corners = [
         (v(i, j), (1.0 - s) * (1.0 - t)),
         (v(i + 1, j), s * (1.0 - t)),
         (v(i, j + 1), (1.0 - s) * t),
         (v(i + 1, j + 1), s * t),
-    ])
+    ];
+    match corners.iter().max_by(|a, b| a.1.total_cmp(&b.1)) {
+        Some(nearest) if nearest.0.is_finite() => weighted(&corners),
+        _ => f64::NAN,
+    }
 }
 
 /// The λ maps of a load case, one per arch of the study.
@@ -80,7 +86,7 @@ pub fn figures(data: &RunData, lc: &LoadCaseFigure) -> Vec<FigureSpec> {
             continue;
         };
         let mut caption = format!(
-            "The collapse load factor λ_max of every case (results.parquet) as a colour over the friction coefficient μ and the thickness ratio K, bilinear between the grid points and drawn at the figure's resolution; {}.",
+            "The collapse load factor λ_max of every case (results.parquet) as a colour over the friction coefficient μ and the thickness ratio K, bilinear between the grid points (grey where the nearest grid point has no finite λ) and drawn at the figure's resolution; {}.",
             if map.log {
                 "a logarithmic colour scale over two decades below the largest λ (smaller values take its lowest colour)"
             } else {
@@ -193,15 +199,15 @@ pub fn lambda_map(
     for j in 0..ny {
         for i in 0..nx {
             let at = (centre(i, nx, mu0, mu1), centre(j, ny, k0, k1));
-            lambda.push(bilinear(&g.mu, &g.k, &g.lambda, at));
+            lambda.push(bilinear(&g, at));
         }
     }
+    let classified = mechanism_map(&g, &changes);
     let mechanisms: Vec<String> = ["rotational", "mixed", "sliding"]
         .into_iter()
         .filter(|m| g.mechanism.iter().any(|x| x.as_deref() == Some(m)))
         .map(String::from)
         .collect();
-    let classified = mechanism_map(&g, &changes);
     let mechanism = classified
         .raster(nx, ny)
         .into_iter()
@@ -214,7 +220,13 @@ pub fn lambda_map(
         lambda: (0..ny)
             .map(|j| {
                 let (jj, t) = cell(&g.k, centre(j, ny, k0, k1));
-                weighted(&[(col[jj], 1.0 - t), (col[jj + 1], t)])
+                // As on the map: grey where the nearest grid point has no finite λ.
+                let nearest = if t < 0.5 { col[jj] } else { col[jj + 1] };
+                if nearest.is_finite() {
+                    weighted(&[(col[jj], 1.0 - t), (col[jj + 1], t)])
+                } else {
+                    f64::NAN
+                }
             })
             .collect(),
         changes: changes
