@@ -1,10 +1,16 @@
 //! One state solve per arch kind and load kind (`cargo bench --bench arches`): a group per
 //! arch (circular with radial joints, circular with vertical joints, pointed e = 0.2, 64
 //! voussoirs), in each the self-weight, horizontal (λ = 0.1) and point (λ = 0.1 at 30°) scenes
-//! at (K, μ) = (1.3, 0.5). `scene` is the route `archstudy` takes for the scene; `general` is
-//! the general three-unknown route on the same scene (its regime from the feasibility of the
-//! rotational rows, the sliding rows and all rows), so the ratio of the two medians in one
-//! run is the speed-up of the route taken over the general LP.
+//! at (K, μ) = (1.3, 0.5). `scene` is the route `archstudy` takes for the scene (under
+//! self-weight the closed forms of the circular arch with radial joints, the right half in
+//! the symmetric unknowns on the other forms); `general` is the general three-unknown route
+//! over the whole arch on the same scene (its regime from the feasibility of the rotational
+//! rows, the sliding rows and all rows), so the ratio of the two medians in one run is the
+//! speed-up of the route taken over the general LP.
+//!
+//! `critical` times the critical-value searches of the symmetric forms under self-weight
+//! (K_c at μ = 0.4 and μ_c at K = 1.3), on the right half in the symmetric unknowns (`half`)
+//! and over the whole arch in three unknowns (`whole`), for their ratio.
 //!
 //! `load_factor` times the largest load factor λ_max of the semicircle (K = 1.3): the
 //! continuum under a horizontal load (μ = 0.6) and under a point load at 30° (μ = ∞), and
@@ -57,6 +63,7 @@ fn bench_general(bencher: Bencher, s: &Scene) {
     let model = ArchModel::new(s.arch, s.form, s.load).expect("a valid form");
     let settings = Settings {
         lambda: s.lambda,
+        symmetric_half: false,
         ..Settings::default()
     };
     bencher.bench(|| general::regime(black_box(&model), s.friction.angle(), &settings).regime);
@@ -131,6 +138,69 @@ mod voussoirs {
     #[divan::bench(args = LOADS)]
     fn general(b: Bencher, l: &str) {
         bench_general(b, &scene_of(CIRCULAR, Discretisation::Voussoirs(64), l));
+    }
+}
+
+mod critical {
+    use super::*;
+
+    const FORMS: [&str; 3] = ["pointed", "vertical_joints", "pointed_9_voussoirs"];
+
+    fn form(name: &str) -> (ArchForm, Discretisation) {
+        match name {
+            "vertical_joints" => (VERTICAL, Discretisation::Continuum),
+            "pointed_9_voussoirs" => (POINTED, Discretisation::Voussoirs(9)),
+            _ => (POINTED, Discretisation::Continuum),
+        }
+    }
+
+    fn settings(half: bool) -> Settings {
+        Settings {
+            symmetric_half: half,
+            ..Settings::default()
+        }
+    }
+
+    fn model(name: &str, k: f64) -> Option<ArchModel> {
+        let (form, joints) = form(name);
+        let arch = Arch::new(k, 90.0, WeightModel::Annular, joints).ok()?;
+        ArchModel::new(arch, form, Load::SelfWeight).ok()
+    }
+
+    fn thickness(bencher: Bencher, name: &str, half: bool) {
+        let s = settings(half);
+        let mu = Friction::new(0.4).expect("μ ≥ 0");
+        bencher.bench(|| {
+            general::thickness_with(|k| model(name, k), 3.0, None, black_box(mu), &s)
+                .found()
+                .and_then(|c| c.k)
+        });
+    }
+
+    fn friction(bencher: Bencher, name: &str, half: bool) {
+        let s = settings(half);
+        let m = model(name, 1.3).expect("a valid arch");
+        bencher.bench(|| general::friction(black_box(&m), &s).found().map(|c| c.mu));
+    }
+
+    #[divan::bench(args = FORMS)]
+    fn thickness_half(b: Bencher, name: &str) {
+        thickness(b, name, true);
+    }
+
+    #[divan::bench(args = FORMS)]
+    fn thickness_whole(b: Bencher, name: &str) {
+        thickness(b, name, false);
+    }
+
+    #[divan::bench(args = FORMS)]
+    fn friction_half(b: Bencher, name: &str) {
+        friction(b, name, true);
+    }
+
+    #[divan::bench(args = FORMS)]
+    fn friction_whole(b: Bencher, name: &str) {
+        friction(b, name, false);
     }
 }
 

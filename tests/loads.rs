@@ -93,8 +93,11 @@ fn general_route_reproduces_the_reference_values() {
         assert_eq!(f.mechanism, Some(MechanismKind::Sliding));
         let angles: Vec<f64> = f.sliding_joints.iter().map(|j| j.angle_deg).collect();
         assert!(close(angles[2], SLIDING_DEG, 1e-6) && close(angles[3], 90.0, 1e-9));
-        // K at the mixed/sliding bifurcation: the collapse thickness at μ_min.
-        let b = s(Find::Thickness, a, mu(mu_min * (1.0 + 4.0 * f64::EPSILON)));
+        // K at the mixed/sliding bifurcation: the collapse thickness at μ_min, taken a hair
+        // above it (1e-13 relative, far below the 1e-9 asserted): μ_min was found at K = 1.4
+        // at the edge of the feasibility tolerance, and the sliding margin at another K
+        // differs from it by rounding, which must not decide whether the arch can stand.
+        let b = s(Find::Thickness, a, mu(mu_min * (1.0 + 1e-13)));
         assert!(close(b.k_crit.unwrap(), K_BIF, 1e-9), "{what}: {b:?}");
         // Between the bifurcations the collapse is mixed, with the symmetric value.
         let sym = scene::solve(&Scene::new(a, mu(0.35), Find::Thickness));

@@ -126,6 +126,11 @@ pub struct GeneralSettings {
     /// Load factor λ held fixed in margins, regimes and critical values (default 0; a load
     /// parameter, not a tolerance).
     pub lambda: f64,
+    /// Margins of an arch whose form and loads are mirror images about the crown's vertical
+    /// are solved on its right half with zero crown shear, the symmetric unknowns (default
+    /// true; a choice of route, not a tolerance): the same margin from half the joints.
+    /// False solves every arch over all its joints in three unknowns.
+    pub symmetric_half: bool,
 }
 
 impl GeneralSettings {
@@ -155,6 +160,7 @@ impl GeneralSettings {
         tol_thickness: 1e-15,
         tol_friction_angle: 1e-16,
         lambda: 0.0,
+        symmetric_half: true,
     };
 }
 

@@ -121,6 +121,14 @@ pub trait ArchGeometry {
     fn relaxed(&self, _theta: f64, _condition: Condition) -> bool {
         false
     }
+
+    /// True when the arch, its joints and its loads are mirror images about the crown's
+    /// vertical x = 0, joint θ of the right half matching joint −θ of the left: then every
+    /// admissible state has a mirror image, and their mean, with zero crown shear, is
+    /// admissible too. Default false.
+    fn mirror_symmetric(&self) -> bool {
+        false
+    }
 }
 
 /// Which condition a linear row expresses.

@@ -189,6 +189,12 @@ impl ArchGeometry for ArchModel {
         }
     }
 
+    fn mirror_symmetric(&self) -> bool {
+        // Every form is symmetric; a live load is not (horizontal loads and point loads act
+        // on one side), nor is an apex load shared freely between the halves.
+        self.load == Load::SelfWeight && !self.shared_apex
+    }
+
     fn discrete_joints(&self) -> Option<Vec<f64>> {
         let Discretisation::Voussoirs(n) = self.arch.joints else {
             return None;

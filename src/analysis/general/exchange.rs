@@ -17,7 +17,9 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
     /// A step that finds only rows already present violated is solved again on all rows.
     pub(super) fn solve_continuum(&self, settings: &Settings) -> Solved {
         let samples = self.samples(settings);
-        let mut rows = samples.initial_rows(settings, self.set, self.objective);
+        let mut rows = samples
+            .initial_rows(settings, self.set, self.objective)
+            .fixing_crown_shear(self.half);
         let mut iterations = 0;
         let mut start: Option<Vec<usize>> = None;
         loop {

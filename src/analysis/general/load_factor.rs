@@ -39,6 +39,7 @@ pub fn load_factor<G: ArchGeometry + ?Sized>(
         phi,
         set: RowSet::All,
         objective: Objective::LoadFactor,
+        half: false,
     };
     let s = p.solve(settings);
     let lambda = match s.outcome {

@@ -1,6 +1,7 @@
 //! The margin τ of a point over a set of rows, and the regime its three margins name.
 
 use super::active::mechanism_of;
+use super::half::{HalfArch, half_settings, mirrored};
 use super::problem::Problem;
 use super::rows::Objective;
 use super::{ActiveRow, CrownState, Outcome, RowSet, Settings};
@@ -45,7 +46,9 @@ impl MarginSolution {
 }
 
 /// The margin of a geometry at friction angle φ (radians) over a set of rows, with λ fixed
-/// at `settings.lambda`.
+/// at `settings.lambda`. A mirror-symmetric geometry is solved on its right half in the
+/// symmetric unknowns when `settings.symmetric_half` ([`super::half`]): the same margin, the
+/// active rows of both halves, zero crown shear.
 ///
 /// Invariant: `margin ≥ −tol_margin` iff the rows of `set` admit a common solution (up to the
 /// exchange tolerance for a continuum).
@@ -55,6 +58,23 @@ pub fn margin<G: ArchGeometry + ?Sized>(
     set: RowSet,
     settings: &Settings,
 ) -> MarginSolution {
+    if settings.symmetric_half && geom.mirror_symmetric() {
+        let mut m = margin_on(&HalfArch(geom), phi, set, &half_settings(settings), true);
+        m.active = mirrored(geom, m.active);
+        m.crown.shear_over_half_weight = 0.0;
+        return m;
+    }
+    margin_on(geom, phi, set, settings, false)
+}
+
+/// The margin of one problem: the whole arch, or a half (`half`) with zero crown shear.
+fn margin_on<G: ArchGeometry + ?Sized>(
+    geom: &G,
+    phi: f64,
+    set: RowSet,
+    settings: &Settings,
+    half: bool,
+) -> MarginSolution {
     let p = Problem {
         geom,
         phi,
@@ -63,6 +83,7 @@ pub fn margin<G: ArchGeometry + ?Sized>(
             lambda: settings.lambda,
             cap: settings.margin_cap,
         },
+        half,
     };
     let s = p.solve(settings);
     // A lower bound on the exact margin: shift τ down by the residual violation.

@@ -22,10 +22,16 @@
 //! a working set of its rows (the previous basis and the new cuts), which gives the same
 //! optimum as all of them. Critical values are roots of the margin in K or φ (Brent), as in
 //! [`super::symmetric`], which this module reproduces by an independent route.
+//!
+//! An arch whose form and loads are mirror images about the crown (any shape, joints, weight
+//! model or voussoir count under self-weight) has its margins solved on the right half in
+//! the symmetric unknowns (F_x, M₀), the crown shear held at zero (`half`): the same margin
+//! from half the joints, the active rows mirrored onto the left half.
 
 mod active;
 mod critical;
 mod exchange;
+mod half;
 mod load_factor;
 mod margin;
 mod problem;

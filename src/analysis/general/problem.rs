@@ -13,6 +13,9 @@ pub(super) struct Problem<'g, G: ?Sized> {
     pub(super) phi: f64,
     pub(super) set: RowSet,
     pub(super) objective: Objective,
+    /// True on the half of a mirror-symmetric arch ([`super::half`]): the crown shear is
+    /// held at zero by two auxiliary rows.
+    pub(super) half: bool,
 }
 
 /// The raw answer of a problem: programme solution, rows and residual.
@@ -128,7 +131,7 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
     }
 
     pub(super) fn solve_discrete(&self, thetas: &[f64], settings: &Settings) -> Solved {
-        let mut rows = LinearRows::new(self.objective);
+        let mut rows = LinearRows::new(self.objective).fixing_crown_shear(self.half);
         for &t in thetas {
             rows.push_joint(self.geom, t, self.phi, self.set, self.objective);
         }

@@ -138,6 +138,18 @@ impl LinearRows {
         rows
     }
 
+    /// Adds the auxiliary rows F_y ≤ 0 and −F_y ≤ 0 of a problem in the symmetric unknowns
+    /// (`half`): the crown shear is zero.
+    pub(super) fn fixing_crown_shear(mut self, half: bool) -> Self {
+        if half {
+            for sign in [1.0, -1.0] {
+                self.a.push([0.0, sign, 0.0, 0.0]);
+                self.b.push(0.0);
+            }
+        }
+        self
+    }
+
     pub(super) fn new(objective: Objective) -> Self {
         match objective {
             Objective::Margin { cap, .. } => LinearRows {
