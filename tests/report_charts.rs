@@ -105,9 +105,12 @@ fn lambda_map_draws_the_stored_load_factors_and_the_located_mechanism_changes() 
     };
     let mus = [0.3, 0.35, 0.4, 0.5, 0.6, 0.8, 1.0];
     let ks: Vec<f64> = (0..11).map(|j| 1.1 + 0.05 * f64::from(j)).collect();
-    // Every raster cell's λ lies between the stored λ of the four grid points round it,
-    // and equals their bilinear mean computed here from the rows.
-    let mut checked = 0;
+    // Every raster cell whose four grid points collapse by one mechanism takes their
+    // bilinear mean λ, computed here from the rows. In a cell crossed by a change of
+    // mechanism, a raster cell takes λ from the grid points of its own drawn mechanism only:
+    // it lies within the stored λ of that mechanism's grid points within two grid lines of
+    // the cell, never at a value blended with the other mechanism's.
+    let (mut checked, mut crossed) = (0, 0);
     for j in 0..map.ny {
         for i in 0..map.nx {
             let mu = mu0 + (mu1 - mu0) * (i as f64 + 0.5) / map.nx as f64;
@@ -127,6 +130,33 @@ fn lambda_map_draws_the_stored_load_factors_and_the_located_mechanism_changes() 
             let Some(c) = c.into_iter().collect::<Option<Vec<f64>>>() else {
                 continue;
             };
+            let kind = |ii: usize, jj: usize| at(mus[ii], ks[jj]).mechanism.clone();
+            let drawn = map.lambda[j * map.nx + i];
+            let one = [(a + 1, b), (a, b + 1), (a + 1, b + 1)]
+                .iter()
+                .all(|&(ii, jj)| kind(ii, jj) == kind(a, b));
+            if !one {
+                let own = map.mechanism[j * map.nx + i].map(|x| map.mechanisms[x as usize].clone());
+                let corners = [(a, b), (a + 1, b), (a, b + 1), (a + 1, b + 1)];
+                if own.is_none() || !corners.iter().any(|&(ii, jj)| kind(ii, jj) == own) {
+                    continue;
+                }
+                let near: Vec<f64> = (a.saturating_sub(2)..=(a + 3).min(mus.len() - 1))
+                    .flat_map(|ii| {
+                        (b.saturating_sub(2)..=(b + 3).min(ks.len() - 1)).map(move |jj| (ii, jj))
+                    })
+                    .filter(|&(ii, jj)| kind(ii, jj) == own)
+                    .filter_map(|(ii, jj)| corner(ii, jj))
+                    .collect();
+                let lo = near.iter().copied().fold(f64::INFINITY, f64::min);
+                let hi = near.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                assert!(
+                    drawn >= lo - 1e-12 && drawn <= hi + 1e-12,
+                    "cell ({i}, {j}) at μ = {mu}, K = {k}, {own:?}: {drawn} outside [{lo}, {hi}]"
+                );
+                crossed += 1;
+                continue;
+            }
             let (s, t) = (
                 (mu - mus[a]) / (mus[a + 1] - mus[a]),
                 (k - ks[b]) / (ks[b + 1] - ks[b]),
@@ -135,7 +165,6 @@ fn lambda_map_draws_the_stored_load_factors_and_the_located_mechanism_changes() 
                 + c[1] * s * (1.0 - t)
                 + c[2] * (1.0 - s) * t
                 + c[3] * s * t;
-            let drawn = map.lambda[j * map.nx + i];
             assert!(
                 (drawn - expected).abs() <= 1e-9 * expected.abs().max(1e-3),
                 "cell ({i}, {j}) at μ = {mu}, K = {k}: {drawn} against {expected}"
@@ -143,7 +172,11 @@ fn lambda_map_draws_the_stored_load_factors_and_the_located_mechanism_changes() 
             checked += 1;
         }
     }
-    assert!(checked > map.nx * map.ny / 2, "{checked} cells checked");
+    // About a third of the map lies in cells of one mechanism, half in crossed cells.
+    assert!(
+        checked > map.nx * map.ny / 4 && crossed > map.nx * map.ny / 4,
+        "{checked} cells of one mechanism, {crossed} crossed cells checked"
+    );
     // The scale spans the stored values, 0.0295 to 0.859: a factor of 29, under the 30 at
     // which the scale turns logarithmic.
     let stored: Vec<f64> = cases.iter().filter_map(|c| c.load_factor).collect();

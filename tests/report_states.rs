@@ -238,3 +238,169 @@ fn a_standing_pointed_arch_with_vertical_joints_has_its_line_inside_the_masonry(
     assert_eq!(collapse.joint_orientation, "vertical");
     assert!(!collapse.joints.sliding_angles_deg.is_empty());
 }
+
+/// A pointed arch (e = 0.2) under self-weight over a grid that holds both its bifurcations
+/// (mixed / rotational at μ ≈ 0.319, sliding / mixed at μ ≈ 0.259).
+const POINTED_STATE: &str = "\
+name: pointed-state
+arch: {shape: pointed, eccentricity: 0.2}
+grid:
+  k: {from: 1.05, to: 1.2, steps: 16}
+  mu: {values: [0.22, 0.25, 0.28, 0.31, 0.34, inf]}
+load_cases:
+  - {name: gravity, kind: self_weight}
+find: state
+";
+
+/// The semicircle with vertical joints under self-weight over a grid that holds its
+/// mixed / rotational bifurcation (μ ≈ 2.02, K ≈ 1.116).
+const VERTICAL_STATE: &str = "\
+name: vertical-state
+arch: {joints: vertical}
+grid:
+  k: {from: 1.08, to: 1.2, steps: 13}
+  mu: {values: [1.8, 1.9, 2.0, 2.1, 2.2, inf]}
+load_cases:
+  - {name: gravity, kind: self_weight}
+find: state
+";
+
+/// Every bifurcation of a state study on the general route has its collapse mechanisms in
+/// mechanisms.parquet, as the semicircle's do: rows numbered by the bifurcation, at its K and
+/// μ (to 1e-9), under both flow rules, of both its mechanisms among them, each meeting the
+/// work equation (eq. 11; the whole balance under the associative rule) to
+/// `KinematicsSettings::tol_work`, and drawn as `plots/mechanisms-bifurcation-<i>.png`.
+/// Returns each bifurcation's K with the drawings of its mechanisms.
+fn assert_bifurcation_mechanisms(
+    run: &Path,
+    at_least: usize,
+) -> Vec<(f64, Vec<archstudy::analysis::kinematics::MechanismDrawing>)> {
+    use archstudy::analysis::kinematics::KinematicsSettings;
+    let layout = RunLayout::at(run);
+    let bifs = store::read_bifurcations(&layout.bifurcations()).expect("bifurcations");
+    let mechs = store::read_mechanisms(&layout.mechanisms()).expect("mechanisms");
+    assert!(bifs.len() >= at_least, "{} bifurcations", bifs.len());
+    let mut out = Vec::new();
+    for (i, b) in bifs.iter().enumerate() {
+        let id = format!("bifurcation-{}", i + 1);
+        let own: Vec<&store::MechanismRow> = mechs
+            .iter()
+            .filter(|m| m.bifurcation as usize == i + 1 && m.load_case == b.load_case)
+            .collect();
+        for rule in ["non_associative", "associative"] {
+            let n = own.iter().filter(|m| m.flow_rule == rule).count();
+            assert!(n >= 2, "{id}: {n} {rule} mechanisms");
+        }
+        let mut kinds: Vec<&str> = own.iter().map(|m| m.mechanism.as_str()).collect();
+        kinds.sort_unstable();
+        kinds.dedup();
+        for kind in [&b.mechanism_a, &b.mechanism_b] {
+            assert!(
+                kinds.contains(&kind.as_str()),
+                "{id}: {kinds:?}, not {kind}"
+            );
+        }
+        let mut drawings = Vec::new();
+        for m in &own {
+            assert_eq!(m.state_id, id);
+            assert!((m.k - b.k).abs() <= 1e-9, "{id}: K {} vs {}", m.k, b.k);
+            assert!((m.mu - b.mu).abs() <= 1e-9, "{id}: μ {} vs {}", m.mu, b.mu);
+            assert!(
+                m.work_residual <= KinematicsSettings::DEFAULT.tol_work,
+                "{id} {} {}: work residual {}",
+                m.mechanism,
+                m.flow_rule,
+                m.work_residual
+            );
+            drawings.push(serde_json::from_str(&m.drawing_json).expect("a drawing"));
+        }
+        assert!(
+            run.join(format!("plots/mechanisms-{id}.png")).is_file(),
+            "{id}: no figure"
+        );
+        out.push((b.k, drawings));
+    }
+    out
+}
+
+/// The mechanisms at the bifurcations of a pointed arch are drawn on the pointed arch: its
+/// springings at x = ±(1 − d) and ±(K − d), d = e(1 + K)/2 the offset of each half's centre,
+/// not at ±1 and ±K as on the semicircle, and its highest point the extrados apex at x = 0,
+/// y = √(K² − d²).
+#[test]
+fn pointed_arch_bifurcations_have_their_mechanisms_drawn_on_the_pointed_arch() {
+    let run = run_study(
+        &scratch("states-pointed-state"),
+        "pointed.yaml",
+        POINTED_STATE,
+    );
+    let all = assert_bifurcation_mechanisms(&run, 2);
+    let mut drawn = 0;
+    for (k, drawings) in all {
+        let d = 0.2 * 0.5 * (1.0 + k);
+        let apex = (k * k - d * d).sqrt();
+        for g in drawings {
+            for (s, side) in g.supports.iter().zip([-1.0, 1.0]) {
+                for (p, x) in [(s.intrados, side * (1.0 - d)), (s.extrados, side * (k - d))] {
+                    assert!(
+                        (p[0] - x).abs() < 1e-12 && p[1].abs() < 1e-12,
+                        "{p:?} against ({x}, 0) at K {k}"
+                    );
+                }
+            }
+            let top = g
+                .outlines
+                .iter()
+                .flat_map(|o| o.original.iter())
+                .max_by(|a, b| a[1].total_cmp(&b[1]))
+                .expect("an outline");
+            assert!(
+                top[0].abs() < 1e-9 && (top[1] - apex).abs() < 1e-9,
+                "highest point {top:?}, apex (0, {apex}) at K {k}"
+            );
+            drawn += 1;
+        }
+    }
+    assert!(drawn >= 8, "{drawn} drawings");
+}
+
+/// The mechanisms at the bifurcation of the semicircle with vertical joints are drawn on
+/// that arch: it stands on its radial springings (from (±1, 0) to (±K, 0)), and its sliding
+/// joints at ±90° are the vertical sections through the intrados springings: centred at
+/// (±1, √(K² − 1)/2) and running straight up.
+#[test]
+fn vertical_joint_bifurcations_have_their_mechanisms_drawn_on_vertical_joints() {
+    let run = run_study(
+        &scratch("states-vertical-state"),
+        "vertical.yaml",
+        VERTICAL_STATE,
+    );
+    let all = assert_bifurcation_mechanisms(&run, 1);
+    let mut sections = 0;
+    for (k, drawings) in all {
+        for g in drawings {
+            for (s, side) in g.supports.iter().zip([-1.0, 1.0]) {
+                for (p, x) in [(s.intrados, side), (s.extrados, side * k)] {
+                    assert!(
+                        (p[0] - x).abs() < 1e-12 && p[1].abs() < 1e-12,
+                        "{p:?} against ({x}, 0) at K {k}"
+                    );
+                }
+            }
+            for s in g.slides.iter().filter(|s| s.centre[1] > 1e-9) {
+                let side = s.centre[0].signum();
+                assert!(
+                    (s.centre[0] - side).abs() < 1e-12
+                        && (s.centre[1] - 0.5 * (k * k - 1.0).sqrt()).abs() < 1e-12,
+                    "{s:?} at K {k}"
+                );
+                assert!(
+                    s.along[0].abs() < 1e-12 && (s.along[1] - 1.0).abs() < 1e-12,
+                    "{s:?}"
+                );
+                sections += 1;
+            }
+        }
+    }
+    assert!(sections >= 8, "{sections} vertical sections drawn");
+}

@@ -6,6 +6,9 @@
 use super::curves::Samples;
 use crate::analysis::forms::ArchModel;
 use crate::analysis::general::{self, CrownState, Outcome, Settings};
+use crate::analysis::kinematics::{
+    FlowRule, LimitState, VelocityField, WorkEquation, drawing, mechanism_modes, work_equation,
+};
 use crate::analysis::statics::{ArchGeometry, Condition, joint_rows};
 use crate::model::{Arch, ArchForm, Discretisation, JointOrientation, Load, Shape, WeightModel};
 use crate::store::StateRow;
@@ -317,9 +320,6 @@ pub fn collapse_mechanism_row(
     (state_id, load_case): (&str, &str),
     mu: f64,
 ) -> Option<crate::store::MechanismRow> {
-    use crate::analysis::kinematics::{
-        FlowRule, LimitState, VelocityField, drawing, mechanism_modes, work_equation,
-    };
     let kind = c.mechanism.as_ref()?.kind;
     let joints = general::pattern_of_rows(&c.active);
     let modes = mechanism_modes(model, &joints, FlowRule::NonAssociative, true).ok()?;
@@ -338,20 +338,40 @@ pub fn collapse_mechanism_row(
             (a.1.0.cmp(&b.1.0)).then(a.1.1.work_residual.total_cmp(&b.1.1.work_residual))
         })
         .map(|(f, (_, w))| (f, w))?;
+    Some(mechanism_row(
+        model,
+        (field, &w),
+        modes.dof,
+        (state_id, load_case, 0),
+        mu,
+    ))
+}
+
+/// A row of mechanisms.parquet: one velocity field of a limit state with its work equation
+/// (eq. 11; the whole balance under the associative rule), its slip and dilatancy at the
+/// sliding joints and its drawing; `bifurcation` numbers the bifurcation it belongs to (0:
+/// the state of a case).
+pub fn mechanism_row(
+    model: &ArchModel,
+    (field, w): (&VelocityField, &WorkEquation),
+    dof: u32,
+    (state_id, load_case, bifurcation): (&str, &str, u32),
+    mu: f64,
+) -> crate::store::MechanismRow {
     let slides: Vec<_> = field.joints.iter().filter(|j| j.slips()).collect();
-    Some(crate::store::MechanismRow {
+    crate::store::MechanismRow {
         state_id: state_id.to_string(),
         load_case: load_case.to_string(),
-        bifurcation: 0,
+        bifurcation,
         k: model.arch().k,
         mu,
         mechanism: field.kind().map_or("none", |k| k.as_str()).to_string(),
-        flow_rule: "non_associative".into(),
+        flow_rule: super::mechanisms::rule_name(field.rule).into(),
         work_loads: w.work_loads,
         work_normal: w.work_normal,
         work_friction: w.work_friction,
-        work_residual: w.work_residual,
-        dof: modes.dof,
+        work_residual: super::mechanisms::work_residual(field.rule, w),
+        dof,
         sliding_angles_deg: slides.iter().map(|j| j.angle_deg()).collect(),
         slip: slides.iter().map(|j| j.slip).collect(),
         dilatancy: slides.iter().map(|j| j.dilatancy).collect(),
@@ -361,7 +381,7 @@ pub fn collapse_mechanism_row(
             super::mechanisms::DRAWING_AMPLITUDE,
         ))
         .unwrap_or_default(),
-    })
+    }
 }
 
 /// The limit state at the located point of a collapse curve: the state of largest margin

@@ -3,13 +3,17 @@
 //! arch of its own group; for a `load_factor` load case, the collapse state of its weakest
 //! case and of the weakest case of every other mechanism found (docs/report-files.md).
 
-use super::general::{self, CrownForce};
+use super::general::{self, CrownForce, active_joint_parameter};
 use super::{ArchGroup, Collector, SceneAt, blank_state, finite, joint_lists, suffix};
-use crate::analysis::Mechanism;
 use crate::analysis::forms::ArchModel;
 use crate::analysis::general::Settings;
+use crate::analysis::kinematics::{
+    ActiveJoint, FlowRule, LimitState, mechanism_modes, work_equation,
+};
+use crate::analysis::statics::Condition;
+use crate::analysis::{Face, Mechanism, Sense};
 use crate::manifest::{LoadCase, Manifest};
-use crate::model::Friction;
+use crate::model::{Friction, Load};
 use crate::scene::Find;
 use crate::store::{BifurcationGroup, BifurcationRow, LoadFactorCase, MechanismRow, StateRow};
 use anyhow::Result;
@@ -25,6 +29,13 @@ pub(super) struct LoadCaseStates<'a> {
     /// Its load_factor cases (empty for other finds).
     pub cases: Vec<&'a LoadFactorCase>,
 }
+
+/// Two joints of a stored limit state under self-weight whose angles are each other's
+/// mirror image to this many degrees are one symmetric pair (default 1e-3): a hinge where the
+/// line of thrust touches a face tangentially is placed by the linear programmes only to
+/// about the square root of their tolerance (mirrored hinges of the pointed arch differ by
+/// up to 3e-6°), while distinct joints of a state lie degrees apart.
+pub const MIRROR_TOL_DEG: f64 = 1e-3;
 
 /// The friction of a stored μ (+inf: infinite).
 fn friction(mu: f64) -> Friction {
@@ -81,7 +92,8 @@ impl LoadCaseStates<'_> {
         } else {
             for (i, &(b, g)) in self.bifurcations.iter().enumerate() {
                 let id = format!("bifurcation-{}{sfx}", i + 1);
-                rows.extend(self.bifurcation_state(id, b, g)?);
+                let index = u32::try_from(i + 1).unwrap_or(u32::MAX);
+                rows.extend(self.bifurcation_state(id, (b, g), index, mechs)?);
             }
         }
         for group in super::arch_groups(self.manifest) {
@@ -103,12 +115,14 @@ impl LoadCaseStates<'_> {
     }
 
     /// The limit state at a located bifurcation: the state of largest margin there (zero up
-    /// to the tolerance), with the joints of both mechanisms as stored.
+    /// to the tolerance), with the joints of both mechanisms as stored; its collapse
+    /// mechanisms (numbered `index`) go to `mechs`.
     fn bifurcation_state(
         &self,
         id: String,
-        b: &BifurcationRow,
-        g: Option<&BifurcationGroup>,
+        (b, g): (&BifurcationRow, Option<&BifurcationGroup>),
+        index: u32,
+        mechs: &mut Vec<MechanismRow>,
     ) -> Result<Option<StateRow>> {
         let group = ArchGroup::of_bifurcation(self.manifest, g);
         let at = g.and_then(|g| g.at_deg).or(self.lc.at_deg);
@@ -129,6 +143,7 @@ impl LoadCaseStates<'_> {
         fill(&mut row, &c, None);
         row.mechanism = Some(format!("{}/{}", b.mechanism_a, b.mechanism_b));
         row.joints = b.joints.clone();
+        mechs.extend(bifurcation_mechanisms(&model, &row, &c, index));
         Ok(Some(row))
     }
 
@@ -238,6 +253,121 @@ impl LoadCaseStates<'_> {
         }
         Ok(Some(row))
     }
+}
+
+/// The active joints of a drawn state as stored (the hinges on their faces, the sliding
+/// joints with their senses), at the joint parameters of its own arch, in increasing order.
+fn stored_pattern(model: &ArchModel, row: &StateRow) -> Vec<ActiveJoint> {
+    let j = &row.joints;
+    let hinges = j
+        .hinge_angles_deg
+        .iter()
+        .zip(&j.hinge_faces)
+        .map(|(&a, f)| {
+            let (face, condition) = if f == "extrados" {
+                (Face::Extrados, Condition::Extrados)
+            } else {
+                (Face::Intrados, Condition::Intrados)
+            };
+            ActiveJoint::hinge(active_joint_parameter(model, row, a, &[condition]), face)
+        });
+    let slides = [Condition::SlideOutward, Condition::SlideInward];
+    let sliding = j
+        .sliding_angles_deg
+        .iter()
+        .zip(&j.sliding_senses)
+        .map(|(&a, s)| {
+            let sense = if s == "inward" {
+                Sense::Inward
+            } else {
+                Sense::Outward
+            };
+            ActiveJoint::sliding(active_joint_parameter(model, row, a, &slides), Some(sense))
+        });
+    let mut joints: Vec<ActiveJoint> = hinges.chain(sliding).collect();
+    joints.sort_by(|a, b| a.theta.total_cmp(&b.theta));
+    if matches!(model.load(), Load::SelfWeight) {
+        mirror(&mut joints);
+    }
+    joints
+}
+
+/// Under self-weight the arch and its load are symmetric, and so is a limit state: when every
+/// joint of a stored state has a mirror image among them (same hinge face, sliding and
+/// sense, at −θ to [`MIRROR_TOL_DEG`]), each pair is put exactly at ±θ, so that the
+/// mechanism is sought among the symmetric fields, as on the semicircle.
+fn mirror(joints: &mut [ActiveJoint]) {
+    let tol = MIRROR_TOL_DEG.to_radians();
+    let alike = |a: &ActiveJoint, b: &ActiveJoint| {
+        a.hinge == b.hinge && a.slides == b.slides && a.sense == b.sense
+    };
+    let mut partner: Vec<Option<usize>> = vec![None; joints.len()];
+    for i in 0..joints.len() {
+        if joints[i].theta.abs() <= tol {
+            partner[i] = Some(i);
+            continue;
+        }
+        let found = (0..joints.len()).find(|&j| {
+            j != i
+                && (joints[i].theta + joints[j].theta).abs() <= tol
+                && alike(&joints[i], &joints[j])
+                && partner[j].is_none_or(|p| p == i)
+        });
+        match found {
+            Some(j) => partner[i] = Some(j),
+            None => return,
+        }
+    }
+    let theta: Vec<f64> = (0..joints.len())
+        .map(|i| {
+            let j = partner[i].unwrap_or(i);
+            0.5 * (joints[i].theta - joints[j].theta)
+        })
+        .collect();
+    for (joint, t) in joints.iter_mut().zip(theta) {
+        joint.theta = t;
+    }
+}
+
+/// The collapse mechanisms at a located bifurcation, on its own arch, as on the semicircle:
+/// the admissible modes of the pattern of both mechanisms' joints (two at a bifurcation)
+/// under the paper's non-associative rule and, at finite μ, under the associative rule,
+/// each with its work equation (eq. 11) at the limit state there and its drawing, as rows
+/// of mechanisms.parquet numbered `index`. A rule whose pattern has no mode adds no row.
+fn bifurcation_mechanisms(
+    model: &ArchModel,
+    row: &StateRow,
+    c: &CrownForce,
+    index: u32,
+) -> Vec<MechanismRow> {
+    let joints = stored_pattern(model, row);
+    let state = LimitState {
+        crown_force: [c.fx, c.fy],
+        crown_moment_origin: c.m0,
+        load_factor: c.lambda,
+        mu: row.mu,
+    };
+    let mut rules = vec![FlowRule::NonAssociative];
+    if row.mu.is_finite() {
+        rules.push(FlowRule::Associative { tan_phi: row.mu });
+    }
+    let mut out = Vec::new();
+    for rule in rules {
+        let Ok(modes) = mechanism_modes(model, &joints, rule, true) else {
+            continue;
+        };
+        for f in &modes.fields {
+            let w = work_equation(model, &state, f);
+            out.push(general::mechanism_row(
+                model,
+                (f, &w),
+                modes.dof,
+                (&row.state_id, &row.load_case, index),
+                row.mu,
+            ));
+        }
+    }
+    out
 }
 
 /// The case of least finite λ_max.

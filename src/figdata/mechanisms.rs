@@ -5,8 +5,8 @@
 
 use crate::analysis::circular::CircularArch;
 use crate::analysis::kinematics::{
-    CollapseMechanism, FlowRule, LimitState, VelocityField, compare_flow_rules, drawing,
-    work_equation,
+    CollapseMechanism, FlowRule, LimitState, VelocityField, WorkEquation, compare_flow_rules,
+    drawing, work_equation,
 };
 use crate::analysis::symmetric::CriticalState;
 use crate::analysis::{Face, Hinge, Mechanism, MechanismKind, Sense, SlidingJoint};
@@ -60,7 +60,27 @@ fn critical_state(b: &BifurcationRow) -> Option<CriticalState> {
     })
 }
 
-fn rule_name(rule: FlowRule) -> &'static str {
+/// The work residual stored for a mechanism under `rule`: eq. (11)'s under the paper's
+/// rule; under the associative rule the dilatancy makes the normal reactions work
+/// (dL^(r,n) = μ R^n |dr^t|), so the check is the whole virtual-work balance, over the
+/// largest of its terms.
+pub fn work_residual(rule: FlowRule, w: &WorkEquation) -> f64 {
+    match rule {
+        FlowRule::NonAssociative => w.work_residual,
+        FlowRule::Associative { .. } => {
+            let scale = w
+                .work_loads
+                .abs()
+                .max(w.work_normal.abs())
+                .max(w.work_tangential.abs())
+                .max(w.load_scale);
+            (w.work_loads + w.work_normal + w.work_tangential).abs() / scale.max(f64::MIN_POSITIVE)
+        }
+    }
+}
+
+/// The name of a flow rule in mechanisms.parquet.
+pub fn rule_name(rule: FlowRule) -> &'static str {
     match rule {
         FlowRule::NonAssociative => "non_associative",
         FlowRule::Associative { .. } => "associative",
@@ -83,21 +103,7 @@ pub fn bifurcation_mechanisms(
     let cmp = compare_flow_rules(arch, &state);
     let row = |m: &CollapseMechanism, f: &VelocityField| {
         let w = work_equation(&geom, &limit, f);
-        // Under the associative rule the dilatancy makes the normal reactions work
-        // (dL^(r,n) = μ R^n |dr^t|), so the check is the whole virtual-work balance.
-        let residual = match f.rule {
-            FlowRule::NonAssociative => w.work_residual,
-            FlowRule::Associative { .. } => {
-                let scale = w
-                    .work_loads
-                    .abs()
-                    .max(w.work_normal.abs())
-                    .max(w.work_tangential.abs())
-                    .max(w.load_scale);
-                (w.work_loads + w.work_normal + w.work_tangential).abs()
-                    / scale.max(f64::MIN_POSITIVE)
-            }
-        };
+        let residual = work_residual(f.rule, &w);
         let slides: Vec<_> = f.joints.iter().filter(|j| j.slips()).collect();
         MechanismRow {
             state_id: state_id.to_string(),

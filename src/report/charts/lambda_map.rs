@@ -1,9 +1,11 @@
 //! The collapse load factor λ_max of a load_factor study as a colour map over (μ, K), with
 //! the regions of each collapse mechanism bounded by the located mechanism changes of
 //! bifurcations.parquet. The chart's data is reduced here to the figure's resolution: a
-//! raster of [`RASTER`] cells, λ bilinear between the grid points and the mechanism
-//! classified from the located changes as the regime map classifies regimes, so a grid of
-//! a million cases draws from a few tens of thousands of values.
+//! raster of [`RASTER`] cells, the mechanism classified from the located changes as the
+//! regime map classifies regimes and λ bilinear between the grid points of that mechanism
+//! (a cell crossed by a located change draws each side from its own mechanism's λ, never
+//! blended across the change), so a grid of a million cases draws from a few tens of
+//! thousands of values.
 
 use super::load_factor::{Cases, distinct, group_stem, group_text};
 use super::regime_map::{ArchKey, bifurcations_of_arch};
@@ -46,23 +48,138 @@ fn weighted(pairs: &[(f64, f64)]) -> f64 {
     if w > 0.0 { sum / w } else { f64::NAN }
 }
 
-/// λ at (μ, K), bilinear between the four grid points round it (over those with a finite
-/// λ); NaN (no finite λ) when the nearest of them has none, so that a grid line where the
-/// arch never stands (or stands under every λ) is drawn as such, not blended from its
-/// neighbours.
-fn bilinear(g: &Grid, at: (f64, f64)) -> f64 {
+/// The four grid points round (μ, K) as indices into the grid's values (K-major), with their
+/// bilinear weights.
+fn corners(g: &Grid, at: (f64, f64)) -> [(usize, f64); 4] {
     let ((i, s), (j, t)) = (cell(&g.mu, at.0), cell(&g.k, at.1));
-    let v = |i: usize, j: usize| g.lambda[j * g.mu.len() + i];
-    let corners = [
-        (v(i, j), (1.0 - s) * (1.0 - t)),
-        (v(i + 1, j), s * (1.0 - t)),
-        (v(i, j + 1), (1.0 - s) * t),
-        (v(i + 1, j + 1), s * t),
-    ];
-    match corners.iter().max_by(|a, b| a.1.total_cmp(&b.1)) {
-        Some(nearest) if nearest.0.is_finite() => weighted(&corners),
-        _ => f64::NAN,
+    let p = |i: usize, j: usize| j * g.mu.len() + i;
+    [
+        (p(i, j), (1.0 - s) * (1.0 - t)),
+        (p(i + 1, j), s * (1.0 - t)),
+        (p(i, j + 1), (1.0 - s) * t),
+        (p(i + 1, j + 1), s * t),
+    ]
+}
+
+/// λ at (μ, K) of a point whose collapse mechanism is `mechanism` (from the located
+/// regions): bilinear between the four grid points round it (over those with a finite λ)
+/// when they all collapse by one mechanism, or when none of them collapses by the point's;
+/// otherwise bilinear in the λ of the point's own mechanism (`branches`, see [`branch`]), so
+/// that a mechanism's region is drawn up to the located change with its own values, never
+/// with another mechanism's. NaN (no finite λ)
+/// when the nearest grid point has none, so that a grid line where the arch never stands (or
+/// stands under every λ) is drawn as such, not blended from its neighbours.
+fn lambda_at(
+    g: &Grid,
+    branches: &[(&str, Vec<f64>)],
+    mechanism: Option<&str>,
+    at: (f64, f64),
+) -> f64 {
+    let c = corners(g, at);
+    match c.iter().max_by(|a, b| a.1.total_cmp(&b.1)) {
+        Some(nearest) if g.lambda[nearest.0].is_finite() => {}
+        _ => return f64::NAN,
     }
+    let raw = || weighted(&c.map(|(p, w)| (g.lambda[p], w)));
+    let one_mechanism = c
+        .iter()
+        .all(|(p, _)| g.mechanism[*p] == g.mechanism[c[0].0]);
+    let at_a_corner = c
+        .iter()
+        .any(|(p, _)| g.mechanism[*p].as_deref() == mechanism);
+    let own = branches.iter().find(|b| Some(b.0) == mechanism);
+    match own {
+        Some((_, f)) if !one_mechanism && at_a_corner => {
+            let v = weighted(&c.map(|(p, w)| (f[p], w)));
+            if v.is_finite() { v } else { raw() }
+        }
+        _ => raw(),
+    }
+}
+
+/// The λ of mechanism `m` at every grid point (K-major): the stored λ where the point
+/// collapses by `m`; elsewhere carried on from such points along the grid lines, ring after
+/// ring, each point taking the mean of its neighbours on its K and μ lines known from the
+/// rings before. Every value is thus a mean of stored λ of mechanism `m` nearby, and never
+/// another mechanism's. NaN everywhere when no grid point collapses by `m`.
+fn branch(g: &Grid, m: &str) -> Vec<f64> {
+    let (nm, n) = (g.mu.len(), g.lambda.len());
+    let mut f: Vec<f64> = (0..n)
+        .map(|p| match g.mechanism[p].as_deref() {
+            Some(x) if x == m && g.lambda[p].is_finite() => g.lambda[p],
+            _ => f64::NAN,
+        })
+        .collect();
+    let neighbours = |p: usize| {
+        let (i, j) = (p % nm, p / nm);
+        [
+            (i > 0).then(|| p - 1),
+            (i + 1 < nm).then(|| p + 1),
+            (j > 0).then(|| p - nm),
+            (p + nm < n).then(|| p + nm),
+        ]
+        .into_iter()
+        .flatten()
+    };
+    let mut queued = vec![false; n];
+    let mut ring: Vec<usize> = Vec::new();
+    for p in 0..n {
+        if f[p].is_nan() && neighbours(p).any(|q| f[q].is_finite()) {
+            queued[p] = true;
+            ring.push(p);
+        }
+    }
+    while !ring.is_empty() {
+        let values: Vec<f64> = ring
+            .iter()
+            .map(|&p| {
+                let known: Vec<(f64, f64)> = neighbours(p).map(|q| (f[q], 1.0)).collect();
+                weighted(&known)
+            })
+            .collect();
+        for (&p, v) in ring.iter().zip(values) {
+            f[p] = v;
+        }
+        let mut next = Vec::new();
+        for &p in &ring {
+            for q in neighbours(p) {
+                if !queued[q] && f[q].is_nan() {
+                    queued[q] = true;
+                    next.push(q);
+                }
+            }
+        }
+        ring = next;
+    }
+    f
+}
+
+/// λ and the collapse mechanism at the centre of every cell of an `nx` × `ny` raster over
+/// the finite grid (K-major): the mechanism from the regions bounded by the located changes,
+/// λ from that mechanism's own values ([`lambda_at`]).
+fn raster<'a>(
+    g: &Grid,
+    classified: &'a RegimeMap,
+    (nx, ny): (usize, usize),
+) -> (Vec<f64>, Vec<Option<&'a str>>) {
+    let mechanisms = classified.raster(nx, ny);
+    let names = ["rotational", "mixed", "sliding"];
+    let branches: Vec<(&str, Vec<f64>)> = names
+        .into_iter()
+        .filter(|m| g.mechanism.iter().any(|x| x.as_deref() == Some(m)))
+        .map(|m| (m, branch(g, m)))
+        .collect();
+    let (mu0, mu1) = (g.mu[0], g.mu[g.mu.len() - 1]);
+    let (k0, k1) = (g.k[0], g.k[g.k.len() - 1]);
+    let centre = |i: usize, n: usize, a: f64, b: f64| a + (b - a) * (i as f64 + 0.5) / n as f64;
+    let mut lambda = Vec::with_capacity(nx * ny);
+    for j in 0..ny {
+        for i in 0..nx {
+            let at = (centre(i, nx, mu0, mu1), centre(j, ny, k0, k1));
+            lambda.push(lambda_at(g, &branches, mechanisms[j * nx + i], at));
+        }
+    }
+    (lambda, mechanisms)
 }
 
 /// The λ maps of a load case, one per arch of the study.
@@ -86,7 +203,7 @@ pub fn figures(data: &RunData, lc: &LoadCaseFigure) -> Vec<FigureSpec> {
             continue;
         };
         let mut caption = format!(
-            "The collapse load factor λ_max of every case (results.parquet) as a colour over the friction coefficient μ and the thickness ratio K, bilinear between the grid points (grey where the nearest grid point has no finite λ) and drawn at the figure's resolution; {}.",
+            "The collapse load factor λ_max of every case (results.parquet) as a colour over the friction coefficient μ and the thickness ratio K, bilinear between the grid points (grey where the nearest grid point has no finite λ) and drawn at the figure's resolution; where a located change of the collapse mechanism crosses a grid cell, each side takes the λ of its own mechanism only, carried up to the change from the nearest grid points collapsing by it, so that λ is not blended across a change; {}.",
             if map.log {
                 "a logarithmic colour scale over two decades below the largest λ (smaller values take its lowest colour)"
             } else {
@@ -195,21 +312,14 @@ pub fn lambda_map(
     let (mu0, mu1) = (g.mu[0], g.mu[g.mu.len() - 1]);
     let (k0, k1) = (g.k[0], g.k[g.k.len() - 1]);
     let centre = |i: usize, n: usize, a: f64, b: f64| a + (b - a) * (i as f64 + 0.5) / n as f64;
-    let mut lambda = Vec::with_capacity(nx * ny);
-    for j in 0..ny {
-        for i in 0..nx {
-            let at = (centre(i, nx, mu0, mu1), centre(j, ny, k0, k1));
-            lambda.push(bilinear(&g, at));
-        }
-    }
     let classified = mechanism_map(&g, &changes);
+    let (lambda, drawn) = raster(&g, &classified, (nx, ny));
     let mechanisms: Vec<String> = ["rotational", "mixed", "sliding"]
         .into_iter()
         .filter(|m| g.mechanism.iter().any(|x| x.as_deref() == Some(m)))
         .map(String::from)
         .collect();
-    let mechanism = classified
-        .raster(nx, ny)
+    let mechanism = drawn
         .into_iter()
         .map(|m| {
             let m = m?;
@@ -351,4 +461,98 @@ fn boundaries(g: &Grid, changes: &[(f64, f64, &str, &str)]) -> Vec<Vec<(f64, f64
         .map(|l| l.3)
         .filter(|l| l.len() >= 2)
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Four K lines crossed by one located change from the mixed mechanism (μ ≤ 0.8, λ from
+    /// 3.0 to 4.25) to the rotational one (μ ≥ 1.0, λ from 150 to 153) at μ = 0.95, nearer
+    /// μ = 1.0 than the midline μ = 0.9: λ jumps by a factor of 40 there, as in the seismic
+    /// study's quarter-span point load.
+    fn jump() -> (Grid, Vec<(f64, f64, &'static str, &'static str)>) {
+        let mu = vec![0.6, 0.8, 1.0, 1.2];
+        let k = vec![1.3, 1.4, 1.5, 1.6];
+        let mut lambda = Vec::new();
+        let mut mechanism = Vec::new();
+        for j in 0..k.len() {
+            for (i, m) in mu.iter().enumerate() {
+                let rotational = *m > 0.9;
+                lambda.push(if rotational {
+                    150.0 + j as f64
+                } else {
+                    3.0 + 0.5 * i as f64 + 0.25 * j as f64
+                });
+                mechanism.push(Some(Arc::from(if rotational {
+                    "rotational"
+                } else {
+                    "mixed"
+                })));
+            }
+        }
+        let changes = k
+            .iter()
+            .map(|&k| (0.95, k, "mixed", "rotational"))
+            .collect();
+        let g = Grid {
+            mu,
+            k,
+            lambda,
+            mechanism,
+            infinite: None,
+        };
+        (g, changes)
+    }
+
+    #[test]
+    fn lambda_is_not_blended_across_a_located_change_of_mechanism() {
+        let (g, changes) = jump();
+        let classified = mechanism_map(&g, &changes);
+        let (nx, ny) = (120, 60);
+        let (lambda, mechanism) = raster(&g, &classified, (nx, ny));
+        let (mut mixed_beyond_midline, mut checked) = (0, 0);
+        for j in 0..ny {
+            for i in 0..nx {
+                let mu = 0.6 + 0.6 * (i as f64 + 0.5) / nx as f64;
+                let k = 1.3 + 0.3 * (j as f64 + 0.5) / ny as f64;
+                let (l, m) = (lambda[j * nx + i], mechanism[j * nx + i]);
+                // The region of each mechanism ends at the located change, not at a midline.
+                let want = if mu < 0.95 { "mixed" } else { "rotational" };
+                assert_eq!(m, Some(want), "μ = {mu}, K = {k}");
+                // Every pixel of the mixed side lies within the mixed grid points' λ (3.0 to
+                // 4.25), every pixel of the rotational side within the rotational ones'
+                // (150 to 153). Blended across the change, a pixel at μ = 0.93 took λ ≈ 100.
+                let (lo, hi) = if want == "mixed" {
+                    (3.0, 4.25)
+                } else {
+                    (150.0, 153.0)
+                };
+                assert!(
+                    l >= lo - 1e-12 && l <= hi + 1e-12,
+                    "μ = {mu}, K = {k}: λ = {l} outside [{lo}, {hi}]"
+                );
+                if want == "mixed" && mu > 0.9 {
+                    mixed_beyond_midline += 1;
+                }
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, nx * ny);
+        assert!(mixed_beyond_midline >= ny * 9, "{mixed_beyond_midline}");
+        // Cells whose corners share one mechanism stay bilinear: μ = 0.7, K = 1.45 lies
+        // halfway between λ 3.0 + 0.25 j and 3.5 + 0.25 j on K = 1.4 and 1.5 (j = 1, 2).
+        let branches: Vec<(&str, Vec<f64>)> = ["rotational", "mixed"]
+            .into_iter()
+            .map(|m| (m, branch(&g, m)))
+            .collect();
+        let l = lambda_at(&g, &branches, Some("mixed"), (0.7, 1.45));
+        assert!((l - 3.625).abs() < 1e-12, "{l}");
+        // Across the change, the mixed side of the cell (0.8, 1.0) × (1.4, 1.5) takes the
+        // mixed λ of μ = 0.8 carried on at both its μ = 1.0 corners: 3.5 + 0.25 · 1.5.
+        let l = lambda_at(&g, &branches, Some("mixed"), (0.93, 1.45));
+        assert!((l - 3.875).abs() < 1e-12, "{l}");
+        let l = lambda_at(&g, &branches, Some("rotational"), (0.97, 1.45));
+        assert!((l - 151.5).abs() < 1e-12, "{l}");
+    }
 }
