@@ -208,3 +208,43 @@ fn keystone_usage_errors() {
     ]);
     assert_usage_error(&o, &["--keystone", "circular arch"]);
 }
+
+/// A thickness find whose load passes onto the keystone (e = 0.25, α = 82°, μ = 0.25, the
+/// load by angle at 17.4°, λ = 0.2): the keystone's edge ψ₁ = asin(e(1 + K)/2) reaches the
+/// load at K* = 2 sin 17.4°/e − 1. Below K* the load sits beyond the edge joint, on a sliver
+/// that slides off (λ_max ≈ 0.094); from K* on it lies on the keystone (λ_max ≈ 0.256). The
+/// margin jumps across zero there, so K_c = K* is a threshold, not a limit state: no
+/// mechanism and no work equation are reported (the state there has a margin of about 0.014,
+/// and its active rows are those of the largest margin).
+#[test]
+fn thickness_at_the_keystone_edge_is_a_threshold_without_a_mechanism() {
+    let (e, at_deg) = (0.25, 17.4f64);
+    let scene = |k: f64, find: Find| Scene {
+        arch: Arch::new(k, 82.0, WeightModel::Annular, Discretisation::Continuum).unwrap(),
+        friction: Friction::new(0.25).unwrap(),
+        find,
+        form: pointed(e, true),
+        load: Load::Point { at_deg },
+        lambda: if find == Find::LoadFactor { 0.0 } else { 0.2 },
+    };
+    let k_star = 2.0 * at_deg.to_radians().sin() / e - 1.0;
+    let s = scene::solve(&scene(1.5, Find::Thickness));
+    assert_eq!(s.outcome, Some(Outcome::Found), "{s:?}");
+    approx::assert_abs_diff_eq!(s.k_crit.unwrap(), k_star, epsilon = 1e-12);
+    assert_eq!(s.mechanism, None, "{s:?}");
+    assert!(s.hinges.is_empty() && s.sliding_joints.is_empty(), "{s:?}");
+    assert_eq!(
+        (s.work_residual, s.mechanism_dof, s.mechanism_admissible),
+        (None, None, None)
+    );
+    let lambda = |k: f64| {
+        let l = scene::solve(&scene(k, Find::LoadFactor));
+        assert_eq!(l.outcome, Some(Outcome::Found), "K {k}");
+        l.load_factor.unwrap()
+    };
+    let (below, above) = (lambda(k_star - 1e-9), lambda(k_star + 1e-9));
+    assert!(
+        below < 0.15 && above > 0.25,
+        "λ_max {below} below K*, {above} above"
+    );
+}
