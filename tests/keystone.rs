@@ -248,3 +248,80 @@ fn thickness_at_the_keystone_edge_is_a_threshold_without_a_mechanism() {
         "λ_max {below} below K*, {above} above"
     );
 }
+
+/// λ_max of a point load at x/L on the continuum and on N = 2001, 4001 and 8001 voussoirs
+/// (odd counts, so with a keystone; `even` takes 2000, 4000 and 8000): the discrete values lie
+/// above the continuum, fall with N, and their extrapolation to 1/N = 0 through
+/// λ = c + A/N + B/N² (first-order convergence, with the second-order term that two counts
+/// leave at 1e-4 on these scenes) meets the continuum to 1e-6 of λ. Returns the continuum's
+/// λ_max.
+fn x_over_l_converges(
+    arch_at: impl Fn(Discretisation) -> Arch,
+    form: ArchForm,
+    at_x: f64,
+    mu: f64,
+    even: bool,
+) -> f64 {
+    let lambda = |joints| {
+        let s = scene::solve(&Scene {
+            arch: arch_at(joints),
+            friction: Friction::new(mu).unwrap(),
+            find: Find::LoadFactor,
+            form,
+            load: Load::PointX { at_x },
+            lambda: 0.0,
+        });
+        assert_eq!(
+            s.outcome,
+            Some(Outcome::Found),
+            "x/L {at_x} {joints:?}: {s:?}"
+        );
+        assert_eq!(s.at_x, Some(at_x));
+        s.load_factor.unwrap()
+    };
+    let c = lambda(Discretisation::Continuum);
+    let ns: [u32; 3] = if even {
+        [2000, 4000, 8000]
+    } else {
+        [2001, 4001, 8001]
+    };
+    let l = ns.map(|n| lambda(Discretisation::Voussoirs(n)));
+    assert!(
+        l[0] > l[1] && l[1] > l[2] && l[2] > c,
+        "x/L {at_x}: {l:?} {c}"
+    );
+    // Lagrange's polynomial through (1/N, λ_N), evaluated at 1/N = 0.
+    let h = ns.map(|n| 1.0 / f64::from(n));
+    let extrapolated: f64 = (0..3)
+        .map(|i| {
+            let w: f64 = (0..3)
+                .filter(|&j| j != i)
+                .map(|j| h[j] / (h[j] - h[i]))
+                .product();
+            w * l[i]
+        })
+        .sum();
+    approx::assert_abs_diff_eq!(extrapolated, c, epsilon = 1e-6 * c.max(1.0));
+    c
+}
+
+/// Keystone and x/L scenes beyond the one of tests/span_positions.rs: a load left of the apex
+/// on the keystone of another pointed arch (e = 0.2, α = 80°, K = 1.25: the keystone's
+/// extrados spans x/L 0.4720 to 0.5280) at μ = 0.6 and 0.4, and a load on the springing wedge
+/// of a vertical-joint arch (α = 60°, K = 1.5, μ = 0.5, x/L = 0.03, beyond the vertical joint
+/// at −60°), against fine voussoirs.
+#[test]
+fn keystone_and_wedge_loads_by_x_over_l_converge_to_the_continuum() {
+    let keystone_arch = |joints| Arch::new(1.25, 80.0, WeightModel::Annular, joints).unwrap();
+    for (mu, expected) in [(0.6, 5.0189137), (0.4, 0.7199306)] {
+        let c = x_over_l_converges(keystone_arch, pointed(0.2, true), 0.48, mu, false);
+        approx::assert_abs_diff_eq!(c, expected, epsilon = 1e-6);
+    }
+    let wedge_arch = |joints| Arch::new(1.5, 60.0, WeightModel::Annular, joints).unwrap();
+    let vertical = ArchForm {
+        joints: JointOrientation::Vertical,
+        ..ArchForm::default()
+    };
+    let c = x_over_l_converges(wedge_arch, vertical, 0.03, 0.5, true);
+    approx::assert_abs_diff_eq!(c, 13.1900814, epsilon = 1e-6);
+}
