@@ -446,3 +446,83 @@ fn very_thick_arch_reports_an_exact_sliding_mechanism() {
         max_relative = 1e-9
     );
 }
+
+/// At very large load factors (a point load near where the vertical through it would reach
+/// the support: λ_max 246 and 4305 on the semicircle at K = 1.3 with μ = ∞ and 5; 55.7 on the
+/// springing wedge of a vertical-joint arch, α = 60°, K = 1.35, μ = 0.55) the label of
+/// the mechanism is the kind of its kinematic mechanism: the admissible velocity field of the
+/// active pattern moves exactly the hinges and sliding joints the label names, and meets
+/// eq. (11). Rows scaled by a large λ must not add or drop a joint.
+#[test]
+fn mechanism_labels_at_very_large_load_factors_are_those_of_the_kinematics() {
+    use archstudy::analysis::forms::ArchModel;
+    use archstudy::analysis::general::{self, Settings, pattern_of_rows};
+    use archstudy::analysis::kinematics::{FlowRule, ModeStatus, mechanism_modes};
+    let vertical = ArchForm {
+        joints: JointOrientation::Vertical,
+        ..ArchForm::default()
+    };
+    let continuum = |k: f64, alpha: f64| {
+        Arch::new(k, alpha, WeightModel::Annular, Discretisation::Continuum).unwrap()
+    };
+    for (arch, form, load, mu, kind, lambda) in [
+        (
+            continuum(1.3, 90.0),
+            ArchForm::default(),
+            Load::Point { at_deg: 50.2 },
+            f64::INFINITY,
+            MechanismKind::Rotational,
+            246.4518227,
+        ),
+        (
+            continuum(1.3, 90.0),
+            ArchForm::default(),
+            Load::Point { at_deg: 50.28 },
+            5.0,
+            MechanismKind::Rotational,
+            4304.8312996,
+        ),
+        (
+            continuum(1.35, 60.0),
+            vertical,
+            Load::PointX { at_x: 0.97 },
+            0.55,
+            MechanismKind::Mixed,
+            55.6503316,
+        ),
+    ] {
+        let friction = Friction::new(mu).unwrap();
+        let s = scene::solve(&Scene {
+            arch,
+            friction,
+            find: Find::LoadFactor,
+            form,
+            load,
+            lambda: 0.0,
+        });
+        assert_eq!(s.outcome, Some(Outcome::Found), "{load:?}");
+        approx::assert_relative_eq!(s.load_factor.unwrap(), lambda, max_relative = 1e-8);
+        assert_eq!(s.mechanism, Some(kind), "{load:?}: {s:?}");
+        assert_eq!(
+            MechanismKind::from_counts(s.hinges.len(), s.sliding_joints.len()),
+            Some(kind)
+        );
+        assert!(s.work_residual.unwrap() <= TOL_WORK, "{load:?}: {s:?}");
+        // The kinematics of the same active pattern, from the library's parts.
+        let model = ArchModel::new(arch, form, load).unwrap();
+        let lf = general::load_factor(&model, friction.angle(), &Settings::default());
+        let modes = mechanism_modes(
+            &model,
+            &pattern_of_rows(&lf.active),
+            FlowRule::NonAssociative,
+            true,
+        )
+        .unwrap();
+        assert_eq!(modes.status, ModeStatus::Admissible, "{load:?}");
+        let kinds: Vec<_> = modes.fields.iter().map(|f| f.kind()).collect();
+        assert!(
+            kinds.contains(&Some(kind)),
+            "{load:?}: label {kind:?}, kinematics {kinds:?}"
+        );
+    }
+}
