@@ -208,3 +208,120 @@ fn keystone_usage_errors() {
     ]);
     assert_usage_error(&o, &["--keystone", "circular arch"]);
 }
+
+/// A thickness find whose load passes onto the keystone (e = 0.25, α = 82°, μ = 0.25, the
+/// load by angle at 17.4°, λ = 0.2): the keystone's edge ψ₁ = asin(e(1 + K)/2) reaches the
+/// load at K* = 2 sin 17.4°/e − 1. Below K* the load sits beyond the edge joint, on a sliver
+/// that slides off (λ_max ≈ 0.094); from K* on it lies on the keystone (λ_max ≈ 0.256). The
+/// margin jumps across zero there, so K_c = K* is a threshold, not a limit state: no
+/// mechanism and no work equation are reported (the state there has a margin of about 0.014,
+/// and its active rows are those of the largest margin).
+#[test]
+fn thickness_at_the_keystone_edge_is_a_threshold_without_a_mechanism() {
+    let (e, at_deg) = (0.25, 17.4f64);
+    let scene = |k: f64, find: Find| Scene {
+        arch: Arch::new(k, 82.0, WeightModel::Annular, Discretisation::Continuum).unwrap(),
+        friction: Friction::new(0.25).unwrap(),
+        find,
+        form: pointed(e, true),
+        load: Load::Point { at_deg },
+        lambda: if find == Find::LoadFactor { 0.0 } else { 0.2 },
+    };
+    let k_star = 2.0 * at_deg.to_radians().sin() / e - 1.0;
+    let s = scene::solve(&scene(1.5, Find::Thickness));
+    assert_eq!(s.outcome, Some(Outcome::Found), "{s:?}");
+    approx::assert_abs_diff_eq!(s.k_crit.unwrap(), k_star, epsilon = 1e-12);
+    assert_eq!(s.mechanism, None, "{s:?}");
+    assert!(s.hinges.is_empty() && s.sliding_joints.is_empty(), "{s:?}");
+    assert_eq!(
+        (s.work_residual, s.mechanism_dof, s.mechanism_admissible),
+        (None, None, None)
+    );
+    let lambda = |k: f64| {
+        let l = scene::solve(&scene(k, Find::LoadFactor));
+        assert_eq!(l.outcome, Some(Outcome::Found), "K {k}");
+        l.load_factor.unwrap()
+    };
+    let (below, above) = (lambda(k_star - 1e-9), lambda(k_star + 1e-9));
+    assert!(
+        below < 0.15 && above > 0.25,
+        "λ_max {below} below K*, {above} above"
+    );
+}
+
+/// λ_max of a point load at x/L on the continuum and on N = 2001, 4001 and 8001 voussoirs
+/// (odd counts, so with a keystone; `even` takes 2000, 4000 and 8000): the discrete values lie
+/// above the continuum, fall with N, and their extrapolation to 1/N = 0 through
+/// λ = c + A/N + B/N² (first-order convergence, with the second-order term that two counts
+/// leave at 1e-4 on these scenes) meets the continuum to 1e-6 of λ. Returns the continuum's
+/// λ_max.
+fn x_over_l_converges(
+    arch_at: impl Fn(Discretisation) -> Arch,
+    form: ArchForm,
+    at_x: f64,
+    mu: f64,
+    even: bool,
+) -> f64 {
+    let lambda = |joints| {
+        let s = scene::solve(&Scene {
+            arch: arch_at(joints),
+            friction: Friction::new(mu).unwrap(),
+            find: Find::LoadFactor,
+            form,
+            load: Load::PointX { at_x },
+            lambda: 0.0,
+        });
+        assert_eq!(
+            s.outcome,
+            Some(Outcome::Found),
+            "x/L {at_x} {joints:?}: {s:?}"
+        );
+        assert_eq!(s.at_x, Some(at_x));
+        s.load_factor.unwrap()
+    };
+    let c = lambda(Discretisation::Continuum);
+    let ns: [u32; 3] = if even {
+        [2000, 4000, 8000]
+    } else {
+        [2001, 4001, 8001]
+    };
+    let l = ns.map(|n| lambda(Discretisation::Voussoirs(n)));
+    assert!(
+        l[0] > l[1] && l[1] > l[2] && l[2] > c,
+        "x/L {at_x}: {l:?} {c}"
+    );
+    // Lagrange's polynomial through (1/N, λ_N), evaluated at 1/N = 0.
+    let h = ns.map(|n| 1.0 / f64::from(n));
+    let extrapolated: f64 = (0..3)
+        .map(|i| {
+            let w: f64 = (0..3)
+                .filter(|&j| j != i)
+                .map(|j| h[j] / (h[j] - h[i]))
+                .product();
+            w * l[i]
+        })
+        .sum();
+    approx::assert_abs_diff_eq!(extrapolated, c, epsilon = 1e-6 * c.max(1.0));
+    c
+}
+
+/// Keystone and x/L scenes beyond the one of tests/span_positions.rs: a load left of the apex
+/// on the keystone of another pointed arch (e = 0.2, α = 80°, K = 1.25: the keystone's
+/// extrados spans x/L 0.4720 to 0.5280) at μ = 0.6 and 0.4, and a load on the springing wedge
+/// of a vertical-joint arch (α = 60°, K = 1.5, μ = 0.5, x/L = 0.03, beyond the vertical joint
+/// at −60°), against fine voussoirs.
+#[test]
+fn keystone_and_wedge_loads_by_x_over_l_converge_to_the_continuum() {
+    let keystone_arch = |joints| Arch::new(1.25, 80.0, WeightModel::Annular, joints).unwrap();
+    for (mu, expected) in [(0.6, 5.0189137), (0.4, 0.7199306)] {
+        let c = x_over_l_converges(keystone_arch, pointed(0.2, true), 0.48, mu, false);
+        approx::assert_abs_diff_eq!(c, expected, epsilon = 1e-6);
+    }
+    let wedge_arch = |joints| Arch::new(1.5, 60.0, WeightModel::Annular, joints).unwrap();
+    let vertical = ArchForm {
+        joints: JointOrientation::Vertical,
+        ..ArchForm::default()
+    };
+    let c = x_over_l_converges(wedge_arch, vertical, 0.03, 0.5, true);
+    approx::assert_abs_diff_eq!(c, 13.1900814, epsilon = 1e-6);
+}

@@ -404,3 +404,76 @@ fn vertical_joint_bifurcations_have_their_mechanisms_drawn_on_vertical_joints() 
     }
     assert!(sections >= 8, "{sections} vertical sections drawn");
 }
+
+const VERTICAL_WEDGE_LOAD: &str = "\
+name: vertical-wedge
+arch: {joints: vertical, half_angle_deg: 60}
+grid:
+  at_x: {values: [0.03, 0.97]}
+  k: {values: [1.35, 1.5]}
+  mu: {values: [0.5, 0.55]}
+load_cases:
+  - {name: point, kind: point}
+find: load_factor
+scenes:
+  - {k: 1.5, mu: 0.55}
+";
+
+/// A point load by x/L on the springing wedge of a vertical-joint arch (α = 60°: x/L = 0.03
+/// and 0.97 lie beyond the vertical sections through the intrados springings, x = ±sin α):
+/// each state is drawn with the load at its own extrados point, the closed form
+/// x = (2x/L − 1)·K sin α, y = √(K² − x²), to 1e-9, not at the top of the vertical joint at
+/// ±α; its λ is the case's (the state is solved again with the load there), and its line of
+/// thrust turns on the load's vertical.
+#[test]
+fn a_load_on_the_springing_wedge_is_drawn_at_its_own_extrados_point() {
+    let dir = scratch("states-vertical-wedge");
+    let run = run_study(&dir, "vertical-wedge.yaml", VERTICAL_WEDGE_LOAD);
+    let (all, drawn) = (cases(&run), states(&run));
+    assert!(drawn.len() >= 3, "{drawn:#?}");
+    // The case states: the weakest (sliding at both springings, λ ≈ 13.19) and the weakest
+    // mixed one (λ ≈ 55.65), each with the λ and mechanism of its case.
+    for s in drawn.iter().filter(|s| s.source == "case") {
+        let c = &all[s.case_id.expect("case id") as usize];
+        assert_eq!((s.k, s.mu, s.at_x), (c.k, c.mu, c.at_x), "{}", s.state_id);
+        let (l, lc) = (s.load_factor.expect("λ"), c.load_factor.expect("λ"));
+        assert!(
+            (l - lc).abs() < 1e-9 * (1.0 + lc),
+            "{}: λ {l} vs {lc}",
+            s.state_id
+        );
+        assert_eq!(s.mechanism, c.mechanism, "{}", s.state_id);
+    }
+    let kinds: Vec<_> = (drawn.iter())
+        .filter(|s| s.source == "case")
+        .map(|s| (s.mechanism.clone().unwrap_or_default(), s.load_factor))
+        .collect();
+    assert_eq!(kinds.len(), 2, "{kinds:?}");
+    approx::assert_abs_diff_eq!(kinds[0].1.unwrap(), 13.1900814, epsilon = 1e-6);
+    approx::assert_abs_diff_eq!(kinds[1].1.unwrap(), 55.6503316, epsilon = 1e-6);
+    let alpha = 60f64.to_radians();
+    for s in &drawn {
+        let at_x = s
+            .at_x
+            .unwrap_or_else(|| panic!("{}: no x/L: {s:?}", s.state_id));
+        assert!(at_x == 0.03 || at_x == 0.97, "{}: {at_x}", s.state_id);
+        let x = (2.0 * at_x - 1.0) * s.k * alpha.sin();
+        let want = (x, (s.k * s.k - x * x).sqrt());
+        assert!(x.abs() > alpha.sin(), "{}: not on the wedge", s.state_id);
+        let g = of_state(s);
+        let Some(archstudy::plot::state::DrawnLoad::Point { at, .. }) = g.load else {
+            panic!("{}: no point load drawn", s.state_id);
+        };
+        assert!(
+            (at.0 - want.0).abs() < 1e-9 && (at.1 - want.1).abs() < 1e-9,
+            "{}: arrow at {at:?}, the load at {want:?}",
+            s.state_id
+        );
+        let pts = line(&run, &s.state_id);
+        assert!(
+            pts.iter().any(|p| (p.0 - want.0).abs() < 1e-12),
+            "{}: the line does not turn on the load's vertical",
+            s.state_id
+        );
+    }
+}

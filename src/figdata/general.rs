@@ -57,8 +57,11 @@ impl CrownForce {
 pub fn load_of_state(s: &StateRow) -> Load {
     match s.load.as_str() {
         "horizontal" => Load::Horizontal,
-        "point" => Load::Point {
-            at_deg: s.at_deg.unwrap_or(0.0),
+        "point" => match s.at_x {
+            Some(at_x) => Load::PointX { at_x },
+            None => Load::Point {
+                at_deg: s.at_deg.unwrap_or(0.0),
+            },
         },
         _ => Load::SelfWeight,
     }
@@ -196,14 +199,12 @@ pub fn thrust_point(model: &ArchModel, c: &CrownForce, theta: f64) -> Option<(f6
 /// not the load's line of action), and drawing both joined along the joint would show a
 /// step that the statics does not have.
 pub fn point_load_kink(model: &ArchModel, c: &CrownForce) -> Option<((f64, f64), [f64; 2])> {
-    let Load::Point { at_deg } = model.load() else {
-        return None;
-    };
+    // The load's own point: on a keystone, or on the springing wedge of a vertical-joint arch,
+    // it is not the extrados end of the joint at a.
+    let (a, at) = model.point_load()?;
     if c.lambda == 0.0 {
         return None;
     }
-    let alpha = model.arch().half_angle;
-    let a = at_deg.to_radians().clamp(-alpha, alpha);
     // The joint at a carries the load on its crown side (forms.rs, `split`).
     let sides = if a > 0.0 {
         [a.next_down(), a]
@@ -212,7 +213,7 @@ pub fn point_load_kink(model: &ArchModel, c: &CrownForce) -> Option<((f64, f64),
     } else {
         [0.0, 0.0f64.next_up()]
     };
-    let x = model.joint(a).extrados[0];
+    let x = at[0];
     let p = thrust_point(model, c, sides[0])?;
     let (f, _) = joint_force(model, c, sides[0]);
     if f[0].abs() < f64::EPSILON * f[1].abs() {

@@ -71,6 +71,24 @@ impl LoadCaseStates<'_> {
         Ok(ArchModel::new(arch, self.manifest.arch.form(), load).ok())
     }
 
+    /// True when the load case places its point load by x/L (its own `at_x` or the grid's
+    /// x/L axis): a drawn state then takes the position as x/L, which names the load's own
+    /// extrados point also on the springing wedge of a vertical-joint arch, where the stored
+    /// angle is ±α.
+    fn by_x(&self) -> bool {
+        self.lc.at_x.is_some()
+            || (self.manifest.grid.iter()).any(|a| a.name == crate::manifest::AxisName::AtX)
+    }
+
+    /// The position of a stored case as given: (None, x/L) when the load case places it by
+    /// x/L and the case stores it, else (its angle, None).
+    fn position_of(&self, c: &LoadFactorCase) -> (Option<f64>, Option<f64>) {
+        match c.at_x {
+            Some(x) if self.by_x() => (None, Some(x)),
+            _ => (c.at_deg, None),
+        }
+    }
+
     fn lambda(&self) -> f64 {
         self.lc.lambda.unwrap_or(0.0)
     }
@@ -140,6 +158,11 @@ impl LoadCaseStates<'_> {
         (row.scene_k, row.scene_mu, row.k, row.mu) = (b.k, f.mu(), b.k, f.mu());
         row.t_over_r = b.t_over_r;
         row.at_deg = at.or_else(|| model.point_position().map(|(deg, _)| deg));
+        row.at_x = if at.is_none() {
+            at_x.or(row.at_x)
+        } else {
+            None
+        };
         fill(&mut row, &c, None);
         row.mechanism = Some(format!("{}/{}", b.mechanism_a, b.mechanism_b));
         row.joints = b.joints.clone();
@@ -161,7 +184,8 @@ impl LoadCaseStates<'_> {
                 crate::model::Discretisation::Voussoirs,
             ),
         };
-        let Some(model) = self.model(group, c.k, (c.at_deg, None))? else {
+        let position = self.position_of(c);
+        let Some(model) = self.model(group, c.k, position)? else {
             return Ok(None);
         };
         let f = friction(c.mu);
@@ -180,7 +204,7 @@ impl LoadCaseStates<'_> {
         row.state = why.into();
         (row.scene_k, row.scene_mu, row.k, row.mu) = (c.k, f.mu(), c.k, f.mu());
         row.t_over_r = crate::model::t_over_r_from_k(c.k);
-        row.at_deg = c.at_deg;
+        (row.at_deg, row.at_x) = (c.at_deg, position.1);
         row.case_id = u32::try_from(c.row).ok();
         fill(&mut row, &crown, mechanism.as_ref());
         Ok(Some(row))
@@ -190,14 +214,19 @@ impl LoadCaseStates<'_> {
     /// position of the load case, else at the weakest position of its arch); otherwise its
     /// state of largest margin when it stands, else its collapse state at K_c(μ).
     fn scene_state(&self, id: String, at: &SceneAt<'_>) -> Result<Option<StateRow>> {
-        let position = self.lc.at_deg.or_else(|| {
+        let position = if self.lc.at_deg.is_some() || self.lc.at_x.is_some() {
+            (self.lc.at_deg, self.lc.at_x)
+        } else {
+            // results.parquet stores α as the arch holds it, in radians and back (60° is
+            // stored as 59.99999999999999°).
+            let alpha = at.group.half_angle_deg;
             let own = self.cases.iter().filter(|c| {
-                c.half_angle_deg == at.group.half_angle_deg
+                (c.half_angle_deg == alpha || c.half_angle_deg == alpha.to_radians().to_degrees())
                     && c.voussoirs == at.group.voussoirs.voussoirs()
             });
-            weakest(own.copied()).and_then(|c| c.at_deg)
-        });
-        let Some(model) = self.model(at.group, at.k, (position, None))? else {
+            weakest(own.copied()).map_or((None, None), |c| self.position_of(c))
+        };
+        let Some(model) = self.model(at.group, at.k, position)? else {
             return Ok(None);
         };
         let f = friction(at.mu);
@@ -205,7 +234,11 @@ impl LoadCaseStates<'_> {
         row.source = "scene".into();
         (row.scene_k, row.scene_mu, row.k, row.mu) = (at.k, f.mu(), at.k, f.mu());
         row.t_over_r = crate::model::t_over_r_from_k(at.k);
-        row.at_deg = position;
+        row.at_deg = position.0;
+        row.at_x = position.1;
+        if position.0.is_none() && position.1.is_some() {
+            row.at_deg = model.point_position().map(|(deg, _)| deg);
+        }
         if self.lc.find == Find::LoadFactor {
             match general::load_factor_state(&model, f.angle()) {
                 Some((c, m)) => {

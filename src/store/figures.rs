@@ -64,6 +64,11 @@ pub struct StateRow {
     pub load: String,
     /// Position of the point load, degrees from the crown (`None` for other loads).
     pub at_deg: Option<f64>,
+    /// Position of the point load as x/L when it was given so (`None` when given by its
+    /// angle, for other loads, and in runs written before it was stored): the drawing
+    /// places the load at this extrados point, which on the springing wedge of a
+    /// vertical-joint arch the angle (±α there) does not name.
+    pub at_x: Option<f64>,
     /// Load factor λ of the live load at the drawn state (`None` for self-weight alone).
     pub load_factor: Option<f64>,
     /// Regime of the scene at (scene_k, scene_mu).
@@ -292,6 +297,7 @@ pub fn states_frame(rows: &[StateRow]) -> Result<DataFrame> {
         .bool("keystone", rows.iter().map(|r| r.keystone).collect())
         .str("load", s(&|r| r.load.clone()))
         .opt_f64("at_deg", o(&|r| r.at_deg))
+        .opt_f64("at_x", o(&|r| r.at_x))
         .opt_f64("load_factor", o(&|r| r.load_factor))
         .opt_str("regime", rows.iter().map(|r| r.regime.clone()).collect())
         .opt_str(
@@ -380,6 +386,7 @@ pub fn read_states(path: &Path) -> Result<Vec<StateRow>> {
             keystone: arch.keystone[i].unwrap_or(false),
             load: arch.load[i].clone().unwrap_or_else(|| "self_weight".into()),
             at_deg: arch.at_deg[i],
+            at_x: arch.at_x[i],
             load_factor: arch.load_factor[i],
             regime: regime[i].clone(),
             mechanism: mech[i].clone(),
@@ -420,6 +427,7 @@ struct StateArchColumns {
     keystone: Vec<Option<bool>>,
     load: Vec<Option<String>>,
     at_deg: Vec<Option<f64>>,
+    at_x: Vec<Option<f64>>,
     load_factor: Vec<Option<f64>>,
     crown_shear: Vec<Option<f64>>,
     case_id: Vec<Option<f64>>,
@@ -435,6 +443,7 @@ impl StateArchColumns {
                 .unwrap_or_else(|_| vec![None; df.height()]),
             load: str_or_null(df, "load"),
             at_deg: f64_or_null(df, "at_deg"),
+            at_x: f64_or_null(df, "at_x"),
             load_factor: f64_or_null(df, "load_factor"),
             crown_shear: f64_or_null(df, "crown_shear"),
             case_id: f64_or_null(df, "case_id"),

@@ -294,6 +294,13 @@ impl ArchModel {
         self.load
     }
 
+    /// The point load's joint parameter a (radians; the support's parameter for a load on the
+    /// springing wedge of a vertical-joint arch) and its own point X on the extrados, where
+    /// it acts. `None` without a point load.
+    pub fn point_load(&self) -> Option<(f64, Point)> {
+        self.point
+    }
+
     /// ψ₁ = asin d: the angle (radians) of the first joint after the crown of a pointed arch
     /// (0 for a circular arch).
     pub fn first_joint(&self) -> f64 {

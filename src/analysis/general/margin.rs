@@ -39,8 +39,27 @@ impl MarginSolution {
         self.mechanism_with(&Settings::DEFAULT)
     }
 
-    /// The mechanism named by the active rows, if any.
+    /// True when the state is a limit state: |τ| within `tol_limit_state` of the scale of
+    /// the crown unknowns (as the programme decides which active rows are necessary).
+    pub fn is_limit(&self, settings: &Settings) -> bool {
+        let c = &self.crown;
+        let scale = 1.0
+            + c.thrust_over_half_weight
+                .abs()
+                .max(c.shear_over_half_weight.abs())
+                .max(c.moment_about_centre.abs());
+        self.outcome == Outcome::Solved && self.margin.abs() <= settings.tol_limit_state * scale
+    }
+
+    /// The mechanism named by the active rows of a limit state; `None` for a state that is
+    /// not one. A critical search whose margin jumps across zero (a thickness search in which
+    /// a point load passes from the joint beyond a keystone's edge onto the keystone) ends
+    /// at a state with a margin well away from zero: its active rows are those of the
+    /// largest margin, not of a collapse, and name no mechanism.
     pub fn mechanism_with(&self, settings: &Settings) -> Option<Mechanism> {
+        if !self.is_limit(settings) {
+            return None;
+        }
         mechanism_of(&self.active, settings)
     }
 }

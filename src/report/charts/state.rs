@@ -169,9 +169,13 @@ impl StateTexts {
         } else {
             format!("the weakest case collapsing by a {mech} mechanism")
         };
-        let at = s
-            .at_deg
-            .map_or(String::new(), |a| format!(", load at {}°", position_deg(a)));
+        // A position given as x/L is named so: on the springing wedge of a vertical-joint
+        // arch its angle is ±α, which names the vertical joint, not the load's point.
+        let at = match (s.at_x, s.at_deg) {
+            (Some(x), _) => format!(", load at x/L = {}", short(x)),
+            (None, Some(a)) => format!(", load at {}°", position_deg(a)),
+            (None, None) => String::new(),
+        };
         StateTexts {
             title: format!("Collapse at λ_max: {mech} mechanism"),
             heading: format!(

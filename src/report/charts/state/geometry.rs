@@ -7,9 +7,7 @@
 use crate::analysis::forms::ArchModel;
 use crate::analysis::statics::Condition;
 use crate::analysis::statics::{ArchGeometry, Joint};
-use crate::figdata::general::{
-    active_joint_parameter, joint_parameter as parameter, model_of_state,
-};
+use crate::figdata::general::{active_joint_parameter, model_of_state};
 use crate::plot::state::{DrawnHinge, DrawnJoint, DrawnLoad, DrawnSlide, DrawnSupport, Xy};
 use crate::report::format::short;
 use crate::store::StateRow;
@@ -92,9 +90,9 @@ fn load(model: &ArchModel, s: &StateRow) -> Option<DrawnLoad> {
     let label = format!("λ = {}", s.load_factor.map_or("—".into(), short));
     match s.load.as_str() {
         "point" => {
-            let at = model
-                .joint(parameter(model, s.at_deg.unwrap_or(0.0)))
-                .extrados;
+            // The load's own extrados point (on a keystone or on the springing wedge of a
+            // vertical-joint arch it is not the extrados end of a joint).
+            let (_, at) = model.point_load()?;
             Some(DrawnLoad::Point { at: xy(at), label })
         }
         "horizontal" => {
