@@ -410,6 +410,23 @@ fn three_voussoir_pointed_arch_stands_at_every_thickness() {
             );
         }
     }
+    // Every eccentricity, with radial or vertical joints. Solved over the whole arch in three
+    // unknowns, e = 0.26 (radial joints) and e = 0.1 (vertical joints, K_c = 1.0000000056)
+    // gave a thickness at the level of rounding; on the symmetric half, with its exactly
+    // mirrored state, the hinges on both faces of a joint are found and the arch stands.
+    for vertical in [false, true] {
+        for i in 1..=30 {
+            let e = 0.02 * f64::from(i);
+            let mut sc = pointed_voussoirs(1.5, 3, f64::INFINITY, Find::Thickness);
+            sc.form = form(1, e, vertical, false);
+            let s = scene::solve(&sc);
+            assert_eq!(
+                s.outcome,
+                Some(Outcome::AlwaysStands),
+                "e {e}, vertical joints {vertical}: {s:?}"
+            );
+        }
+    }
     // Five voussoirs have a genuine collapse thickness (K ≈ 1.0700), with its mechanism.
     let s = scene::solve(&pointed_voussoirs(1.5, 5, f64::INFINITY, Find::Thickness));
     assert_eq!(s.outcome, Some(Outcome::Found));
