@@ -101,27 +101,39 @@ pub fn load_manifest(path: &Path) -> Result<(Manifest, Vec<u8>)> {
 /// [`plan::MAX_CASES`] cases, is refused before anything is expanded, naming `--shard`.
 pub fn load_runnable(path: &Path) -> Result<(Manifest, Vec<u8>)> {
     let (m, bytes) = load_manifest(path)?;
-    let refuse = |message: String| manifest::ManifestError {
-        path: path.to_path_buf(),
-        position: None,
-        key: Some("grid".into()),
-        message,
-    };
-    let requested = plan::case_count(&m);
-    check_memory_at(requested, bytes_per_case(&m), available_memory()).map_err(refuse)?;
-    if requested > u128::from(plan::MAX_CASES) {
-        let e = plan::PlanTooLarge { requested };
-        return Err(refuse(format!(
-            "{e} (its run would need about {} of memory at {} bytes a case)",
-            gib(u64::try_from(e.requested)
-                .unwrap_or(u64::MAX)
-                .saturating_mul(bytes_per_case(&m))
-                .saturating_add(BASE_BYTES)),
-            bytes_per_case(&m)
-        ))
+    if let Some(message) = unsharded_refusal(&m, available_memory()) {
+        return Err(manifest::ManifestError {
+            path: path.to_path_buf(),
+            position: None,
+            key: Some("grid".into()),
+            message,
+        }
         .into());
     }
     Ok((m, bytes))
+}
+
+/// Why an unsharded run of a manifest is refused, or None when it fits: a plan whose run
+/// would need more than `available` bytes (see [`check_memory_at`]), or that has more than
+/// [`plan::MAX_CASES`] cases. Counted, never expanded. The message names `--shard` and the
+/// memory the run would need.
+pub fn unsharded_refusal(m: &Manifest, available: Option<u64>) -> Option<String> {
+    let requested = plan::case_count(m);
+    if let Err(message) = check_memory_at(requested, bytes_per_case(m), available) {
+        return Some(message);
+    }
+    if requested > u128::from(plan::MAX_CASES) {
+        let e = plan::PlanTooLarge { requested };
+        return Some(format!(
+            "{e} (its run would need about {} of memory at {} bytes a case)",
+            gib(u64::try_from(e.requested)
+                .unwrap_or(u64::MAX)
+                .saturating_mul(bytes_per_case(m))
+                .saturating_add(BASE_BYTES)),
+            bytes_per_case(m)
+        ));
+    }
+    None
 }
 
 /// Reads, validates and expands a manifest, refused as by [`load_runnable`].
@@ -236,18 +248,40 @@ pub fn check_memory_at(cases: u128, per_case: u64, available: Option<u64>) -> Re
 /// What `archstudy check` shows of a manifest.
 #[derive(Debug, Clone)]
 pub struct CheckSummary {
-    /// The plan, described axis by axis (several lines).
+    /// The plan, described axis by axis (several lines), and how it runs: unsharded with
+    /// the memory it needs, or in shards only, with the reason an unsharded run is refused.
     pub plan: String,
     /// Hex SHA-256 of the manifest file.
     pub manifest_sha256: String,
+    /// Why an unsharded run is refused (it runs in shards), or None.
+    pub unsharded_refusal: Option<String>,
 }
 
-/// Validates a manifest and describes its plan without running it.
+/// Validates a manifest and describes its plan without running or expanding it: a plan of
+/// 10⁸ cases, which runs in shards only, is checked as quickly as one of ten, and its
+/// description says why an unsharded run is refused and how to shard it.
 pub fn check(study: &Path) -> Result<CheckSummary> {
-    let (plan, bytes) = load_plan(study)?;
+    let (m, bytes) = load_manifest(study)?;
+    let refusal = unsharded_refusal(&m, available_memory());
+    let cases = u64::try_from(plan::case_count(&m)).unwrap_or(u64::MAX);
+    let mut plan = plan::describe(&m);
+    match &refusal {
+        None => plan.push_str(&format!(
+            "memory: about {} for a run ({} bytes a case and {} besides)\n",
+            gib(cases
+                .saturating_mul(bytes_per_case(&m))
+                .saturating_add(BASE_BYTES)),
+            bytes_per_case(&m),
+            gib(BASE_BYTES)
+        )),
+        Some(why) => plan.push_str(&format!(
+            "runs in shards only: an unsharded run is refused: {why}\n"
+        )),
+    }
     Ok(CheckSummary {
-        plan: plan.describe(),
+        plan,
         manifest_sha256: sha256_hex(&bytes),
+        unsharded_refusal: refusal,
     })
 }
 
