@@ -22,7 +22,9 @@ pub use rows::{
     read_results, read_results_in_blocks,
 };
 pub use schema::column_doc;
-pub use table::{ColumnData, Table, TableColumn, read_table, table_from_frame};
+pub use table::{
+    ColumnData, TABLE_FRAME_ROWS, Table, TableColumn, TableReader, read_table, table_from_frame,
+};
 
 use anyhow::Context as _;
 use anyhow::Result;
