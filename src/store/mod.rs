@@ -14,7 +14,8 @@ pub use cases::{read_case_ids, read_case_results, read_case_results_rows};
 pub use figures::{
     BifurcationGroup, CurvePoint, LoadFactorCase, MechanismRow, ReferenceRow, RowArch, StateRow,
     curves_frame, mechanisms_frame, read_bifurcation_groups, read_curves, read_load_factor_cases,
-    read_mechanisms, read_reference, read_row_arches, read_states, reference_frame, states_frame,
+    read_load_factor_cases_in_blocks, read_mechanisms, read_reference, read_row_arches,
+    read_states, reference_frame, states_frame,
 };
 pub use results::{BLOCK_ROWS, filled_by, results_frame};
 pub use rows::{
