@@ -20,7 +20,7 @@ pub use figures::{
 pub use results::{BLOCK_ROWS, filled_by, results_frame};
 pub use rows::{
     BifurcationRow, BoundaryRow, JointLists, ResultRow, read_bifurcations, read_boundaries,
-    read_results, read_results_in_blocks,
+    read_results, read_results_in_blocks, read_results_rows,
 };
 pub use schema::column_doc;
 pub use table::{
