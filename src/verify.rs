@@ -78,7 +78,7 @@ pub fn verify(opts: &VerifyOptions, out: &mut dyn Write) -> Result<bool> {
         )?;
         return Ok(false);
     };
-    // Drawing the reports again and re-running both hold every case in memory.
+    // Re-running needs the memory of a run (the tables are compared a block at a time).
     let needed = u64::try_from(cases)
         .unwrap_or(u64::MAX)
         .saturating_mul(runner::VERIFY_BYTES_PER_CASE)
