@@ -205,74 +205,80 @@ impl Plan {
                 .all(|l| l.find == Find::State && !l.kind.is_live())
     }
 
-    /// A readable description of the plan for `archstudy check`.
+    /// A readable description of the plan for `archstudy check` ([`describe`]).
     pub fn describe(&self) -> String {
-        let m = &self.manifest;
-        let mut s = format!("study `{}`: find {}\n", m.name, m.find);
-        let shape = match m.arch.eccentricity {
-            Some(e) => format!("{} (e = {e})", m.arch.shape),
-            None => m.arch.shape.to_string(),
-        };
-        // An arch parameter that is a grid axis is described with the axes, not as one value.
-        let is_axis = |n: AxisName| m.grid.iter().any(|a| a.name == n);
-        let alpha = if is_axis(AxisName::HalfAngleDeg) {
-            "α: grid axis".to_string()
-        } else {
-            format!("α = {}°", m.arch.half_angle_deg)
-        };
-        let voussoirs = if is_axis(AxisName::Voussoirs) {
-            "voussoirs: grid axis".to_string()
-        } else {
-            m.arch.voussoirs.to_string()
-        };
-        let keystone = if m.arch.keystone { ", keystone" } else { "" };
-        s.push_str(&format!(
-            "arch: {} {alpha}, {} joints{keystone}, {} weight, {voussoirs}\n",
-            shape, m.arch.joints, m.arch.weight
-        ));
-        for a in &m.grid {
-            let first = a.values.first().copied().unwrap_or(f64::NAN);
-            let last = a.values.last().copied().unwrap_or(f64::NAN);
-            let show = |v: f64| {
-                if a.name == AxisName::Voussoirs && v.is_infinite() {
-                    "continuum".to_string()
-                } else {
-                    v.to_string()
-                }
-            };
-            s.push_str(&format!(
-                "axis {}: {} values from {} to {}\n",
-                a.name.as_str(),
-                a.values.len(),
-                show(first),
-                show(last)
-            ));
-        }
-        let names: Vec<String> = m
-            .load_cases
-            .iter()
-            .map(|l| {
-                let mut d = format!("{} ({}", l.name, l.kind.as_str());
-                if let Some(a) = l.at_deg {
-                    d.push_str(&format!(" at {a}°"));
-                }
-                if let Some(x) = l.at_x {
-                    d.push_str(&format!(" at x/L = {x}"));
-                }
-                if let Some(x) = l.lambda {
-                    d.push_str(&format!(", λ = {x}"));
-                }
-                if l.find != m.find {
-                    d.push_str(&format!(", find {}", l.find));
-                }
-                d.push(')');
-                d
-            })
-            .collect();
-        s.push_str(&format!("load cases: {}\n", names.join(", ")));
-        s.push_str(&format!("cases: {}\n", self.cases.len()));
-        s
+        describe(&self.manifest)
     }
+}
+
+/// A readable description of a manifest's plan for `archstudy check`, without expanding it:
+/// the number of cases is [`case_count`], so a plan of 10⁸ cases costs what a plan of ten
+/// does.
+pub fn describe(m: &Manifest) -> String {
+    let mut s = format!("study `{}`: find {}\n", m.name, m.find);
+    let shape = match m.arch.eccentricity {
+        Some(e) => format!("{} (e = {e})", m.arch.shape),
+        None => m.arch.shape.to_string(),
+    };
+    // An arch parameter that is a grid axis is described with the axes, not as one value.
+    let is_axis = |n: AxisName| m.grid.iter().any(|a| a.name == n);
+    let alpha = if is_axis(AxisName::HalfAngleDeg) {
+        "α: grid axis".to_string()
+    } else {
+        format!("α = {}°", m.arch.half_angle_deg)
+    };
+    let voussoirs = if is_axis(AxisName::Voussoirs) {
+        "voussoirs: grid axis".to_string()
+    } else {
+        m.arch.voussoirs.to_string()
+    };
+    let keystone = if m.arch.keystone { ", keystone" } else { "" };
+    s.push_str(&format!(
+        "arch: {} {alpha}, {} joints{keystone}, {} weight, {voussoirs}\n",
+        shape, m.arch.joints, m.arch.weight
+    ));
+    for a in &m.grid {
+        let first = a.values.first().copied().unwrap_or(f64::NAN);
+        let last = a.values.last().copied().unwrap_or(f64::NAN);
+        let show = |v: f64| {
+            if a.name == AxisName::Voussoirs && v.is_infinite() {
+                "continuum".to_string()
+            } else {
+                v.to_string()
+            }
+        };
+        s.push_str(&format!(
+            "axis {}: {} values from {} to {}\n",
+            a.name.as_str(),
+            a.values.len(),
+            show(first),
+            show(last)
+        ));
+    }
+    let names: Vec<String> = m
+        .load_cases
+        .iter()
+        .map(|l| {
+            let mut d = format!("{} ({}", l.name, l.kind.as_str());
+            if let Some(a) = l.at_deg {
+                d.push_str(&format!(" at {a}°"));
+            }
+            if let Some(x) = l.at_x {
+                d.push_str(&format!(" at x/L = {x}"));
+            }
+            if let Some(x) = l.lambda {
+                d.push_str(&format!(", λ = {x}"));
+            }
+            if l.find != m.find {
+                d.push_str(&format!(", find {}", l.find));
+            }
+            d.push(')');
+            d
+        })
+        .collect();
+    s.push_str(&format!("load cases: {}\n", names.join(", ")));
+    s.push_str(&format!("cases: {}\n", case_count(m)));
+    s
 }
 
 #[cfg(test)]

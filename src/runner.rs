@@ -101,27 +101,39 @@ pub fn load_manifest(path: &Path) -> Result<(Manifest, Vec<u8>)> {
 /// [`plan::MAX_CASES`] cases, is refused before anything is expanded, naming `--shard`.
 pub fn load_runnable(path: &Path) -> Result<(Manifest, Vec<u8>)> {
     let (m, bytes) = load_manifest(path)?;
-    let refuse = |message: String| manifest::ManifestError {
-        path: path.to_path_buf(),
-        position: None,
-        key: Some("grid".into()),
-        message,
-    };
-    let requested = plan::case_count(&m);
-    check_memory_at(requested, bytes_per_case(&m), available_memory()).map_err(refuse)?;
-    if requested > u128::from(plan::MAX_CASES) {
-        let e = plan::PlanTooLarge { requested };
-        return Err(refuse(format!(
-            "{e} (its run would need about {} of memory at {} bytes a case)",
-            gib(u64::try_from(e.requested)
-                .unwrap_or(u64::MAX)
-                .saturating_mul(bytes_per_case(&m))
-                .saturating_add(BASE_BYTES)),
-            bytes_per_case(&m)
-        ))
+    if let Some(message) = unsharded_refusal(&m, available_memory()) {
+        return Err(manifest::ManifestError {
+            path: path.to_path_buf(),
+            position: None,
+            key: Some("grid".into()),
+            message,
+        }
         .into());
     }
     Ok((m, bytes))
+}
+
+/// Why an unsharded run of a manifest is refused, or None when it fits: a plan whose run
+/// would need more than `available` bytes (see [`check_memory_at`]), or that has more than
+/// [`plan::MAX_CASES`] cases. Counted, never expanded. The message names `--shard` and the
+/// memory the run would need.
+pub fn unsharded_refusal(m: &Manifest, available: Option<u64>) -> Option<String> {
+    let requested = plan::case_count(m);
+    if let Err(message) = check_memory_at(requested, bytes_per_case(m), available) {
+        return Some(message);
+    }
+    if requested > u128::from(plan::MAX_CASES) {
+        let e = plan::PlanTooLarge { requested };
+        return Some(format!(
+            "{e} (its run would need about {} of memory at {} bytes a case)",
+            gib(u64::try_from(e.requested)
+                .unwrap_or(u64::MAX)
+                .saturating_mul(bytes_per_case(m))
+                .saturating_add(BASE_BYTES)),
+            bytes_per_case(m)
+        ));
+    }
+    None
 }
 
 /// Reads, validates and expands a manifest, refused as by [`load_runnable`].
@@ -140,7 +152,7 @@ pub const BYTES_PER_CASE: u64 = 64;
 /// Memory of a run besides its cases, in bytes: the program and its thread stacks, one chunk
 /// of [`CHUNK_CASES`] engine rows with its table, and the rows of the figure lattice (at most
 /// 1001² of a map). Measured: a 1001² state map peaks at 583 MB, a 1001² load-factor map
-/// (whose report still reads every case's load factor) at 1.03 GB.
+/// (whose figure lattice holds every case) at 1.00 GB.
 pub const BASE_BYTES: u64 = 768 << 20;
 
 /// The memory this process may use, in bytes: the smaller of the available memory
@@ -179,14 +191,18 @@ pub fn needed_bytes(cases: u64) -> u64 {
 }
 
 /// Memory of a run per case when a load case finds a load factor, in bytes: the figure data
-/// and the report read every case's load factor and position (a 1001² load-factor map peaks
-/// at 1.03 GB, 450 bytes a case more than a state map of that size).
-pub const LOAD_FACTOR_BYTES_PER_CASE: u64 = 512;
+/// and the report keep the load factor, position and mechanism of the cases of the figure
+/// lattice (every case up to 1001 values an axis, so at most 1001² of them) and a few cases
+/// singled out over all. Measured (release build): a 1001² load-factor map peaks at 1.00 GB
+/// (1.28 GB when every case was read whole), a 2001² one at 1.05 GB, 18 bytes a case more;
+/// 256 covers the lattice of a 1001² map with a margin.
+pub const LOAD_FACTOR_BYTES_PER_CASE: u64 = 256;
 
-/// Memory of `archstudy verify` per case, in bytes: it re-runs the study and compares every
-/// stored table with the new one whole, both in memory (the measured cost of a run that held
-/// every row, 1.7 kB a case, with a margin).
-pub const VERIFY_BYTES_PER_CASE: u64 = 2_000;
+/// Memory of `archstudy verify` per case, in bytes: it re-runs the study and compares the
+/// stored tables with the new ones a block of rows at a time, so it needs what the re-run
+/// needs (at most [`LOAD_FACTOR_BYTES_PER_CASE`]). Measured: verify of a 1001² state map
+/// peaks at 545 MB (2.14 GB when it compared whole tables).
+pub const VERIFY_BYTES_PER_CASE: u64 = LOAD_FACTOR_BYTES_PER_CASE;
 
 /// The memory per case of a manifest's run ([`BYTES_PER_CASE`], or
 /// [`LOAD_FACTOR_BYTES_PER_CASE`] for a study that finds load factors).
@@ -236,18 +252,40 @@ pub fn check_memory_at(cases: u128, per_case: u64, available: Option<u64>) -> Re
 /// What `archstudy check` shows of a manifest.
 #[derive(Debug, Clone)]
 pub struct CheckSummary {
-    /// The plan, described axis by axis (several lines).
+    /// The plan, described axis by axis (several lines), and how it runs: unsharded with
+    /// the memory it needs, or in shards only, with the reason an unsharded run is refused.
     pub plan: String,
     /// Hex SHA-256 of the manifest file.
     pub manifest_sha256: String,
+    /// Why an unsharded run is refused (it runs in shards), or None.
+    pub unsharded_refusal: Option<String>,
 }
 
-/// Validates a manifest and describes its plan without running it.
+/// Validates a manifest and describes its plan without running or expanding it: a plan of
+/// 10⁸ cases, which runs in shards only, is checked as quickly as one of ten, and its
+/// description says why an unsharded run is refused and how to shard it.
 pub fn check(study: &Path) -> Result<CheckSummary> {
-    let (plan, bytes) = load_plan(study)?;
+    let (m, bytes) = load_manifest(study)?;
+    let refusal = unsharded_refusal(&m, available_memory());
+    let cases = u64::try_from(plan::case_count(&m)).unwrap_or(u64::MAX);
+    let mut plan = plan::describe(&m);
+    match &refusal {
+        None => plan.push_str(&format!(
+            "memory: about {} for a run ({} bytes a case and {} besides)\n",
+            gib(cases
+                .saturating_mul(bytes_per_case(&m))
+                .saturating_add(BASE_BYTES)),
+            bytes_per_case(&m),
+            gib(BASE_BYTES)
+        )),
+        Some(why) => plan.push_str(&format!(
+            "runs in shards only: an unsharded run is refused: {why}\n"
+        )),
+    }
     Ok(CheckSummary {
-        plan: plan.describe(),
+        plan,
         manifest_sha256: sha256_hex(&bytes),
+        unsharded_refusal: refusal,
     })
 }
 
@@ -642,14 +680,14 @@ mod tests {
             LOAD_FACTOR_BYTES_PER_CASE
         );
         assert_eq!(bytes_per_case(&m("state", "self_weight")), BYTES_PER_CASE);
-        // 10⁷ load factors at 512 bytes need 5.5 GiB: refused at 4 GiB, in 2 shards of at
-        // most (4 GiB − 768 MiB)/512 = 6,815,744 cases; the same count of states fits.
-        let e = check_memory_at(10_000_000, LOAD_FACTOR_BYTES_PER_CASE, Some(gib4)).unwrap_err();
+        // 1.5 × 10⁷ load factors at 256 bytes need 4.3 GiB: refused at 4 GiB, in 2 shards of
+        // at most (4 GiB − 768 MiB)/256 = 13,631,488 cases; the same count of states fits.
+        let e = check_memory_at(15_000_000, LOAD_FACTOR_BYTES_PER_CASE, Some(gib4)).unwrap_err();
         assert!(
-            e.contains("512 bytes per case") && e.contains("at most 6815744 cases"),
+            e.contains("256 bytes per case") && e.contains("at most 13631488 cases"),
             "{e}"
         );
-        assert!(e.contains("5.5 GiB"), "{e}");
-        assert!(check_memory_at(10_000_000, BYTES_PER_CASE, Some(gib4)).is_ok());
+        assert!(e.contains("4.3 GiB") && e.contains("N ≥ 2"), "{e}");
+        assert!(check_memory_at(15_000_000, BYTES_PER_CASE, Some(gib4)).is_ok());
     }
 }

@@ -78,7 +78,7 @@ pub fn verify(opts: &VerifyOptions, out: &mut dyn Write) -> Result<bool> {
         )?;
         return Ok(false);
     };
-    // Drawing the reports again and re-running both hold every case in memory.
+    // Re-running needs the memory of a run (the tables are compared a block at a time).
     let needed = u64::try_from(cases)
         .unwrap_or(u64::MAX)
         .saturating_mul(runner::VERIFY_BYTES_PER_CASE)
@@ -346,6 +346,11 @@ fn rerun_and_compare(
     }
 }
 
+/// Rows of a stored table and of its recomputed counterpart compared at a time: the two
+/// tables are read in blocks ([`store::TableReader`]), so that verify's memory does not grow
+/// with the number of rows.
+pub const COMPARE_BLOCK_ROWS: usize = 1 << 14;
+
 /// Compares one stored Parquet file with its recomputed counterpart and prints the verdicts.
 fn compare_file(
     rel: &str,
@@ -358,21 +363,79 @@ fn compare_file(
         writeln!(out, "{rel}: different: not written by the re-run")?;
         return Ok(false);
     }
-    let s = match store::read_table(stored) {
-        Ok(t) => t,
+    match compare_in_blocks(stored, recomputed, tolerance, BLOCKS)? {
         Err(e) => {
             writeln!(
                 out,
                 "{rel}: different: the stored file cannot be read: {e:#}"
             )?;
-            return Ok(false);
+            Ok(false)
         }
+        Ok((c, _)) => {
+            print_comparison(rel, &c, out)?;
+            Ok(c.agrees())
+        }
+    }
+}
+
+/// How many rows [`compare_in_blocks`] compares and decodes at a time.
+#[derive(Debug, Clone, Copy)]
+pub struct Blocks {
+    /// Rows converted and compared at a time.
+    pub compare: usize,
+    /// Rows of each file decoded at a time (a multiple of `compare`).
+    pub decode: usize,
+}
+
+/// The blocks of `archstudy verify`: [`COMPARE_BLOCK_ROWS`] and [`store::TABLE_FRAME_ROWS`].
+pub const BLOCKS: Blocks = Blocks {
+    compare: COMPARE_BLOCK_ROWS,
+    decode: store::TABLE_FRAME_ROWS,
+};
+
+/// Compares two Parquet tables a block of rows at a time ([`compare::fold_block`]): the
+/// comparison and the most rows held decoded from either file, or the error that makes the
+/// stored file unreadable (a recomputed file that cannot be read is an error).
+pub fn compare_in_blocks(
+    stored: &Path,
+    recomputed: &Path,
+    tolerance: f64,
+    blocks: Blocks,
+) -> Result<Result<(TableComparison, usize), anyhow::Error>> {
+    let mut s = match store::TableReader::with_frame_rows(stored, blocks.decode) {
+        Ok(s) => s,
+        Err(e) => return Ok(Err(e)),
     };
-    let r = store::read_table(recomputed)
-        .with_context(|| format!("cannot read the recomputed {rel}"))?;
-    let c = compare_tables(&s, &r, tolerance);
-    print_comparison(rel, &c, out)?;
-    Ok(c.agrees())
+    let mut r = store::TableReader::with_frame_rows(recomputed, blocks.decode)
+        .with_context(|| format!("cannot read the recomputed {}", recomputed.display()))?;
+    let rows = s.rows().min(r.rows());
+    let block = blocks.compare.clamp(1, blocks.decode.max(1));
+    let mut acc = None;
+    let mut at = 0;
+    loop {
+        let len = block.min(rows - at);
+        let st = match s.read(at, len) {
+            Ok(t) => t,
+            Err(e) => return Ok(Err(e)),
+        };
+        let rt = r
+            .read(at, len)
+            .with_context(|| format!("cannot read the recomputed {}", recomputed.display()))?;
+        acc = Some(compare::fold_block(
+            acc,
+            compare_tables(&st, &rt, tolerance),
+            at,
+        ));
+        at += len;
+        if at >= rows {
+            break;
+        }
+    }
+    let Some(mut c) = acc else {
+        anyhow::bail!("no rows compared");
+    };
+    (c.stored_rows, c.recomputed_rows) = (s.rows(), r.rows());
+    Ok(Ok((c, s.largest_frame().max(r.largest_frame()))))
 }
 
 fn print_comparison(rel: &str, c: &TableComparison, out: &mut dyn Write) -> Result<()> {
@@ -430,4 +493,67 @@ fn print_comparison(rel: &str, c: &TableComparison, out: &mut dyn Write) -> Resu
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::store::{TableBuilder, read_table, write_parquet};
+
+    /// Two tables of 1000 rows compared in blocks of 64 rows, decoded 256 at a time: the
+    /// verdicts of the whole tables, with never more than 256 rows decoded at once.
+    #[test]
+    fn tables_are_compared_a_block_at_a_time_with_the_verdicts_of_the_whole() {
+        let dir = tempfile::tempdir().unwrap();
+        let n = 1000;
+        let xs: Vec<f64> = (0..n).map(|i| f64::from(i) / 7.0).collect();
+        let mut ys = xs.clone();
+        for i in [3usize, 255, 256, 700, 999] {
+            ys[i] += 1.0;
+        }
+        ys[500] += 1e-12;
+        let names = |k: u32| -> Vec<String> { (0..n).map(|i| format!("c{}", i / k)).collect() };
+        let write = |file: &str, x: Vec<f64>, s: Vec<String>, rows: usize| {
+            let path = dir.path().join(file);
+            let mut df = TableBuilder::new()
+                .f64("x", x[..rows].to_vec())
+                .str("name", s[..rows].to_vec())
+                .f64("solve_time_us", vec![1.0; rows])
+                .finish()
+                .unwrap();
+            write_parquet(&mut df, &path).unwrap();
+            path
+        };
+        let a = write("a.parquet", xs.clone(), names(10), 1000);
+        let b = write("b.parquet", ys, names(9), 1000);
+        let short = write("c.parquet", xs, names(10), 900);
+        let blocks = Blocks {
+            compare: 64,
+            decode: 256,
+        };
+        for (s, r) in [(&a, &b), (&b, &a), (&a, &a), (&a, &short)] {
+            let whole = compare_tables(&read_table(s).unwrap(), &read_table(r).unwrap(), 1e-9);
+            let (c, held) = compare_in_blocks(s, r, 1e-9, blocks).unwrap().unwrap();
+            assert_eq!(c, whole);
+            assert_eq!(held, 256);
+        }
+        let (c, _) = compare_in_blocks(&a, &b, 1e-9, blocks).unwrap().unwrap();
+        match &c.columns[0].verdict {
+            ColumnVerdict::Different {
+                rows_differing,
+                first,
+                max_abs_diff,
+            } => {
+                assert_eq!(*rows_differing, 5);
+                let rows: Vec<usize> = first.iter().map(|d| d.row).collect();
+                assert_eq!(rows, vec![3, 255, 256, 700, 999]);
+                assert!(max_abs_diff.is_some_and(|d| (d - 1.0).abs() < 1e-12));
+            }
+            other => panic!("{other:?}"),
+        }
+        // A stored file that is not Parquet is unreadable, not an error of the comparison.
+        let junk = dir.path().join("junk.parquet");
+        std::fs::write(&junk, b"not parquet").unwrap();
+        assert!(compare_in_blocks(&junk, &a, 1e-9, blocks).unwrap().is_err());
+    }
 }

@@ -301,8 +301,31 @@ fn a_plan_of_a_hundred_million_cases_is_refused_whole_and_runs_in_shards() {
         "name: huge\ngrid:\n  k: {from: 1.05, to: 1.5, steps: 10000}\n  mu: {from: 0.2, to: 0.8, steps: 10000}\n",
     );
     let (s, out) = (study.to_str().unwrap(), dir.join("out"));
+    // `check` describes the plan without expanding it, and says it runs in shards only.
+    let o = archstudy(&["check", s]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for needle in [
+        "axis k: 10000 values from 1.05 to 1.5",
+        "axis mu: 10000 values from 0.2 to 0.8",
+        "cases: 100000000\nruns in shards only",
+        "--shard I/N",
+        "GiB of memory",
+    ] {
+        assert!(text.contains(needle), "{needle}: {text}");
+    }
+    // An unsharded run is refused up front, naming --shard and the memory it would need.
     let o = archstudy(&["run", s, "--out", out.to_str().unwrap(), "--quiet"]);
-    assert_usage_error(&o, &["huge.yaml", "100000000 cases", "--shard I/N", "N ≥"]);
+    assert_usage_error(
+        &o,
+        &[
+            "huge.yaml",
+            "100000000 cases",
+            "--shard I/N",
+            "N ≥",
+            "GiB of memory",
+        ],
+    );
     assert!(!out.join("huge").exists());
     let o = archstudy(&[
         "run",
@@ -320,6 +343,12 @@ fn a_plan_of_a_hundred_million_cases_is_refused_whole_and_runs_in_shards() {
     assert_eq!(info["shard"]["plan_cases"], 100_000_000);
     assert_eq!(info["shard"]["first_case"], 99_990_000);
     assert_eq!(info["cases"]["total"], 10_000);
+    // The shard expands its own cases only: far below the 6 GiB of the whole plan.
+    let rss = info["shard"]["peak_rss_bytes"].as_u64().unwrap();
+    assert!(
+        rss < 1 << 30,
+        "a shard of 10,000 cases peaked at {rss} bytes"
+    );
     let t = archstudy::store::read_table(&d.join("results.parquet")).unwrap();
     assert_eq!(t.rows, 10_000);
 }

@@ -8,6 +8,7 @@
 pub mod curves;
 pub mod general;
 mod general_states;
+pub mod load_factors;
 pub mod mechanisms;
 mod reference;
 pub use reference::find_of_quantity;
@@ -467,7 +468,9 @@ pub fn run(manifest: &Manifest, layout: &RunLayout) -> Result<FigureDataSummary>
         .iter()
         .any(|l| l.find == Find::LoadFactor)
     {
-        store::read_load_factor_cases(&layout.results())?
+        // The states drawn are those of the weakest cases: singled out while results.parquet
+        // is read a block at a time, not every case held.
+        load_factors::LoadFactorCases::read(&layout.results(), |_| false)?.singled()
     } else {
         Vec::new()
     };

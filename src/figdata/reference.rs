@@ -67,13 +67,92 @@ fn key_of(load_case: usize, s: &Scene) -> SceneKey {
     )
 }
 
+/// Rows of results.parquet compared at a time, and the most continuum rows read for them at
+/// once (their counterparts lie in a window of about this many rows).
+const BLOCK_ROWS: usize = 1 << 16;
+
+/// Continuum scenes solved here kept for the cases after them (cleared when full: solved
+/// again if met later, to the same values).
+const SOLVED_CACHE: usize = 1 << 16;
+
+/// Where the continuum case of a discrete case lies in the plan: per load case, its first
+/// case id, its number of cases, and the stride and number of positions of its voussoir axis
+/// with the position of the continuum (None when it has no continuum entry).
+struct Counterparts {
+    load_cases: Vec<(u64, u64, Option<VoussoirAxis>)>,
+}
+
+/// A load case's voussoir axis in the plan: its stride, its number of positions and the
+/// position of its continuum entry.
+type VoussoirAxis = (u64, u64, u64);
+
+impl Counterparts {
+    fn of(m: &Manifest) -> Self {
+        let mut first = 0u64;
+        let mut load_cases = Vec::new();
+        for lc in &m.load_cases {
+            let dims: Vec<u64> = m
+                .grid
+                .iter()
+                .map(|a| {
+                    if lc.spans(a.name) {
+                        a.values.len() as u64
+                    } else {
+                        1
+                    }
+                })
+                .collect();
+            let count: u64 = dims.iter().product();
+            let axis = m.grid.iter().enumerate().find_map(|(d, a)| {
+                let c = a.values.iter().position(|v| v.is_infinite())?;
+                (a.name == AxisName::Voussoirs && lc.spans(a.name))
+                    .then(|| (dims[d + 1..].iter().product(), dims[d], c as u64))
+            });
+            load_cases.push((first, count, axis));
+            first += count;
+        }
+        Counterparts { load_cases }
+    }
+
+    /// The id of the continuum case of case `id`: the same case but for its voussoirs.
+    fn of_case(&self, id: u64) -> Option<u64> {
+        let &(first, _, axis) = self
+            .load_cases
+            .iter()
+            .find(|(first, count, _)| id >= *first && id - first < *count)?;
+        let (stride, n, c) = axis?;
+        let at = (id - first) / stride % n;
+        Some(id - at * stride + c * stride)
+    }
+}
+
+/// The continuum rows of results.parquet among `ids` (sorted), read a window at a time.
+fn continuum_rows(path: &std::path::Path, ids: &[u64]) -> Result<HashMap<u64, ResultRow>> {
+    let mut out = HashMap::new();
+    let mut rest = ids;
+    while let Some(&start) = rest.first() {
+        let n = rest.partition_point(|&i| i < start + BLOCK_ROWS as u64);
+        let span = rest[n - 1] - start + 1;
+        let offset = usize::try_from(start)?;
+        for r in store::read_results_rows(path, (offset, usize::try_from(span)?))? {
+            if rest[..n].binary_search(&r.case_id).is_ok() {
+                out.insert(r.case_id, r);
+            }
+        }
+        rest = &rest[n..];
+    }
+    Ok(out)
+}
+
 /// The continuum value of each compared quantity for every successful discrete case of the
 /// run (empty when the run has no discrete case). The continuum case of the run itself is
 /// used when it has one (the `continuum` entry of a `voussoirs` axis: same load case, K, μ,
 /// half-angle, load position and λ); otherwise each distinct continuum scene is solved once
-/// here, by the same route as the run's own cases.
+/// here, by the same route as the run's own cases. results.parquet is read a block at a
+/// time, with the continuum rows of the block's cases, and only the block's cases are
+/// expanded: the memory held besides the rows returned does not grow with the cases.
 pub fn continuum_references(manifest: &Manifest, layout: &RunLayout) -> Result<Vec<ReferenceRow>> {
-    // A study without voussoirs has nothing to compare; only then is its plan expanded.
+    // A study without voussoirs has nothing to compare.
     let discrete = manifest.arch.voussoirs != Discretisation::Continuum
         || manifest
             .grid
@@ -82,49 +161,108 @@ pub fn continuum_references(manifest: &Manifest, layout: &RunLayout) -> Result<V
     if !discrete {
         return Ok(Vec::new());
     }
-    let total = u64::try_from(crate::plan::case_count(manifest)).unwrap_or(u64::MAX);
-    let plan = crate::plan::build_slice(manifest.clone(), 0..total);
-    let rows = store::read_results(&layout.results())?;
-    let case_of = |r: &ResultRow| {
-        usize::try_from(r.case_id)
-            .ok()
-            .and_then(|i| plan.cases.get(i))
-            .filter(|c| c.id == r.case_id)
-    };
-    let stored: HashMap<SceneKey, &ResultRow> = rows
-        .iter()
-        .filter(|r| r.voussoirs.is_none() && &*r.status == "ok")
-        .filter_map(|r| {
-            let c = case_of(r)?;
-            Some((key_of(c.load_case, &c.scene), r))
-        })
-        .collect();
+    let path = layout.results();
+    let counterparts = Counterparts::of(manifest);
     let mut solved: HashMap<SceneKey, Solution> = HashMap::new();
     let mut out = Vec::new();
-    for r in rows
-        .iter()
-        .filter(|r| r.voussoirs.is_some() && &*r.status == "ok")
-    {
-        let Some(case) = case_of(r) else {
-            continue;
+    store::read_results_in_blocks(&path, BLOCK_ROWS, |offset, rows| {
+        let first = offset as u64;
+        let plan = crate::plan::build_slice(manifest.clone(), first..first + rows.len() as u64);
+        let case_of = |r: &ResultRow| {
+            r.case_id
+                .checked_sub(first)
+                .and_then(|i| usize::try_from(i).ok())
+                .and_then(|i| plan.cases.get(i))
+                .filter(|c| c.id == r.case_id)
         };
-        let key = key_of(case.load_case, &case.scene);
-        for &q in quantities_of(&r.find) {
-            let (value, time) = if let Some(c) = stored.get(&key) {
-                (c.value_of(q), c.solve_time_us)
-            } else {
-                let mut scene = case.scene;
-                scene.arch.joints = Discretisation::Continuum;
-                let s = solved.entry(key).or_insert_with(|| scene::solve(&scene));
-                (value_of(s, q), s.solve_time_us)
+        let discrete: Vec<&ResultRow> = rows
+            .iter()
+            .filter(|r| r.voussoirs.is_some() && &*r.status == "ok")
+            .collect();
+        let mut wanted: Vec<u64> = discrete
+            .iter()
+            .filter_map(|r| counterparts.of_case(r.case_id))
+            .collect();
+        wanted.sort_unstable();
+        wanted.dedup();
+        let stored = continuum_rows(&path, &wanted)?;
+        for r in discrete {
+            let Some(case) = case_of(r) else {
+                continue;
             };
-            out.push(ReferenceRow {
-                case_id: r.case_id,
-                quantity: q.to_string(),
-                continuum_value: value,
-                continuum_solve_time_us: time,
-            });
+            let own = counterparts
+                .of_case(r.case_id)
+                .and_then(|id| stored.get(&id))
+                .filter(|c| c.voussoirs.is_none() && &*c.status == "ok");
+            let key = key_of(case.load_case, &case.scene);
+            if own.is_none() && !solved.contains_key(&key) && solved.len() >= SOLVED_CACHE {
+                solved.clear();
+            }
+            for &q in quantities_of(&r.find) {
+                let (value, time) = if let Some(c) = own {
+                    (c.value_of(q), c.solve_time_us)
+                } else {
+                    let mut scene = case.scene;
+                    scene.arch.joints = Discretisation::Continuum;
+                    let s = solved.entry(key).or_insert_with(|| scene::solve(&scene));
+                    (value_of(s, q), s.solve_time_us)
+                };
+                out.push(ReferenceRow {
+                    case_id: r.case_id,
+                    quantity: q.to_string(),
+                    continuum_value: value,
+                    continuum_solve_time_us: time,
+                });
+            }
         }
-    }
+        Ok(())
+    })?;
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    /// The counterpart found from a case id is the continuum case of the same scene, found
+    /// by its key over the whole plan, whatever the order of the axes.
+    #[test]
+    fn the_continuum_case_of_a_discrete_case_is_found_from_its_id() {
+        for text in [
+            "name: a\ngrid:\n  voussoirs: {values: [6, continuum, 12]}\n  k: {values: [1.1, 1.2]}\n  mu: {values: [0.3, 0.6, inf]}\n",
+            "name: b\nfind: load_factor\nload_cases:\n  - {name: h, kind: horizontal}\n  - {name: p, kind: point, at_deg: 30}\ngrid:\n  k: {values: [1.1, 1.2, 1.3]}\n  voussoirs: {values: [8, 16, continuum]}\n  mu: {values: [0.4, 0.7]}\n",
+            "name: c\nfind: thickness\ngrid:\n  mu: {values: [0.3, 0.6]}\n  voussoirs: {values: [continuum, 6]}\n",
+        ] {
+            let m = crate::manifest::parse(text, Path::new("s.yaml")).unwrap();
+            let plan = crate::plan::build(m.clone()).unwrap();
+            let counterparts = Counterparts::of(&m);
+            let continuum =
+                |c: &crate::plan::Case| c.scene.arch.joints == Discretisation::Continuum;
+            let mut found = 0;
+            for c in plan.cases.iter().filter(|c| !continuum(c)) {
+                let key = key_of(c.load_case, &c.scene);
+                let by_key: Vec<u64> = (plan.cases.iter())
+                    .filter(|o| continuum(o) && key_of(o.load_case, &o.scene) == key)
+                    .map(|o| o.id)
+                    .collect();
+                assert_eq!(by_key.len(), 1, "{text}");
+                assert_eq!(
+                    counterparts.of_case(c.id),
+                    Some(by_key[0]),
+                    "{text}: case {}",
+                    c.id
+                );
+                found += 1;
+            }
+            assert!(found >= 2, "{text}");
+        }
+        // No continuum entry: nothing to find.
+        let m = crate::manifest::parse(
+            "name: d\ngrid:\n  voussoirs: {values: [6, 8]}\n  k: {values: [1.2]}\n  mu: {values: [0.5]}\n",
+            Path::new("s.yaml"),
+        )
+        .unwrap();
+        assert_eq!(Counterparts::of(&m).of_case(0), None);
+    }
 }

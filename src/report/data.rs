@@ -167,9 +167,13 @@ pub struct RunData {
     pub reference: Vec<ReferenceRow>,
     /// mechanisms.parquet (empty when absent).
     pub mechanisms: Vec<MechanismRow>,
-    /// The load_factor cases of results.parquet with their position and mechanism (empty
-    /// when no load case finds a load factor).
+    /// The load_factor cases of results.parquet with their position and mechanism, those of
+    /// the figure lattice (every case when no axis is longer than the figures' resolution;
+    /// empty when no load case finds a load factor).
     pub load_factors: Vec<store::LoadFactorCase>,
+    /// The load_factor cases singled out over every case: the weakest, least and largest
+    /// λ_max of each load case and arch group ([`crate::figdata::load_factors`]).
+    pub load_factor_singled: Vec<store::LoadFactorCase>,
     /// The arch group, load position and λ of every row of bifurcations.parquet.
     pub bifurcation_groups: Vec<store::BifurcationGroup>,
     /// The arch of every row of results.parquet (empty unless the grid has a
@@ -262,14 +266,16 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
         Ok(())
     })?;
     totals.finish();
-    let load_factors = if manifest
+    let (load_factors, load_factor_singled) = if manifest
         .load_cases
         .iter()
         .any(|l| manifest.find_of(&l.name) == "load_factor")
     {
-        store::read_load_factor_cases(&layout.results())?
+        let r = crate::figdata::load_factors::LoadFactorCases::read(&file, |id| lattice.keeps(id))?;
+        let singled = r.singled();
+        (r.kept, singled)
     } else {
-        Vec::new()
+        (Vec::new(), Vec::new())
     };
     let arch_axis = manifest
         .grid
@@ -302,6 +308,7 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
         reference: optional(&layout.reference(), store::read_reference)?.unwrap_or_default(),
         mechanisms: optional(&layout.mechanisms(), store::read_mechanisms)?.unwrap_or_default(),
         load_factors,
+        load_factor_singled,
         bifurcation_groups: optional(&layout.bifurcations(), store::read_bifurcation_groups)?
             .unwrap_or_default(),
         result_arches,

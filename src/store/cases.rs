@@ -508,4 +508,49 @@ mod tests {
             "{e}"
         );
     }
+
+    /// A merge reads a shard a chunk at a time: a read of one chunk's rows decodes only the
+    /// row groups that hold them. The row groups of the other chunks are overwritten with
+    /// garbage: a reader that decoded them would fail.
+    #[test]
+    fn a_chunk_read_decodes_only_its_own_row_groups() {
+        use polars_parquet::read::read_metadata;
+        use std::io::{Seek, SeekFrom, Write};
+        let text = "name: a\ngrid:\n  k: {from: 1.05, to: 1.5, steps: 6}\n  mu: {from: 0.2, to: 0.8, steps: 5}\n";
+        let plan =
+            crate::plan::build(crate::manifest::parse(text, Path::new("s.yaml")).unwrap()).unwrap();
+        let rows = engine::run(&plan, &crate::progress::Silent);
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("results.parquet");
+        // Three chunks of 10 rows, each appended as its own row group.
+        let chunk = |i: u64| crate::plan::build_slice(plan.manifest.clone(), i * 10..i * 10 + 10);
+        let frame = |i: u64| {
+            let at = (i * 10) as usize..(i * 10 + 10) as usize;
+            super::super::results_frame(&chunk(i), &rows[at]).unwrap()
+        };
+        let mut w = super::super::ParquetAppender::create(&path, &mut frame(0)).unwrap();
+        w.append(&mut frame(1)).unwrap();
+        w.append(&mut frame(2)).unwrap();
+        w.finish().unwrap();
+        let meta = read_metadata(&mut std::fs::File::open(&path).unwrap()).unwrap();
+        assert_eq!(meta.row_groups.len(), 3);
+        let mut file = std::fs::OpenOptions::new().write(true).open(&path).unwrap();
+        for g in [0, 2] {
+            let r = meta.row_groups[g].full_byte_range();
+            file.seek(SeekFrom::Start(r.start)).unwrap();
+            file.write_all(&vec![0xff; (r.end - r.start) as usize])
+                .unwrap();
+        }
+        drop(file);
+        assert!(
+            read_case_results(&plan, &path).is_err(),
+            "the garbage is read as rows"
+        );
+        let back = read_case_results_rows(&chunk(1), &path, (10, 10)).unwrap();
+        let ids: Vec<u64> = back.iter().map(|r| r.case_id).collect();
+        assert_eq!(ids, (10..20).collect::<Vec<u64>>());
+        for (a, b) in rows[10..20].iter().zip(&back) {
+            assert_eq!(format!("{:?}", a.solution), format!("{:?}", b.solution));
+        }
+    }
 }

@@ -599,17 +599,49 @@ const LOAD_FACTOR_COLUMNS: [&str; 10] = [
 /// Reads the load_factor cases of results.parquet (rows of other finds are skipped).
 pub fn read_load_factor_cases(path: &Path) -> Result<Vec<LoadFactorCase>> {
     let df = super::read_parquet_columns(path, &LOAD_FACTOR_COLUMNS)?;
+    load_factor_cases_of_frame(&df, 0, path)
+}
+
+/// [`read_load_factor_cases`] a block of `block` rows at a time: `each` is given the
+/// load_factor cases of each block in order (only the block's row groups are decoded), so
+/// that a reduction of them holds one block.
+pub fn read_load_factor_cases_in_blocks(
+    path: &Path,
+    block: usize,
+    mut each: impl FnMut(Vec<LoadFactorCase>) -> Result<()>,
+) -> Result<()> {
+    let rows = super::parquet_rows(path)?;
+    let block = block.max(1);
+    let mut offset = 0;
+    while offset < rows {
+        let df = super::read_parquet_rows(path, &LOAD_FACTOR_COLUMNS, Some((offset, block)))?;
+        let n = df.height();
+        each(load_factor_cases_of_frame(&df, offset, path)?)?;
+        if n == 0 {
+            break;
+        }
+        offset += n;
+    }
+    Ok(())
+}
+
+/// The load_factor cases of a frame of results.parquet whose first row is `first_row`.
+fn load_factor_cases_of_frame(
+    df: &DataFrame,
+    first_row: usize,
+    path: &Path,
+) -> Result<Vec<LoadFactorCase>> {
     let cx = || format!("in {}", path.display());
-    let f = |name: &str| f64_column(&df, name).with_context(cx);
-    let s = |name: &str| str_column(&df, name).with_context(cx);
+    let f = |name: &str| f64_column(df, name).with_context(cx);
+    let s = |name: &str| str_column(df, name).with_context(cx);
     let (lc, find, mech) = (s("load_case")?, s("find")?, s("mechanism")?);
     let (k, mu, half) = (f("k")?, f("mu")?, f("half_angle_deg")?);
     let (nv, at, lf) = (f("voussoirs")?, f("at_deg")?, f("load_factor")?);
-    let at_x = f64_or_null(&df, "at_x");
+    let at_x = f64_or_null(df, "at_x");
     Ok((0..lc.len())
         .filter(|&i| find[i].as_deref() == Some("load_factor"))
         .map(|i| LoadFactorCase {
-            row: i,
+            row: first_row + i,
             load_case: lc[i].clone().unwrap_or_default(),
             k: k[i].unwrap_or(f64::NAN),
             mu: mu[i].unwrap_or(f64::NAN),

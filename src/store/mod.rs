@@ -14,15 +14,18 @@ pub use cases::{read_case_ids, read_case_results, read_case_results_rows};
 pub use figures::{
     BifurcationGroup, CurvePoint, LoadFactorCase, MechanismRow, ReferenceRow, RowArch, StateRow,
     curves_frame, mechanisms_frame, read_bifurcation_groups, read_curves, read_load_factor_cases,
-    read_mechanisms, read_reference, read_row_arches, read_states, reference_frame, states_frame,
+    read_load_factor_cases_in_blocks, read_mechanisms, read_reference, read_row_arches,
+    read_states, reference_frame, states_frame,
 };
 pub use results::{BLOCK_ROWS, filled_by, results_frame};
 pub use rows::{
     BifurcationRow, BoundaryRow, JointLists, ResultRow, read_bifurcations, read_boundaries,
-    read_results, read_results_in_blocks,
+    read_results, read_results_in_blocks, read_results_rows,
 };
 pub use schema::column_doc;
-pub use table::{ColumnData, Table, TableColumn, read_table, table_from_frame};
+pub use table::{
+    ColumnData, TABLE_FRAME_ROWS, Table, TableColumn, TableReader, read_table, table_from_frame,
+};
 
 use anyhow::Context as _;
 use anyhow::Result;

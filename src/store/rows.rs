@@ -223,6 +223,13 @@ pub fn read_results(path: &Path) -> Result<Vec<ResultRow>> {
     rows_of_frame(&df, path)
 }
 
+/// Reads the rows `offset .. offset + len` of results.parquet (the columns of [`ResultRow`]
+/// only; only the row groups that hold them are decoded).
+pub fn read_results_rows(path: &Path, (offset, len): (usize, usize)) -> Result<Vec<ResultRow>> {
+    let df = super::read_parquet_rows(path, &RESULT_ROW_COLUMNS, Some((offset, len)))?;
+    rows_of_frame(&df, path)
+}
+
 /// Reads results.parquet (the columns of [`ResultRow`] only) `block` rows at a time, in
 /// order, handing each block and the index of its first row to `each`: the rows of a large
 /// run need not be in memory at once.

@@ -2,7 +2,7 @@
 //! outside the store (e.g. `verify`) can compare tables without touching polars.
 
 use anyhow::{Context, Result};
-use polars::prelude::{AnyValue, Column, DataFrame, DataType};
+use polars::prelude::{AnyValue, Column, DataFrame, DataType, SerReader};
 use std::path::Path;
 
 /// The values of one column, in the form they are compared in.
@@ -64,6 +64,82 @@ impl Table {
 pub fn read_table(path: &Path) -> Result<Table> {
     let df = super::read_parquet(path)?;
     table_from_frame(&df).with_context(|| format!("cannot read the columns of {}", path.display()))
+}
+
+/// Rows of a Parquet file decoded at a time by a [`TableReader`]: a block of a run's
+/// results table ([`super::BLOCK_ROWS`]), whose row groups it spans.
+pub const TABLE_FRAME_ROWS: usize = super::BLOCK_ROWS;
+
+/// A Parquet file read as [`Table`]s of a few rows at a time, so that a table larger than
+/// memory can be compared: it holds one decoded frame of at most [`TABLE_FRAME_ROWS`] rows
+/// (only its row groups decoded) and converts the rows asked for.
+pub struct TableReader {
+    path: std::path::PathBuf,
+    rows: usize,
+    /// Rows decoded at a time.
+    frame_rows: usize,
+    /// The decoded frame and its first row.
+    frame: Option<(usize, DataFrame)>,
+    /// The most rows decoded at once.
+    largest_frame: usize,
+}
+
+impl TableReader {
+    /// Opens a Parquet file (its footer only), to be decoded [`TABLE_FRAME_ROWS`] rows at a
+    /// time.
+    pub fn open(path: &Path) -> Result<Self> {
+        Self::with_frame_rows(path, TABLE_FRAME_ROWS)
+    }
+
+    /// [`TableReader::open`], decoding `frame_rows` rows at a time.
+    pub fn with_frame_rows(path: &Path, frame_rows: usize) -> Result<Self> {
+        Ok(TableReader {
+            path: path.to_path_buf(),
+            rows: super::parquet_rows(path)?,
+            frame_rows: frame_rows.max(1),
+            frame: None,
+            largest_frame: 0,
+        })
+    }
+
+    /// Rows of the file.
+    pub fn rows(&self) -> usize {
+        self.rows
+    }
+
+    /// The most rows this reader has held decoded at once.
+    pub fn largest_frame(&self) -> usize {
+        self.largest_frame
+    }
+
+    /// The rows `offset .. offset + len` (clamped to the file) as a table, every column in
+    /// file order; a read within one frame of the last decodes nothing.
+    pub fn read(&mut self, offset: usize, len: usize) -> Result<Table> {
+        let end = (offset + len).min(self.rows);
+        let offset = offset.min(end);
+        let held = |f: &Option<(usize, DataFrame)>| {
+            f.as_ref()
+                .is_some_and(|(at, df)| *at <= offset && end <= at + df.height())
+        };
+        if !held(&self.frame) {
+            self.frame = None;
+            let at = offset - offset % self.frame_rows;
+            let n = self.frame_rows.min(self.rows - at).max(end - at);
+            let file = std::fs::File::open(&self.path)
+                .with_context(|| format!("cannot open {}", self.path.display()))?;
+            let df = polars::prelude::ParquetReader::new(file)
+                .with_slice(Some((at, n)))
+                .finish()
+                .with_context(|| format!("cannot read {} as Parquet", self.path.display()))?;
+            self.largest_frame = self.largest_frame.max(df.height());
+            self.frame = Some((at, df));
+        }
+        let Some((at, df)) = &self.frame else {
+            anyhow::bail!("no rows decoded from {}", self.path.display());
+        };
+        table_from_frame(&df.slice((offset - at) as i64, end - offset))
+            .with_context(|| format!("cannot read the columns of {}", self.path.display()))
+    }
 }
 
 /// Converts a data frame to a [`Table`].

@@ -153,6 +153,97 @@ pub fn compare_tables(stored: &Table, recomputed: &Table, tolerance: f64) -> Tab
     }
 }
 
+/// Folds the comparison of a block of rows, the block starting at row `offset` of both
+/// tables, into the comparison of the rows before it (`earlier`, None for the first block).
+/// Comparing two tables block by block and folding gives the verdicts of [`compare_tables`]
+/// on the whole tables (row counts aside, which the caller sets from the files): so a table
+/// larger than memory is compared a block at a time.
+pub fn fold_block(
+    earlier: Option<TableComparison>,
+    mut block: TableComparison,
+    offset: usize,
+) -> TableComparison {
+    for c in &mut block.columns {
+        if let ColumnVerdict::Different { first, .. } = &mut c.verdict {
+            for d in first {
+                d.row += offset;
+            }
+        }
+    }
+    let Some(mut acc) = earlier else {
+        return block;
+    };
+    for (a, b) in acc.columns.iter_mut().zip(block.columns) {
+        a.verdict = fold_verdict(
+            std::mem::replace(&mut a.verdict, ColumnVerdict::Ignored),
+            b.verdict,
+        );
+    }
+    acc.stored_rows += block.stored_rows;
+    acc.recomputed_rows += block.recomputed_rows;
+    acc
+}
+
+/// One column's verdict on the rows so far and on the next block, as one verdict.
+fn fold_verdict(a: ColumnVerdict, b: ColumnVerdict) -> ColumnVerdict {
+    use ColumnVerdict::{Different, Identical, WithinTolerance};
+    // The largest float difference of a verdict on values, None for an exact column.
+    let max = |v: &ColumnVerdict| match v {
+        Identical => Some(0.0),
+        WithinTolerance { max_abs_diff } => Some(*max_abs_diff),
+        Different { max_abs_diff, .. } => *max_abs_diff,
+        _ => None,
+    };
+    match (&a, &b) {
+        (Identical, Identical) => Identical,
+        (Identical | WithinTolerance { .. }, Identical | WithinTolerance { .. }) => {
+            WithinTolerance {
+                max_abs_diff: max(&a).unwrap_or(0.0).max(max(&b).unwrap_or(0.0)),
+            }
+        }
+        (Identical | WithinTolerance { .. } | Different { .. }, Different { .. })
+        | (Different { .. }, Identical | WithinTolerance { .. }) => {
+            let (ma, mb) = (max(&a), max(&b));
+            // An exact column's Different carries no difference; a float column's always does.
+            let exact = matches!(
+                &a,
+                Different {
+                    max_abs_diff: None,
+                    ..
+                }
+            ) || matches!(
+                &b,
+                Different {
+                    max_abs_diff: None,
+                    ..
+                }
+            );
+            let parts = |v: ColumnVerdict| match v {
+                Different {
+                    rows_differing,
+                    first,
+                    ..
+                } => (rows_differing, first),
+                _ => (0, Vec::new()),
+            };
+            let ((na, mut first), (nb, more)) = (parts(a), parts(b));
+            first.extend(more);
+            first.truncate(ROWS_SHOWN);
+            Different {
+                rows_differing: na + nb,
+                first,
+                max_abs_diff: if exact {
+                    None
+                } else {
+                    Some(ma.unwrap_or(0.0).max(mb.unwrap_or(0.0)))
+                },
+            }
+        }
+        // Verdicts on the schema (ignored, missing, type changed) are the same in every block.
+        _ => a,
+    }
+}
+
 /// Compares two columns of the same name.
 pub fn compare_columns(s: &TableColumn, r: &TableColumn, tolerance: f64) -> ColumnVerdict {
     match (&s.data, &r.data) {
@@ -315,6 +406,139 @@ mod tests {
 
     fn floats(v: &[f64]) -> ColumnData {
         ColumnData::Float(v.iter().map(|x| Some(*x)).collect())
+    }
+
+    /// Tables compared in blocks of `n` rows and folded: the verdicts of the whole.
+    fn in_blocks(s: &Table, r: &Table, tolerance: f64, n: usize) -> TableComparison {
+        let slice = |t: &Table, at: usize, len: usize| Table {
+            rows: len,
+            columns: t
+                .columns
+                .iter()
+                .map(|c| {
+                    let data = match &c.data {
+                        ColumnData::Float(v) => ColumnData::Float(v[at..at + len].to_vec()),
+                        ColumnData::FloatList(v) => ColumnData::FloatList(v[at..at + len].to_vec()),
+                        ColumnData::Exact(v) => ColumnData::Exact(v[at..at + len].to_vec()),
+                    };
+                    TableColumn { data, ..c.clone() }
+                })
+                .collect(),
+        };
+        let rows = s.rows.min(r.rows);
+        let mut acc = None;
+        let mut at = 0;
+        loop {
+            let len = n.min(rows - at);
+            acc = Some(fold_block(
+                acc,
+                compare_tables(&slice(s, at, len), &slice(r, at, len), tolerance),
+                at,
+            ));
+            at += len;
+            if at >= rows {
+                break;
+            }
+        }
+        let mut c = acc.unwrap();
+        (c.stored_rows, c.recomputed_rows) = (s.rows, r.rows);
+        c
+    }
+
+    #[test]
+    fn tables_compared_in_blocks_have_the_verdicts_of_the_whole() {
+        let xs: Vec<f64> = (0..23).map(|i| f64::from(i) * 0.5).collect();
+        let mut near = xs.clone();
+        near[4] += 1e-12;
+        near[17] += 2e-12;
+        let mut far = xs.clone();
+        for i in [1, 6, 7, 12, 13, 19, 22] {
+            far[i] += 0.25 * f64::from(i as u32);
+        }
+        let names: Vec<Option<String>> = (0..23).map(|i| Some(format!("r{i}"))).collect();
+        let mut other_names = names.clone();
+        other_names[9] = None;
+        other_names[21] = Some("x".into());
+        let lists = |v: &[f64]| {
+            ColumnData::FloatList(v.iter().map(|x| Some(vec![Some(*x), Some(1.0)])).collect())
+        };
+        let s = table(vec![
+            col("same", "f64", floats(&xs)),
+            col("near", "f64", floats(&xs)),
+            col("far", "f64", floats(&xs)),
+            col("list", "list[f64]", lists(&xs)),
+            col("name", "str", ColumnData::Exact(names.clone())),
+            col("solve_time_us", "f64", floats(&xs)),
+            col("gone", "f64", floats(&xs)),
+            col("typed", "f64", floats(&xs)),
+        ]);
+        let r = table(vec![
+            col("same", "f64", floats(&xs)),
+            col("near", "f64", floats(&near)),
+            col("far", "f64", floats(&far)),
+            col("list", "list[f64]", lists(&far)),
+            col("name", "str", ColumnData::Exact(other_names)),
+            col("solve_time_us", "f64", floats(&far)),
+            col("typed", "str", ColumnData::Exact(names)),
+            col("new", "f64", floats(&xs)),
+        ]);
+        let whole = compare_tables(&s, &r, 1e-9);
+        assert!(matches!(
+            &whole.columns[2].verdict,
+            ColumnVerdict::Different { rows_differing: 7, first, .. } if first.len() == ROWS_SHOWN
+        ));
+        for n in [1, 2, 3, 5, 7, 22, 23, 100] {
+            assert_eq!(in_blocks(&s, &r, 1e-9, n), whole, "blocks of {n} rows");
+        }
+        // Tables of different heights: compared over the shorter one, heights kept.
+        let mut r_short = r.clone();
+        for c in &mut r_short.columns {
+            if let ColumnData::Float(v) = &mut c.data {
+                v.truncate(20);
+            } else if let ColumnData::FloatList(v) = &mut c.data {
+                v.truncate(20);
+            } else if let ColumnData::Exact(v) = &mut c.data {
+                v.truncate(20);
+            }
+        }
+        r_short.rows = 20;
+        let whole = compare_tables(&s, &r_short, 1e-9);
+        assert_eq!((whole.stored_rows, whole.recomputed_rows), (23, 20));
+        for n in [1, 4, 20, 64] {
+            assert_eq!(
+                in_blocks(&s, &r_short, 1e-9, n),
+                whole,
+                "blocks of {n} rows"
+            );
+        }
+        // No rows: the schema's verdicts.
+        let (s0, r0) = (
+            Table {
+                rows: 0,
+                ..s.clone()
+            },
+            Table {
+                rows: 0,
+                ..r.clone()
+            },
+        );
+        let empty = |t: &Table| Table {
+            rows: 0,
+            columns: t
+                .columns
+                .iter()
+                .map(|c| TableColumn {
+                    data: match c.data {
+                        ColumnData::Float(_) => ColumnData::Float(vec![]),
+                        ColumnData::FloatList(_) => ColumnData::FloatList(vec![]),
+                        ColumnData::Exact(_) => ColumnData::Exact(vec![]),
+                    },
+                    ..c.clone()
+                })
+                .collect(),
+        };
+        let (s0, r0) = (empty(&s0), empty(&r0));
+        assert_eq!(in_blocks(&s0, &r0, 1e-9, 8), compare_tables(&s0, &r0, 1e-9));
     }
 
     #[test]

@@ -53,22 +53,32 @@ fn distinct(vals: impl Iterator<Item = f64>) -> Vec<f64> {
 }
 
 /// The bounded cases of a load case summarised: one arch's (the continuum's when the study
-/// has it, else the first half-angle and voussoir count's).
-fn summary_cases<'a>(data: &'a RunData, lc: &str) -> Vec<&'a LoadFactorCase> {
-    let bounded: Vec<&LoadFactorCase> = data
+/// has it, else the first half-angle and voussoir count's). Those of the figure lattice, and
+/// with `singled` the cases singled out over every case too (in row order, each once), among
+/// which are the least and largest λ_max of all cases.
+fn summary_cases<'a>(data: &'a RunData, lc: &str, singled: bool) -> Vec<&'a LoadFactorCase> {
+    let mut bounded: Vec<&LoadFactorCase> = data
         .load_factors
         .iter()
+        .chain(data.load_factor_singled.iter())
         .filter(|c| c.load_case == lc && c.load_factor.is_some())
         .collect();
+    bounded.sort_by_key(|c| c.row);
+    bounded.dedup_by_key(|c| c.row);
     let group = |c: &LoadFactorCase| (c.half_angle_deg.to_bits(), c.voussoirs);
     let chosen = bounded
         .iter()
         .find(|c| c.voussoirs.is_none())
         .or(bounded.first())
         .map(|c| group(c));
+    let lattice = |c: &LoadFactorCase| {
+        data.load_factors
+            .binary_search_by_key(&c.row, |l| l.row)
+            .is_ok()
+    };
     bounded
         .into_iter()
-        .filter(|c| Some(group(c)) == chosen)
+        .filter(|c| Some(group(c)) == chosen && (singled || lattice(c)))
         .collect()
 }
 
@@ -88,14 +98,16 @@ impl Rows {
     /// continuum when the study has it (the convergence table gives every count), else of
     /// the first arch. Each case is listed once.
     pub(super) fn load_factor_summary(&mut self, data: &RunData, lc: &str, on: &str) {
-        let cases = summary_cases(data, lc);
+        let all = summary_cases(data, lc, true);
         let lambda = |c: &&LoadFactorCase| c.load_factor.unwrap_or(f64::NAN);
         let (Some(lo), Some(hi)) = (
-            cases.iter().min_by(|a, b| lambda(a).total_cmp(&lambda(b))),
-            cases.iter().max_by(|a, b| lambda(a).total_cmp(&lambda(b))),
+            all.iter().min_by(|a, b| lambda(a).total_cmp(&lambda(b))),
+            all.iter().max_by(|a, b| lambda(a).total_cmp(&lambda(b))),
         ) else {
             return;
         };
+        // The table of λ over (K, μ): of the figure lattice.
+        let cases = summary_cases(data, lc, false);
         let mut listed = std::collections::BTreeSet::new();
         if lo.row != hi.row {
             self.load_factor_row(data, format!("smallest λ_max of the study{on}"), lo);
