@@ -192,8 +192,11 @@ mod tests {
         .ok()
     }
 
+    /// Joints by angle (degrees) and face or sense (intrados, outward: true).
+    type Joints = Vec<(f64, bool)>;
+
     /// The hinges and sliding joints of a critical state, for comparison.
-    fn pattern(c: &Critical) -> (Vec<(f64, bool)>, Vec<(f64, bool)>) {
+    fn pattern(c: &Critical) -> (Joints, Joints) {
         let m = c
             .found()
             .and_then(|s| s.mechanism.clone())
