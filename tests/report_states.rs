@@ -323,6 +323,27 @@ fn assert_bifurcation_mechanisms(
     out
 }
 
+/// The drawing stands on horizontal springing beds from (±`intrados_x`, 0) to
+/// (±`extrados_x`, 0), to 1e-12 (`k`, the arch's K, names it in a failure).
+fn assert_supports(
+    g: &archstudy::analysis::kinematics::MechanismDrawing,
+    intrados_x: f64,
+    extrados_x: f64,
+    k: f64,
+) {
+    for (s, side) in g.supports.iter().zip([-1.0, 1.0]) {
+        for (p, x) in [
+            (s.intrados, side * intrados_x),
+            (s.extrados, side * extrados_x),
+        ] {
+            assert!(
+                (p[0] - x).abs() < 1e-12 && p[1].abs() < 1e-12,
+                "{p:?} against ({x}, 0) at K {k}"
+            );
+        }
+    }
+}
+
 /// The mechanisms at the bifurcations of a pointed arch are drawn on the pointed arch: its
 /// springings at x = ±(1 − d) and ±(K − d), d = e(1 + K)/2 the offset of each half's centre,
 /// not at ±1 and ±K as on the semicircle, and its highest point the extrados apex at x = 0,
@@ -340,14 +361,7 @@ fn pointed_arch_bifurcations_have_their_mechanisms_drawn_on_the_pointed_arch() {
         let d = 0.2 * 0.5 * (1.0 + k);
         let apex = (k * k - d * d).sqrt();
         for g in drawings {
-            for (s, side) in g.supports.iter().zip([-1.0, 1.0]) {
-                for (p, x) in [(s.intrados, side * (1.0 - d)), (s.extrados, side * (k - d))] {
-                    assert!(
-                        (p[0] - x).abs() < 1e-12 && p[1].abs() < 1e-12,
-                        "{p:?} against ({x}, 0) at K {k}"
-                    );
-                }
-            }
+            assert_supports(&g, 1.0 - d, k - d, k);
             let top = g
                 .outlines
                 .iter()
@@ -379,14 +393,7 @@ fn vertical_joint_bifurcations_have_their_mechanisms_drawn_on_vertical_joints() 
     let mut sections = 0;
     for (k, drawings) in all {
         for g in drawings {
-            for (s, side) in g.supports.iter().zip([-1.0, 1.0]) {
-                for (p, x) in [(s.intrados, side), (s.extrados, side * k)] {
-                    assert!(
-                        (p[0] - x).abs() < 1e-12 && p[1].abs() < 1e-12,
-                        "{p:?} against ({x}, 0) at K {k}"
-                    );
-                }
-            }
+            assert_supports(&g, 1.0, k, k);
             for s in g.slides.iter().filter(|s| s.centre[1] > 1e-9) {
                 let side = s.centre[0].signum();
                 assert!(
