@@ -484,3 +484,51 @@ fn a_load_on_the_springing_wedge_is_drawn_at_its_own_extrados_point() {
         );
     }
 }
+
+/// A scene of a load_factor study names where its point load stands: the weakest position
+/// of its arch here (the study moves the load), in the figure's subtitle as in its caption.
+#[test]
+fn a_load_factor_scene_names_its_load_position() {
+    let manifest = "\
+name: scene-position
+arch: {shape: pointed, eccentricity: 0.2}
+grid:
+  at_deg: {values: [-45, -15, 30]}
+  k: {values: [1.3]}
+  mu: {values: [0.5, 0.6]}
+load_cases:
+  - {name: point, kind: point}
+find: load_factor
+scenes:
+  - {k: 1.3, mu: 0.5}
+";
+    let run = run_study(&scratch("scene-position"), "scene.yaml", manifest);
+    let states = store::read_states(&RunLayout::at(&run).states()).expect("states.parquet");
+    let scene = states
+        .iter()
+        .find(|s| s.state_id == "scene-1")
+        .expect("the scene's state");
+    let cases = store::read_load_factor_cases(&run.join("results.parquet")).expect("results");
+    // The weakest of the three positions at K = 1.3, μ = 0.5.
+    let weakest = cases
+        .iter()
+        .filter(|c| c.mu == 0.5)
+        .min_by(|a, b| a.load_factor.unwrap().total_cmp(&b.load_factor.unwrap()))
+        .expect("cases at μ = 0.5");
+    assert_eq!(scene.at_deg, weakest.at_deg);
+    let at = scene.at_deg.expect("a point load position");
+    let named = format!("load at {}°", archstudy::report::format::position_deg(at));
+    // Figures set a minus sign where the report's text has a hyphen-minus.
+    let drawn = named.replace('-', "\u{2212}");
+    let svg = std::fs::read_to_string(run.join("plots/state-scene-1.svg")).expect("the figure");
+    assert!(svg.contains(&drawn), "the subtitle does not name {drawn}");
+    let md = std::fs::read_to_string(run.join("report.md")).expect("report.md");
+    let caption = md
+        .lines()
+        .find(|l| l.contains("The collapse state of the scene"))
+        .expect("the scene's caption");
+    assert!(
+        caption.contains(&named),
+        "the caption does not name {named}: {caption}"
+    );
+}

@@ -169,13 +169,7 @@ impl StateTexts {
         } else {
             format!("the weakest case collapsing by a {mech} mechanism")
         };
-        // A position given as x/L is named so: on the springing wedge of a vertical-joint
-        // arch its angle is ±α, which names the vertical joint, not the load's point.
-        let at = match (s.at_x, s.at_deg) {
-            (Some(x), _) => format!(", load at x/L = {}", short(x)),
-            (None, Some(a)) => format!(", load at {}°", position_deg(a)),
-            (None, None) => String::new(),
-        };
+        let at = load_position(s);
         StateTexts {
             title: format!("Collapse at λ_max: {mech} mechanism"),
             heading: format!(
@@ -194,6 +188,7 @@ impl StateTexts {
     /// The collapse state at λ_max of a scene of a load_factor study.
     fn load_factor_collapse(s: &StateRow, mech: &str, values: String) -> Self {
         let lambda = s.load_factor.map_or("—".into(), short);
+        let at = load_position(s);
         StateTexts {
             title: format!(
                 "Scene K = {}, μ = {}: collapse at λ_max",
@@ -207,11 +202,11 @@ impl StateTexts {
             ),
             subtitle: vec![
                 values.clone(),
-                format!("λ_max = {lambda}; {mech} mechanism"),
+                format!("λ_max = {lambda}{at}; {mech} mechanism"),
             ],
             note: None,
             caption: format!(
-                "The collapse state of the scene at its largest load factor λ_max = {lambda} ({values}), with the load drawn where it acts."
+                "The collapse state of the scene at its largest load factor λ_max = {lambda} ({values}{at}), with the load drawn where it acts."
             ),
         }
     }
@@ -336,5 +331,16 @@ impl StateTexts {
                 mu_text(s.scene_mu)
             ),
         }
+    }
+}
+
+/// ", load at …" naming a point load's position, empty for other loads. A position given as
+/// x/L is named so: on the springing wedge of a vertical-joint arch its angle is ±α, which
+/// names the vertical joint, not the load's point.
+fn load_position(s: &StateRow) -> String {
+    match (s.at_x, s.at_deg) {
+        (Some(x), _) => format!(", load at x/L = {}", short(x)),
+        (None, Some(a)) => format!(", load at {}°", position_deg(a)),
+        (None, None) => String::new(),
     }
 }
