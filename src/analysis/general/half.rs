@@ -100,8 +100,10 @@ pub(super) fn mirrored<G: ArchGeometry + ?Sized>(
     };
     let mut all = Vec::with_capacity(2 * active.len());
     for r in &active {
-        if r.theta > 0.0 {
-            let theta = own(-r.theta);
+        let theta = own(-r.theta);
+        // The crown joint is its own mirror image, also where an even voussoir count puts
+        // it a rounding error right of zero.
+        if r.theta > 0.0 && theta != r.theta {
             all.push(ActiveRow {
                 angle_deg: geom.angle_deg(theta),
                 theta,
@@ -305,6 +307,50 @@ mod tests {
             let (a, b) = (h.found().unwrap().mu, w.found().unwrap().mu);
             assert_relative_eq!(a, b, max_relative = 1e-9);
             assert_same_pattern(&h, &w, &format!("{kind:?} μ_min"));
+        }
+    }
+
+    /// An even voussoir count whose crown joint is computed a rounding error right of zero
+    /// (α = 90°, 26 voussoirs; α = 100°, 10): the crown is not mirrored onto itself, so no
+    /// row is active twice, and the collapse thickness is that of the whole arch.
+    #[test]
+    fn a_crown_joint_right_of_zero_is_its_own_mirror_image() {
+        use crate::analysis::statics::ArchGeometry;
+        for (alpha, n) in [(90.0, 26), (100.0, 10)] {
+            let kind = (
+                0.0,
+                JointOrientation::Radial,
+                false,
+                WeightModel::Annular,
+                Discretisation::Voussoirs(n),
+                alpha,
+            );
+            let crown = model(&kind, 1.2)
+                .unwrap()
+                .discrete_joints()
+                .unwrap()
+                .into_iter()
+                .find(|t| t.abs() < 1e-9)
+                .unwrap();
+            assert!(crown > 0.0, "α {alpha}, {n} voussoirs: crown at {crown}");
+            let make = |k: f64| model(&kind, k);
+            let h = thickness_with(make, 3.0, None, Friction::INFINITE, &HALF);
+            let w = thickness_with(make, 3.0, None, Friction::INFINITE, &WHOLE);
+            let (hs, ws) = (h.found().unwrap(), w.found().unwrap());
+            assert_relative_eq!(hs.k.unwrap(), ws.k.unwrap(), max_relative = 1e-10);
+            let rows: Vec<_> = hs
+                .state
+                .active
+                .iter()
+                .map(|r| (r.theta, r.condition))
+                .collect();
+            for (i, a) in rows.iter().enumerate() {
+                assert!(
+                    !rows[..i].contains(a),
+                    "α {alpha}, {n}: {a:?} twice in {rows:?}"
+                );
+            }
+            assert_same_pattern(&h, &w, &format!("α {alpha}, {n} voussoirs"));
         }
     }
 
