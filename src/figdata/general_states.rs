@@ -8,7 +8,7 @@ use super::{ArchGroup, Collector, SceneAt, blank_state, finite, joint_lists, suf
 use crate::analysis::forms::ArchModel;
 use crate::analysis::general::Settings;
 use crate::analysis::kinematics::{
-    ActiveJoint, FlowRule, LimitState, mechanism_modes, work_equation,
+    ActiveJoint, FlowRule, LimitState, ModeStatus, mechanism_modes, work_equation,
 };
 use crate::analysis::statics::Condition;
 use crate::analysis::{Face, Mechanism, Sense};
@@ -366,7 +366,8 @@ fn mirror(joints: &mut [ActiveJoint]) {
 /// the admissible modes of the pattern of both mechanisms' joints (two at a bifurcation)
 /// under the paper's non-associative rule and, at finite μ, under the associative rule,
 /// each with its work equation (eq. 11) at the limit state there and its drawing, as rows
-/// of mechanisms.parquet numbered `index`. A rule whose pattern has no mode adds no row.
+/// of mechanisms.parquet numbered `index`. A rule whose pattern has no admissible mode adds
+/// no row.
 fn bifurcation_mechanisms(
     model: &ArchModel,
     row: &StateRow,
@@ -386,9 +387,14 @@ fn bifurcation_mechanisms(
     }
     let mut out = Vec::new();
     for rule in rules {
+        // Only admissible modes are mechanisms: an inadmissible pattern's list holds its
+        // least-violating mode, which breaches the flow rule.
         let Ok(modes) = mechanism_modes(model, &joints, rule, true) else {
             continue;
         };
+        if modes.status != ModeStatus::Admissible {
+            continue;
+        }
         for f in &modes.fields {
             let w = work_equation(model, &state, f);
             out.push(general::mechanism_row(
