@@ -67,6 +67,23 @@ pub fn case_count(m: &Manifest) -> u128 {
         .sum()
 }
 
+/// The number of positions of each grid axis for the cases of `load_case`, in grid order
+/// (the case ids run through them as an odometer, last axis fastest): an axis the load case
+/// does not span has a single position (never read: the scene finds that parameter itself).
+pub fn load_case_dims(manifest: &Manifest, load_case: &LoadCase) -> Vec<u64> {
+    manifest
+        .grid
+        .iter()
+        .map(|a| {
+            if load_case.spans(a.name) {
+                a.values.len() as u64
+            } else {
+                1
+            }
+        })
+        .collect()
+}
+
 /// Expands a manifest into its cases.
 pub fn build(manifest: Manifest) -> Result<Plan, PlanTooLarge> {
     let requested = case_count(&manifest);
@@ -86,19 +103,7 @@ pub fn build_slice(manifest: Manifest, ids: std::ops::Range<u64>) -> Plan {
     let mut cases = Vec::with_capacity(usize::try_from(end.saturating_sub(start)).unwrap_or(0));
     let mut first = 0u64;
     for (lc, load_case) in manifest.load_cases.iter().enumerate() {
-        // An axis this load case does not span has a single position (never read: the
-        // scene finds that parameter itself).
-        let dims: Vec<u64> = manifest
-            .grid
-            .iter()
-            .map(|a| {
-                if load_case.spans(a.name) {
-                    a.values.len() as u64
-                } else {
-                    1
-                }
-            })
-            .collect();
+        let dims = load_case_dims(&manifest, load_case);
         let per_lc: u64 = dims.iter().product();
         let (lo, hi) = (start.max(first), end.min(first + per_lc));
         if lo < hi {

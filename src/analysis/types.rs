@@ -21,6 +21,13 @@ impl Face {
             Face::Extrados => "extrados",
         }
     }
+
+    /// Parses the name written by [`Face::as_str`].
+    pub fn parse(s: &str) -> Option<Self> {
+        [Face::Intrados, Face::Extrados]
+            .into_iter()
+            .find(|f| f.as_str() == s)
+    }
 }
 
 /// A hinge: the line of thrust touches a face at a joint.
@@ -50,6 +57,13 @@ impl Sense {
             Sense::Outward => "outward",
             Sense::Inward => "inward",
         }
+    }
+
+    /// Parses the name written by [`Sense::as_str`].
+    pub fn parse(s: &str) -> Option<Self> {
+        [Sense::Outward, Sense::Inward]
+            .into_iter()
+            .find(|d| d.as_str() == s)
     }
 }
 

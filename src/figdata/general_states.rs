@@ -297,10 +297,10 @@ fn stored_pattern(model: &ArchModel, row: &StateRow) -> Vec<ActiveJoint> {
         .iter()
         .zip(&j.hinge_faces)
         .map(|(&a, f)| {
-            let (face, condition) = if f == "extrados" {
-                (Face::Extrados, Condition::Extrados)
-            } else {
-                (Face::Intrados, Condition::Intrados)
+            let face = Face::parse(f).unwrap_or(Face::Intrados);
+            let condition = match face {
+                Face::Extrados => Condition::Extrados,
+                Face::Intrados => Condition::Intrados,
             };
             ActiveJoint::hinge(active_joint_parameter(model, row, a, &[condition]), face)
         });
@@ -310,11 +310,7 @@ fn stored_pattern(model: &ArchModel, row: &StateRow) -> Vec<ActiveJoint> {
         .iter()
         .zip(&j.sliding_senses)
         .map(|(&a, s)| {
-            let sense = if s == "inward" {
-                Sense::Inward
-            } else {
-                Sense::Outward
-            };
+            let sense = Sense::parse(s).unwrap_or(Sense::Outward);
             ActiveJoint::sliding(active_joint_parameter(model, row, a, &slides), Some(sense))
         });
     let mut joints: Vec<ActiveJoint> = hinges.chain(sliding).collect();

@@ -25,12 +25,10 @@ fn critical_state(b: &BifurcationRow) -> Option<CriticalState> {
         .iter()
         .zip(&j.hinge_faces)
         .map(|(&angle_deg, f)| {
-            let face = match f.as_str() {
-                "intrados" => Face::Intrados,
-                "extrados" => Face::Extrados,
-                _ => return None,
-            };
-            Some(Hinge { angle_deg, face })
+            Some(Hinge {
+                angle_deg,
+                face: Face::parse(f)?,
+            })
         })
         .collect::<Option<Vec<_>>>()?;
     let sliding_joints = j
@@ -38,12 +36,10 @@ fn critical_state(b: &BifurcationRow) -> Option<CriticalState> {
         .iter()
         .zip(&j.sliding_senses)
         .map(|(&angle_deg, s)| {
-            let sense = match s.as_str() {
-                "outward" => Sense::Outward,
-                "inward" => Sense::Inward,
-                _ => return None,
-            };
-            Some(SlidingJoint { angle_deg, sense })
+            Some(SlidingJoint {
+                angle_deg,
+                sense: Sense::parse(s)?,
+            })
         })
         .collect::<Option<Vec<_>>>()?;
     let kind = MechanismKind::from_counts(hinges.len(), sliding_joints.len())?;

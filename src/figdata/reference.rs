@@ -91,17 +91,7 @@ impl Counterparts {
         let mut first = 0u64;
         let mut load_cases = Vec::new();
         for lc in &m.load_cases {
-            let dims: Vec<u64> = m
-                .grid
-                .iter()
-                .map(|a| {
-                    if lc.spans(a.name) {
-                        a.values.len() as u64
-                    } else {
-                        1
-                    }
-                })
-                .collect();
+            let dims = crate::plan::load_case_dims(m, lc);
             let count: u64 = dims.iter().product();
             let axis = m.grid.iter().enumerate().find_map(|(d, a)| {
                 let c = a.values.iter().position(|v| v.is_infinite())?;

@@ -610,19 +610,9 @@ pub fn read_load_factor_cases_in_blocks(
     block: usize,
     mut each: impl FnMut(Vec<LoadFactorCase>) -> Result<()>,
 ) -> Result<()> {
-    let rows = super::parquet_rows(path)?;
-    let block = block.max(1);
-    let mut offset = 0;
-    while offset < rows {
-        let df = super::read_parquet_rows(path, &LOAD_FACTOR_COLUMNS, Some((offset, block)))?;
-        let n = df.height();
-        each(load_factor_cases_of_frame(&df, offset, path)?)?;
-        if n == 0 {
-            break;
-        }
-        offset += n;
-    }
-    Ok(())
+    super::read_parquet_in_blocks(path, &LOAD_FACTOR_COLUMNS, block, |offset, df| {
+        each(load_factor_cases_of_frame(df, offset, path)?)
+    })
 }
 
 /// The load_factor cases of a frame of results.parquet whose first row is `first_row`.

@@ -319,6 +319,29 @@ pub fn read_parquet_rows(
         .with_context(|| format!("cannot read {} as Parquet", path.display()))
 }
 
+/// Reads the named columns of a Parquet file a block of `block` rows at a time, in order:
+/// `each` is given the first row of the block and its frame (only the block's row groups
+/// are decoded). A file without rows gives one empty block.
+pub fn read_parquet_in_blocks(
+    path: &Path,
+    columns: &[&str],
+    block: usize,
+    mut each: impl FnMut(usize, &DataFrame) -> Result<()>,
+) -> Result<()> {
+    let rows = parquet_rows(path)?;
+    let block = block.max(1);
+    let mut offset = 0;
+    loop {
+        let df = read_parquet_rows(path, columns, Some((offset, block)))?;
+        let n = df.height();
+        each(offset, &df)?;
+        offset += n;
+        if n == 0 || offset >= rows {
+            return Ok(());
+        }
+    }
+}
+
 /// Rewrites one value of a float column of a Parquet file in place (atomically), leaving
 /// every other value and column as it was: how tests tamper with stored results.
 pub fn rewrite_f64_value(path: &Path, column: &str, row: usize, value: Option<f64>) -> Result<()> {

@@ -238,18 +238,9 @@ pub fn read_results_in_blocks(
     block: usize,
     mut each: impl FnMut(usize, Vec<ResultRow>) -> Result<()>,
 ) -> Result<()> {
-    let rows = super::parquet_rows(path)?;
-    let block = block.max(1);
-    let mut offset = 0;
-    loop {
-        let df = super::read_parquet_rows(path, &RESULT_ROW_COLUMNS, Some((offset, block)))?;
-        let n = df.height();
-        each(offset, rows_of_frame(&df, path)?)?;
-        offset += n;
-        if n == 0 || offset >= rows {
-            return Ok(());
-        }
-    }
+    super::read_parquet_in_blocks(path, &RESULT_ROW_COLUMNS, block, |offset, df| {
+        each(offset, rows_of_frame(df, path)?)
+    })
 }
 
 fn rows_of_frame(df: &polars::prelude::DataFrame, path: &Path) -> Result<Vec<ResultRow>> {
