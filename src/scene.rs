@@ -3,11 +3,13 @@
 
 use crate::analysis::forms::{ArchModel, FormError};
 use crate::analysis::symmetric::{self, RotationalDomain, SlidingDomain, ThrustState};
+use crate::analysis::windows::WindowSettings;
 use crate::model::{Arch, ArchForm, Friction, Load, t_over_r_from_k};
 use serde::Serialize;
 use std::fmt;
 use std::time::Instant;
 
+mod confirm;
 mod general_route;
 mod solution;
 mod summary;
@@ -156,13 +158,21 @@ pub fn state_from_domains(scene: &Scene, rot: &RotationalDomain, sld: &SlidingDo
     out
 }
 
-/// Analyses one scene.
+/// Analyses one scene. An answer for a whole range (`always_stands`, `never_stands`,
+/// `unbounded`) is confirmed by the state find at the ends of that range ([`confirm`]).
 pub fn solve(scene: &Scene) -> Solution {
     let start = Instant::now();
+    let mut out = solve_route(scene);
+    confirm::confirm(scene, &mut out, &confirm::ConfirmSettings::DEFAULT);
+    out.solve_time_us = start.elapsed().as_secs_f64() * 1e6;
+    out
+}
+
+/// Analyses one scene by its route, without the confirmation of [`solve`].
+fn solve_route(scene: &Scene) -> Solution {
     let mut out = Solution::with_position(scene);
     if !scene.uses_closed_forms() {
         general_route::solve(scene, &mut out);
-        out.solve_time_us = start.elapsed().as_secs_f64() * 1e6;
         return out;
     }
     match scene.find {
@@ -172,6 +182,20 @@ pub fn solve(scene: &Scene) -> Solution {
         }
         Find::Thickness => {
             let c = symmetric::thickness(&scene.arch, scene.friction);
+            let windows = symmetric::thickness_windows_with(
+                &scene.arch,
+                scene.friction,
+                &c,
+                &symmetric::Settings::DEFAULT,
+                &WindowSettings::DEFAULT,
+            );
+            let Some(windows) = windows else {
+                // The scan of K disagrees with the closed forms: the general route, which
+                // reconciles its search with its own scan, answers.
+                general_route::solve(scene, &mut out);
+                return out;
+            };
+            out.set_windows(Some(&windows));
             if let Some(s) = out.set_critical(&c) {
                 out.set_mechanism(&scene.arch, &s);
                 out.k_crit = Some(s.k);
@@ -221,6 +245,5 @@ pub fn solve(scene: &Scene) -> Solution {
         // Not reached: load_factor scenes take the general route.
         Find::LoadFactor => {}
     }
-    out.solve_time_us = start.elapsed().as_secs_f64() * 1e6;
     out
 }

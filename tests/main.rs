@@ -27,3 +27,4 @@ mod span_positions;
 mod state_drawings;
 mod symmetric_boundaries;
 mod symmetric_lines;
+mod windows;

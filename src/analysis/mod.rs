@@ -13,6 +13,7 @@ pub mod settings;
 pub mod statics;
 pub mod symmetric;
 pub mod types;
+pub mod windows;
 
 pub use types::{Face, Hinge, Interval, Mechanism, MechanismKind, Regime, Sense, SlidingJoint};
 

@@ -111,6 +111,9 @@ pub struct GeneralSettings {
     /// Two active joints within this (degrees, relative to 1 + |angle|) are one joint
     /// (default 1e-9).
     pub tol_same_joint: f64,
+    /// A joint shorter than this (over r) has shrunk to a point: hinges on both of its faces
+    /// are the thrust passing through it (default 1e-6).
+    pub tol_point_joint: f64,
     /// K = 1 + this starts a thickness search (default 1e-12, dimensionless).
     pub k_search_offset: f64,
     /// K of the first upper bracket of a thickness search (default 1.5, dimensionless).
@@ -153,6 +156,7 @@ impl GeneralSettings {
         tol_limit_state: 1e-6,
         tol_necessary_relax: 1e-14,
         tol_same_joint: 1e-9,
+        tol_point_joint: 1e-6,
         k_search_offset: 1e-12,
         k_search_start: 1.5,
         max_bracket: 1e9,

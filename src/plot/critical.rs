@@ -36,6 +36,45 @@ pub struct CriticalPanel {
     /// The top of the y axis when the curve rises beyond the range the study covers (it
     /// then runs off the top of the panel); `None` fits the axis to the curve.
     pub y_max: Option<f64>,
+    /// Every interval of y in which the arch stands at each x, (x, from, to), shaded: the
+    /// windows of K of a thickness find (`to` infinite for a window open at the end of the
+    /// scan). Empty when the panel has none.
+    pub windows: Vec<(f64, f64, f64)>,
+}
+
+/// The shaded columns of the windows: each x spans half-way to its neighbours.
+fn window_columns(windows: &[(f64, f64, f64)]) -> Vec<(f64, f64, f64, f64)> {
+    let mut xs: Vec<f64> = windows.iter().map(|w| w.0).collect();
+    xs.sort_by(f64::total_cmp);
+    xs.dedup();
+    let half = |i: usize| -> (f64, f64) {
+        let left = if i > 0 { xs[i - 1] } else { f64::NAN };
+        let right = if i + 1 < xs.len() {
+            xs[i + 1]
+        } else {
+            f64::NAN
+        };
+        let lw = if left.is_nan() {
+            right - xs[i]
+        } else {
+            xs[i] - left
+        };
+        let rw = if right.is_nan() {
+            xs[i] - left
+        } else {
+            right - xs[i]
+        };
+        let (lw, rw) = (lw.max(0.0), rw.max(0.0));
+        (xs[i] - lw / 2.0, xs[i] + rw / 2.0)
+    };
+    windows
+        .iter()
+        .filter_map(|&(x, a, b)| {
+            let i = xs.iter().position(|v| *v == x)?;
+            let (x0, x1) = if xs.len() == 1 { (x, x) } else { half(i) };
+            Some((x0, x1, a, b))
+        })
+        .collect()
 }
 
 /// What the critical-curves figure shows.
@@ -71,7 +110,13 @@ fn panel_ranges(p: &CriticalPanel) -> Option<((f64, f64), (f64, f64))> {
         .map(|q| q.0)
         .chain(marks().map(|m| m.x));
     let all_x = p.curve.iter().map(|q| q.0).chain(marks().map(|m| m.x));
-    let ys = p.curve.iter().map(|q| q.1).chain(marks().map(|m| m.y));
+    let ends = p.windows.iter().flat_map(|w| [w.1, w.2]);
+    let ys = p
+        .curve
+        .iter()
+        .map(|q| q.1)
+        .chain(marks().map(|m| m.y))
+        .chain(ends);
     let (x0, x1) = range(all_x).or_else(|| range(xs))?;
     let (y0, y1) = range(ys)?;
     let y1 = p.y_max.filter(|&m| m > y0).map_or(y1, |m| y1.min(m));
@@ -117,6 +162,16 @@ fn draw_panel<DB: DrawingBackend>(
         .light_line_style(TRANSPARENT)
         .bold_line_style(BLACK.mix(0.08).stroke_width(1))
         .draw()?;
+    for (a, b, lo, hi) in window_columns(&p.windows) {
+        let (a, b) = (a.max(x0), b.min(x1));
+        let (lo, hi) = (lo.max(y0), hi.min(y1));
+        if b >= a && hi > lo {
+            chart.draw_series(std::iter::once(Rectangle::new(
+                [(a, lo), (b, hi)],
+                palette::STABLE_WINDOW.filled(),
+            )))?;
+        }
+    }
     for piece in clip_polyline(&p.curve, (x0, x1), (y0, y1)) {
         chart.draw_series(LineSeries::new(
             piece,
@@ -231,6 +286,12 @@ impl CriticalChart {
                 dashed: false,
             },
         )];
+        if self.panels.iter().any(|p| !p.windows.is_empty()) {
+            items.push(LegendItem::new(
+                "K at which the arch stands",
+                Mark::Swatch(palette::STABLE_WINDOW),
+            ));
+        }
         if self.panels.iter().any(|p| !p.bifurcations.is_empty()) {
             items.push(LegendItem::new(
                 "bifurcation (this run)",
@@ -271,6 +332,7 @@ mod tests {
             }],
             paper: Vec::new(),
             y_max,
+            windows: Vec::new(),
         }
     }
 
@@ -282,8 +344,30 @@ mod tests {
         assert!((y0 - (1.07 - pad)).abs() < 1e-12 && (y1 - (1.4 + pad)).abs() < 1e-12);
         let (_, (_, y1)) = panel_ranges(&panel(None)).unwrap();
         assert!((y1 - (8.4 + 0.08 * (8.4 - 1.07))).abs() < 1e-12);
+        // Closed window ends widen the axis; open ones (infinite) do not.
+        let mut w = panel(None);
+        w.windows = vec![(0.5, 1.07, 1.2), (0.5, 9.5, f64::INFINITY)];
+        let (_, (_, y1)) = panel_ranges(&w).unwrap();
+        assert!((y1 - (9.5 + 0.08 * (9.5 - 1.07))).abs() < 1e-12);
         // A bound below the whole curve is ignored rather than emptying the panel.
         let (_, (_, y1)) = panel_ranges(&panel(Some(1.0))).unwrap();
         assert!(y1 > 8.4);
+    }
+}
+
+#[cfg(test)]
+mod window_tests {
+    use super::window_columns;
+
+    #[test]
+    fn each_window_spans_half_way_to_its_neighbours() {
+        let w = [(0.2, 1.5, 1.6), (0.4, 1.4, f64::INFINITY), (0.8, 1.3, 2.0)];
+        let c = window_columns(&w);
+        assert_eq!(c[0], (0.1, 0.30000000000000004, 1.5, 1.6));
+        assert_eq!(
+            c[1],
+            (0.30000000000000004, 0.6000000000000001, 1.4, f64::INFINITY)
+        );
+        assert_eq!(c[2], (0.6000000000000001, 1.0, 1.3, 2.0));
     }
 }

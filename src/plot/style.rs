@@ -48,6 +48,8 @@ pub mod palette {
     use plotters::style::RGBColor;
     /// Fill of the stable region.
     pub const STABLE: RGBColor = RGBColor(236, 246, 236);
+    /// The windows of K in which an arch stands, on a critical-curve panel.
+    pub const STABLE_WINDOW: RGBColor = RGBColor(200, 232, 200);
     /// Fill of the rotational region (H^r empty).
     pub const ROTATIONAL: RGBColor = RGBColor(252, 217, 168);
     /// Fill of the mixed region (domains disjoint).

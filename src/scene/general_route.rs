@@ -11,6 +11,7 @@ use crate::analysis::general::{
 use crate::analysis::kinematics::{
     FlowRule, LimitState, ModeStatus, VelocityField, mechanism_modes, work_equation,
 };
+use crate::analysis::windows::WindowSettings;
 use crate::analysis::{Mechanism, MechanismKind};
 
 /// Records a limit state: mechanism, crown force and moment (m = −M₀, the crown joint lying
@@ -170,7 +171,7 @@ fn solve_one(scene: &Scene, out: &mut Solution) {
         let circular_radial = scene.form.joints == crate::model::JointOrientation::Radial
             && scene.form.shape.eccentricity() == 0.0;
         let reference = circular_radial.then_some(scene.arch.k);
-        let c = general::thickness_with(
+        let (c, windows) = general::thickness_windows(
             make,
             scene
                 .form
@@ -178,7 +179,9 @@ fn solve_one(scene: &Scene, out: &mut Solution) {
             reference,
             scene.friction,
             &settings,
+            &WindowSettings::DEFAULT,
         );
+        out.set_windows(windows.as_ref());
         if let Some(s) = set_critical(out, &c)
             && let Some(k) = s.k
         {

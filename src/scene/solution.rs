@@ -6,6 +6,7 @@ use super::{Find, Scene};
 use crate::analysis::forms::ArchModel;
 use crate::analysis::kinematics::{ModeStatus, collapse_mechanism};
 use crate::analysis::symmetric::{Critical, CriticalState};
+use crate::analysis::windows::Windows;
 use crate::analysis::{Hinge, MechanismKind, Regime, SlidingJoint};
 use crate::model::{Arch, Load, WeightModel};
 use serde::Serialize;
@@ -27,6 +28,9 @@ pub enum Outcome {
     NotConverged,
     /// The general route failed.
     Failed,
+    /// The route answered for a whole range (`always_stands`, `never_stands`, `unbounded`)
+    /// and the state find at an end of that range contradicted it: no answer is reported.
+    Unconfirmed,
     /// The form does not exist for these inputs.
     Invalid,
     /// The find is not defined for this scene.
@@ -35,13 +39,14 @@ pub enum Outcome {
 
 impl Outcome {
     /// Every outcome.
-    pub const ALL: [Outcome; 8] = [
+    pub const ALL: [Outcome; 9] = [
         Outcome::Found,
         Outcome::NeverStands,
         Outcome::AlwaysStands,
         Outcome::Unbounded,
         Outcome::NotConverged,
         Outcome::Failed,
+        Outcome::Unconfirmed,
         Outcome::Invalid,
         Outcome::Unsupported,
     ];
@@ -55,6 +60,7 @@ impl Outcome {
             Outcome::Unbounded => "unbounded",
             Outcome::NotConverged => "not_converged",
             Outcome::Failed => "failed",
+            Outcome::Unconfirmed => "unconfirmed",
             Outcome::Invalid => "invalid",
             Outcome::Unsupported => "unsupported",
         }
@@ -136,6 +142,14 @@ pub struct Solution {
     pub k_crit: Option<f64>,
     /// t/R_c at the collapse thickness.
     pub t_over_r_crit: Option<f64>,
+    /// Every interval of K on which the arch stands, as [from, to] pairs in increasing K
+    /// (thickness find): the first `from` is `k_crit`; `to` is null for a window that is open
+    /// at the end of the scan. A window narrower than `k_windows_resolution` may be missed.
+    pub k_windows: Vec<(f64, Option<f64>)>,
+    /// The largest K the window scan reached (thickness find).
+    pub k_windows_scanned_to: Option<f64>,
+    /// The step of the window scan in K (thickness find).
+    pub k_windows_resolution: Option<f64>,
     /// Critical friction (friction find).
     pub mu_crit: Option<f64>,
     /// `rotational`, `mixed` or `sliding` at the critical state.
@@ -281,6 +295,9 @@ impl Solution {
             thrust_s_max: None,
             k_crit: None,
             t_over_r_crit: None,
+            k_windows: Vec::new(),
+            k_windows_scanned_to: None,
+            k_windows_resolution: None,
             mu_crit: None,
             mechanism: None,
             thrust_over_half_weight: None,
@@ -335,6 +352,22 @@ impl Solution {
             self.work_friction = finite(w.work_friction);
             self.work_residual = finite(w.work_residual);
         }
+    }
+
+    /// Records the windows of a thickness find.
+    pub(super) fn set_windows(&mut self, w: Option<&Windows>) {
+        let Some(w) = w else {
+            return;
+        };
+        self.k_windows = w.windows.iter().map(|w| (w.from, w.to)).collect();
+        self.k_windows_scanned_to = Some(w.scanned_to);
+        self.k_windows_resolution = Some(w.resolution);
+    }
+
+    /// True when a thickness find found that a thicker arch than K_c fails again: more than
+    /// one window, or one that closes before the end of the scan.
+    pub fn fails_again(&self) -> bool {
+        self.k_windows.len() > 1 || self.k_windows.first().is_some_and(|w| w.1.is_some())
     }
 
     /// The regime (state find).

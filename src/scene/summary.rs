@@ -39,6 +39,7 @@ pub fn summary(s: &Solution) -> String {
             threshold_lines(&mut o, s);
         }
         critical_lines(&mut o, s);
+        window_lines(&mut o, s);
         mechanism_lines(&mut o, s);
         if s.find == Find::Thrust {
             thrust_lines(&mut o, s);
@@ -133,6 +134,10 @@ fn outcome_line(find: Find, outcome: Outcome) -> Option<String> {
         (_, Outcome::Unsupported) => {
             "no answer: this find is defined for self-weight on a circular arch with radial joints only"
         }
+        (_, Outcome::Unconfirmed) => {
+            "no answer: the route's answer for the whole range was contradicted by the state \
+             find at an end of that range"
+        }
         (_, Outcome::Failed | Outcome::NotConverged) => {
             return Some(format!(
                 "no answer: the analysis {}",
@@ -188,6 +193,40 @@ fn critical_lines(o: &mut String, s: &Solution) {
         && v != 0.0
     {
         let _ = writeln!(o, "V/W_half at the crown = {v:.12}");
+    }
+}
+
+/// The windows of K of a thickness find, and whether a thicker arch fails again.
+fn window_lines(o: &mut String, s: &Solution) {
+    let Some(to) = s.k_windows_scanned_to else {
+        return;
+    };
+    let res = s.k_windows_resolution.unwrap_or(f64::NAN);
+    let list = s
+        .k_windows
+        .iter()
+        .map(|(a, b)| match b {
+            Some(b) => format!("[{a:.7}, {b:.7}]"),
+            None => format!("[{a:.7}, end of the scan)"),
+        })
+        .collect::<Vec<_>>()
+        .join(", ");
+    if s.k_windows.is_empty() {
+        let _ = writeln!(
+            o,
+            "stands for no K in (1, {to:.7}] (scanned at steps of {res})"
+        );
+        return;
+    }
+    let _ = writeln!(
+        o,
+        "stands for K in {list} (scanned to K = {to:.7} at steps of {res})"
+    );
+    if s.fails_again() {
+        let _ = writeln!(
+            o,
+            "a thicker arch than K_c fails again: the arch does not stand for every K above K_c"
+        );
     }
 }
 

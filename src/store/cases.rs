@@ -130,7 +130,9 @@ fn same(column: &str, stored: Option<&String>, planned: &'static str) -> Result<
 }
 
 /// The answer columns of results.parquet that hold one float, each with its field.
-const ANSWER_F64: [&str; 23] = [
+const ANSWER_F64: [&str; 25] = [
+    "k_windows_scanned_to",
+    "k_windows_resolution",
     "thrust_r_min",
     "thrust_r_max",
     "thrust_s_min",
@@ -164,6 +166,8 @@ fn answer_f64<'s>(s: &'s mut Solution, column: &str) -> Option<&'s mut Option<f6
         "thrust_s_min" => &mut s.thrust_s_min,
         "thrust_s_max" => &mut s.thrust_s_max,
         "k_crit" => &mut s.k_crit,
+        "k_windows_scanned_to" => &mut s.k_windows_scanned_to,
+        "k_windows_resolution" => &mut s.k_windows_resolution,
         "t_over_r_crit" => &mut s.t_over_r_crit,
         "mu_crit" => &mut s.mu_crit,
         "thrust_over_half_weight" => &mut s.thrust_over_half_weight,
@@ -186,6 +190,23 @@ fn answer_f64<'s>(s: &'s mut Solution, column: &str) -> Option<&'s mut Option<f6
     })
 }
 
+/// The windows of a thickness find from their stored ends; an upper end at the end of the
+/// scan is a window still open there.
+fn windows(from: &[f64], to: &[f64], scanned_to: Option<f64>) -> Result<Vec<(f64, Option<f64>)>> {
+    if from.len() != to.len() {
+        bail!(
+            "columns `k_windows_from` and `k_windows_to` hold {} and {} values in one row",
+            from.len(),
+            to.len()
+        );
+    }
+    Ok(from
+        .iter()
+        .zip(to)
+        .map(|(&a, &b)| (a, (Some(b) != scanned_to).then_some(b)))
+        .collect())
+}
+
 /// A list column of angles and its list column of faces or senses.
 type AnglesAndNames = (Vec<Vec<f64>>, Vec<Vec<String>>);
 
@@ -198,6 +219,8 @@ struct Stored {
     lists: std::collections::HashMap<&'static str, AnglesAndNames>,
     unbounded: Vec<Option<bool>>,
     admissible: Vec<Option<bool>>,
+    /// The windows of a thickness find: lower and upper ends.
+    windows: (Vec<Vec<f64>>, Vec<Vec<f64>>),
 }
 
 /// The string columns read into a [`Stored`].
@@ -271,6 +294,7 @@ impl Stored {
             } else {
                 vec![None; c.rows]
             },
+            windows: (c.list_f64("k_windows_from")?, c.list_f64("k_windows_to")?),
         })
     }
 
@@ -351,6 +375,11 @@ impl Stored {
                 *field = values[i];
             }
         }
+        s.k_windows = windows(
+            &self.windows.0[i],
+            &self.windows.1[i],
+            s.k_windows_scanned_to,
+        )?;
         Ok(s)
     }
 }

@@ -22,6 +22,13 @@ pub(crate) fn sliding_senses(s: &[SlidingJoint]) -> Vec<&'static str> {
     s.iter().map(|s| s.sense.as_str()).collect()
 }
 
+/// The upper ends of a thickness find's windows, the end of the scan standing for a window
+/// still open there.
+fn window_ends(s: &crate::scene::Solution) -> Vec<f64> {
+    let open = s.k_windows_scanned_to.unwrap_or(f64::INFINITY);
+    s.k_windows.iter().map(|w| w.1.unwrap_or(open)).collect()
+}
+
 /// One column: its name, its values so far and how to read a value from a row.
 type Get<'a, T> = Box<dyn Fn(&'a CaseResult) -> T + 'a>;
 
@@ -157,7 +164,12 @@ pub fn filled_by(column: &str) -> Option<&'static [Find]> {
     use Find::{Friction, LoadFactor, State, Thickness, Thresholds, Thrust};
     Some(match column {
         "regime" | "thrust_r_min" | "thrust_r_max" | "thrust_s_min" | "thrust_s_max" => &[State],
-        "k_crit" | "t_over_r_crit" => &[Thickness],
+        "k_crit"
+        | "t_over_r_crit"
+        | "k_windows_from"
+        | "k_windows_to"
+        | "k_windows_scanned_to"
+        | "k_windows_resolution" => &[Thickness],
         "mu_crit" => &[Friction],
         "load_factor" | "load_factor_unbounded" => &[LoadFactor],
         "mechanism"
@@ -258,6 +270,12 @@ fn answer_columns<'a>() -> Vec<Spec<'a>> {
         opt_f64("thrust_s_max", move |r| s(r).thrust_s_max),
         opt_f64("k_crit", move |r| s(r).k_crit),
         opt_f64("t_over_r_crit", move |r| s(r).t_over_r_crit),
+        list_f64("k_windows_from", move |r| {
+            s(r).k_windows.iter().map(|w| w.0).collect()
+        }),
+        list_f64("k_windows_to", move |r| window_ends(s(r))),
+        opt_f64("k_windows_scanned_to", move |r| s(r).k_windows_scanned_to),
+        opt_f64("k_windows_resolution", move |r| s(r).k_windows_resolution),
         opt_f64("mu_crit", move |r| s(r).mu_crit),
         opt_str("mechanism", move |r| s(r).mechanism.map(|m| m.as_str())),
         opt_f64("thrust_over_half_weight", move |r| {

@@ -77,6 +77,9 @@ pub struct ResultRow {
     pub thrust_r_min: Option<f64>,
     /// Collapse thickness ratio.
     pub k_crit: Option<f64>,
+    /// Every interval of K on which the arch stands (thickness find): (from, to), `to`
+    /// infinite for a window open at the end of the scan.
+    pub k_windows: Vec<(f64, f64)>,
     /// Critical friction.
     pub mu_crit: Option<f64>,
     /// Minimum admissible thrust over W_half (thrust find).
@@ -194,7 +197,7 @@ fn required<T>(v: Vec<Option<T>>, name: &str, path: &Path) -> Result<Vec<T>> {
 }
 
 /// The columns of results.parquet that make a [`ResultRow`].
-const RESULT_ROW_COLUMNS: [&str; 20] = [
+const RESULT_ROW_COLUMNS: [&str; 23] = [
     "case_id",
     "load_case",
     "find",
@@ -206,6 +209,9 @@ const RESULT_ROW_COLUMNS: [&str; 20] = [
     "regime",
     "thrust_r_min",
     "k_crit",
+    "k_windows_from",
+    "k_windows_to",
+    "k_windows_scanned_to",
     "mu_crit",
     "thrust_min",
     "k_c_rotational",
@@ -267,6 +273,7 @@ fn rows_of_frame(df: &polars::prelude::DataFrame, path: &Path) -> Result<Vec<Res
     let (mut outcome, mut regime) = (s("outcome")?, s("regime")?);
     let rmin = f("thrust_r_min")?;
     let (k_crit, mu_crit) = (f("k_crit")?, f("mu_crit")?);
+    let windows = window_lists(df, f("k_windows_scanned_to")?).with_context(cx)?;
     let tmin = f("thrust_min")?;
     let (kcr, murm) = (f("k_c_rotational")?, f("mu_rotational_mixed")?);
     let (mumin, kms) = (f("mu_min")?, f("k_mixed_sliding")?);
@@ -287,6 +294,7 @@ fn rows_of_frame(df: &polars::prelude::DataFrame, path: &Path) -> Result<Vec<Res
             regime: regime[i].take(),
             thrust_r_min: rmin[i],
             k_crit: k_crit[i],
+            k_windows: windows.get(i).cloned().unwrap_or_default(),
             mu_crit: mu_crit[i],
             thrust_min: tmin[i],
             k_c_rotational: kcr[i],
@@ -299,6 +307,30 @@ fn rows_of_frame(df: &polars::prelude::DataFrame, path: &Path) -> Result<Vec<Res
         });
     }
     Ok(out)
+}
+
+/// The windows of K of each row, an upper end at the end of the scan made infinite; empty
+/// lists where the table has no window columns (a study without thickness finds).
+fn window_lists(
+    df: &polars::prelude::DataFrame,
+    scanned_to: Vec<Option<f64>>,
+) -> Result<Vec<Vec<(f64, f64)>>> {
+    if df.column("k_windows_from").is_err() {
+        return Ok(Vec::new());
+    }
+    let from = list_f64_column(df, "k_windows_from")?;
+    let to = list_f64_column(df, "k_windows_to")?;
+    Ok(from
+        .into_iter()
+        .zip(to)
+        .zip(scanned_to)
+        .map(|((a, b), end)| {
+            a.into_iter()
+                .zip(b)
+                .map(|(a, b)| (a, if Some(b) == end { f64::INFINITY } else { b }))
+                .collect()
+        })
+        .collect())
 }
 
 /// Reads boundaries.parquet.

@@ -75,7 +75,7 @@ const COLUMN_DOCS: &[(&str, &str, &str)] = &[
     (
         "outcome",
         "",
-        "found, never_stands, always_stands, unbounded, not_converged, failed, invalid or unsupported",
+        "found, never_stands, always_stands, unbounded, not_converged, failed, unconfirmed, invalid or unsupported",
     ),
     ("regime", "", "stable, rotational, mixed, sliding or none"),
     (
@@ -220,6 +220,26 @@ const COLUMN_DOCS: &[(&str, &str, &str)] = &[
         "critical_apex_shared",
         "",
         "the find's critical value (μ_c, K_c or λ_max) with an apex load of a pointed arch shared freely between the halves",
+    ),
+    (
+        "k_windows_from",
+        "R/r",
+        "lower end of each interval of K on which the arch stands (the first is k_crit)",
+    ),
+    (
+        "k_windows_to",
+        "R/r",
+        "upper end of each interval of K on which the arch stands; k_windows_scanned_to where it still stands at the end of the scan",
+    ),
+    (
+        "k_windows_scanned_to",
+        "R/r",
+        "the largest K the scan for intervals reached",
+    ),
+    (
+        "k_windows_resolution",
+        "R/r",
+        "step of the scan in K: an interval narrower than this may be missed",
     ),
     ("k_c_rotational", "R/r", "collapse thickness at μ = ∞"),
     (

@@ -2,11 +2,12 @@
 //! φ (Brent).
 
 use super::margin::{MarginSolution, margin};
-use super::{Outcome, RowSet, Settings};
+use super::{ActiveRow, Outcome, RowSet, Settings};
 use crate::analysis::circular::CircularArch;
 use crate::analysis::roots::brent;
-use crate::analysis::statics::ArchGeometry;
+use crate::analysis::statics::{ArchGeometry, Condition};
 use crate::analysis::types::Mechanism;
+use crate::analysis::windows::{self, WindowSettings, Windows};
 use crate::model::{Arch, Friction};
 use std::cell::Cell;
 use std::f64::consts::FRAC_PI_2;
@@ -199,76 +200,225 @@ pub fn thickness_with<G: ArchGeometry, F: Fn(f64) -> Option<G>>(
     friction: Friction,
     settings: &Settings,
 ) -> Critical {
-    let phi = friction.angle();
-    let failed = Cell::new(None);
-    let tau_ref = match sliding_reference {
-        Some(k) => match at(k).map(|g| margin(&g, phi, RowSet::Sliding, settings)) {
-            Some(m) => match reference(&m, settings) {
-                Ok(r) => r,
-                Err(c) => return c.into(),
-            },
-            None => 0.0,
-        },
-        None => 0.0,
-    };
-    let psi = |k: f64| match at(k) {
-        Some(g) => shifted_margin(
-            &margin(&g, phi, RowSet::All, settings),
-            tau_ref,
-            settings,
-            &failed,
-        ),
-        None => -1.0,
-    };
-    // Stay clear of the end of the family, where it degenerates.
-    let cap = if k_max.is_finite() {
-        1.0 + (k_max - 1.0) * (1.0 - settings.family_end_clearance)
-    } else {
-        f64::INFINITY
-    };
-    let bracket = Bracket {
-        lo: 1.0 + settings.k_search_offset,
-        hi: settings.k_search_start,
-        cap,
-        tol: settings.tol_thickness,
-        grow_hi: true,
-        max_span: settings.max_bracket,
-    };
-    let k = match search(psi, &bracket, &failed) {
-        Ok(k) => k,
+    let family = match ThicknessFamily::new(at, k_max, sliding_reference, friction, settings) {
+        Ok(f) => f,
         Err(c) => return c.into(),
     };
-    let Some(g) = at(k) else {
-        return Critical::NeverStands;
-    };
-    let state = margin(&g, phi, RowSet::All, settings);
-    let mechanism = state.mechanism_with(settings);
-    if mechanism
-        .as_ref()
-        .is_some_and(|m| hinges_on_both_faces(m, settings))
-    {
-        // The thrust touches both faces of one joint: the joint has shrunk to a point, so the
-        // root is K → 1, where the arch stands with a thrust line through its joint points
-        // (a three-voussoir pointed arch at μ = ∞): it stands at every thickness.
-        return Critical::AlwaysStands;
-    }
-    Critical::Found(LimitState {
-        k: Some(k),
-        mu: friction.mu(),
-        mechanism,
-        state,
-    })
+    family.search()
 }
 
-/// True when a mechanism has hinges on both faces of one joint (within
-/// `settings.tol_same_joint`): possible only where the joint has no length.
-fn hinges_on_both_faces(m: &Mechanism, settings: &Settings) -> bool {
-    m.hinges.iter().any(|a| {
-        m.hinges.iter().any(|b| {
-            a.face != b.face
-                && (a.angle_deg - b.angle_deg).abs()
-                    <= settings.tol_same_joint * (1.0 + a.angle_deg.abs())
+/// A family of arches K ↦ `at(K)` at one friction and load factor, with the shifted margin
+/// ψ(K) = τ_all(K) − τ_ref + tol whose sign says whether the arch stands at K.
+struct ThicknessFamily<'s, F> {
+    at: F,
+    /// The upper end of K searched, clear of the end of the family.
+    cap: f64,
+    tau_ref: f64,
+    friction: Friction,
+    settings: &'s Settings,
+    failed: Cell<Option<Outcome>>,
+}
+
+impl<'s, G: ArchGeometry, F: Fn(f64) -> Option<G>> ThicknessFamily<'s, F> {
+    fn new(
+        at: F,
+        k_max: f64,
+        sliding_reference: Option<f64>,
+        friction: Friction,
+        settings: &'s Settings,
+    ) -> Result<Self, Stop> {
+        let phi = friction.angle();
+        let tau_ref = match sliding_reference.and_then(&at) {
+            Some(g) => reference(&margin(&g, phi, RowSet::Sliding, settings), settings)?,
+            None => 0.0,
+        };
+        // Stay clear of the end of the family, where it degenerates.
+        let cap = if k_max.is_finite() {
+            1.0 + (k_max - 1.0) * (1.0 - settings.family_end_clearance)
+        } else {
+            f64::INFINITY
+        };
+        Ok(ThicknessFamily {
+            at,
+            cap,
+            tau_ref,
+            friction,
+            settings,
+            failed: Cell::new(None),
         })
+    }
+
+    /// The lower end of every search.
+    fn lo(&self) -> f64 {
+        1.0 + self.settings.k_search_offset
+    }
+
+    /// ψ(K): ≥ 0 where the arch stands; NaN on failure, recorded in `failed`.
+    fn psi(&self, k: f64) -> f64 {
+        match (self.at)(k) {
+            Some(g) => shifted_margin(
+                &margin(&g, self.friction.angle(), RowSet::All, self.settings),
+                self.tau_ref,
+                self.settings,
+                &self.failed,
+            ),
+            None => -1.0,
+        }
+    }
+
+    /// The smallest K at which the arch stands, by Brent from K = 1.
+    fn search(&self) -> Critical {
+        let bracket = Bracket {
+            lo: self.lo(),
+            hi: self.settings.k_search_start,
+            cap: self.cap,
+            tol: self.settings.tol_thickness,
+            grow_hi: true,
+            max_span: self.settings.max_bracket,
+        };
+        match search(|k| self.psi(k), &bracket, &self.failed) {
+            Ok(k) => self.limit_state(k),
+            Err(c) => c.into(),
+        }
+    }
+
+    /// The limit state at K, the start of a window.
+    fn limit_state(&self, k: f64) -> Critical {
+        let Some(g) = (self.at)(k) else {
+            return Critical::NeverStands;
+        };
+        let state = margin(&g, self.friction.angle(), RowSet::All, self.settings);
+        let mechanism = state.mechanism_with(self.settings);
+        if mechanism.is_some() && hinges_on_both_faces(&g, &state.active, self.settings) {
+            // The thrust touches both faces of one joint: the joint has shrunk to a point, so
+            // the root is K → 1, where the arch stands with a thrust line through its joint
+            // points (a three-voussoir pointed arch at μ = ∞): it stands at every thickness.
+            return Critical::AlwaysStands;
+        }
+        Critical::Found(LimitState {
+            k: Some(k),
+            mu: self.friction.mu(),
+            mechanism,
+            state,
+        })
+    }
+
+    /// The start K of a window that is no limit state of a mechanism (the lower end of the
+    /// search, or a joint shrunk to a point): its state, no mechanism.
+    fn start_without_mechanism(&self, k: f64) -> Critical {
+        match (self.at)(k) {
+            Some(g) => Critical::Found(LimitState {
+                k: Some(k),
+                mu: self.friction.mu(),
+                mechanism: None,
+                state: margin(&g, self.friction.angle(), RowSet::All, self.settings),
+            }),
+            None => Critical::NeverStands,
+        }
+    }
+
+    /// The windows of K over the scan, with the outcome of the search made to agree with
+    /// them: K_c is the start of the first window; `always_stands` only when the arch stands
+    /// over the whole scan, `never_stands` only when it stands nowhere in it.
+    fn windows(&self, searched: Critical, ws: &WindowSettings) -> (Critical, Option<Windows>) {
+        let k_c = searched.found().and_then(|s| s.k);
+        let lo = self.lo();
+        let hi = ws.upper_end(k_c, self.cap);
+        if !(hi > lo) {
+            return (searched, None);
+        }
+        let psi = |k: f64| {
+            let v = self.psi(k);
+            match self.failed.get() {
+                Some(o) => Err(o),
+                None => Ok(v),
+            }
+        };
+        let mut found = match windows::scan(psi, lo, hi, k_c, ws) {
+            Ok(w) => w,
+            Err(o) => return (Critical::Failed(o), None),
+        };
+        let first = found.windows.first().copied();
+        let critical = match (searched, first) {
+            (Critical::Found(s), Some(w)) if Some(w.from) == s.k => Critical::Found(s),
+            (Critical::Found(s), w) if w.is_none_or(|w| Some(w.from) > s.k) => {
+                // A window narrower than the scan step: keep the search's, closed where the
+                // next sample fails.
+                let k = s.k.unwrap_or(lo);
+                let steps = ((hi - lo) / ws.resolution).ceil().max(1.0);
+                let next = (lo
+                    + (hi - lo) * (((k - lo) / (hi - lo)) * steps + 1.0).floor() / steps)
+                    .min(hi);
+                let to = match psi(next) {
+                    Ok(f) if f < 0.0 => match windows::refine(&psi, k, next, f, ws) {
+                        Ok(e) => Some(e),
+                        Err(o) => return (Critical::Failed(o), None),
+                    },
+                    _ => Some(k),
+                };
+                found.windows.insert(0, windows::Window { from: k, to });
+                Critical::Found(s)
+            }
+            (Critical::AlwaysStands, Some(w)) if w.from == lo && w.to.is_none() => {
+                Critical::AlwaysStands
+            }
+            (Critical::NeverStands, None) => Critical::NeverStands,
+            (Critical::Failed(o), _) => Critical::Failed(o),
+            // The search and the scan disagree: the scan, which saw the whole range, decides.
+            (_, None) => Critical::NeverStands,
+            (_, Some(w)) if w.from == lo => self.start_without_mechanism(lo),
+            (_, Some(w)) => match self.limit_state(w.from) {
+                Critical::AlwaysStands => self.start_without_mechanism(w.from),
+                c => c,
+            },
+        };
+        (critical, Some(found))
+    }
+}
+
+/// The collapse thickness of a family of arches as [`thickness_with`], and every window of K
+/// in which the arch stands ([`windows`](crate::analysis::windows)): the first window starts
+/// at K_c. The outcome is the one the whole scan supports: `always_stands` only when the
+/// arch stands from the lower end of the search to the end of the scan, `never_stands` only
+/// when it stands nowhere in it. The windows are `None` when no margin could be computed.
+pub fn thickness_windows<G: ArchGeometry, F: Fn(f64) -> Option<G>>(
+    at: F,
+    k_max: f64,
+    sliding_reference: Option<f64>,
+    friction: Friction,
+    settings: &Settings,
+    ws: &WindowSettings,
+) -> (Critical, Option<Windows>) {
+    let family = match ThicknessFamily::new(at, k_max, sliding_reference, friction, settings) {
+        Ok(f) => f,
+        Err(Stop::Never) => {
+            // The sliding rows alone never stand: no thickness helps.
+            return (Critical::NeverStands, None);
+        }
+        Err(c) => return (c.into(), None),
+    };
+    let searched = family.search();
+    family.windows(searched, ws)
+}
+
+/// True when the active rows put hinges on both faces of one joint that has shrunk to a
+/// point (shorter than `settings.tol_point_joint`). Joints are told apart by their parameter
+/// θ and their length, not by the angle that names them: on a vertical-joint arch the
+/// vertical joint at −α and the radial support joint beyond it (its parameter one float
+/// further out) are two joints with a wedge between them, and hinges on opposite faces of the
+/// two are an ordinary mechanism.
+fn hinges_on_both_faces<G: ArchGeometry>(
+    geom: &G,
+    active: &[ActiveRow],
+    settings: &Settings,
+) -> bool {
+    let hinge = |r: &ActiveRow| matches!(r.condition, Condition::Intrados | Condition::Extrados);
+    active.iter().filter(|a| hinge(a)).any(|a| {
+        geom.joint(a.theta).length() <= settings.tol_point_joint
+            && active.iter().filter(|b| hinge(b)).any(|b| {
+                a.condition != b.condition
+                    && (a.theta - b.theta).abs() <= settings.tol_same_joint * (1.0 + a.theta.abs())
+            })
     })
 }
 

@@ -43,7 +43,9 @@ mod tests;
 mod working_set;
 
 pub use active::{mechanism_of, pattern_of_rows};
-pub use critical::{Critical, LimitState, friction, sliding_threshold, thickness, thickness_with};
+pub use critical::{
+    Critical, LimitState, friction, sliding_threshold, thickness, thickness_windows, thickness_with,
+};
 pub use load_factor::{LoadFactor, load_factor};
 pub use margin::{MarginSolution, RegimeReport, margin, regime};
 pub use rows::{JointRow, LinearRows, OBJECTIVE};

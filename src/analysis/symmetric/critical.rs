@@ -6,6 +6,7 @@ use super::{Critical, CriticalState, Settings, SlidingDomain, ThrustState, regim
 use crate::analysis::circular::SymmetricCircular;
 use crate::analysis::roots::brent;
 use crate::analysis::types::{Face, Hinge, Mechanism, Regime, SlidingJoint};
+use crate::analysis::windows::{self, WindowSettings, Windows};
 use crate::model::{Arch, Friction};
 use std::f64::consts::FRAC_PI_2;
 
@@ -157,6 +158,39 @@ pub fn thickness_with(arch: &Arch, friction: Friction, settings: &Settings) -> C
         Some(s) => Critical::Found(s),
         None => Critical::NeverStands,
     }
+}
+
+/// The windows of K in which the arch stands ([`crate::analysis::windows`]), scanned with
+/// the margin of [`thickness_with`], when they agree with its answer `found`: K_c starts the
+/// first window, `always_stands` is one window from the lower end of the search to the end
+/// of the scan, `never_stands` none. `None` when they disagree (the caller answers by
+/// another route).
+pub fn thickness_windows_with(
+    arch: &Arch,
+    friction: Friction,
+    found: &Critical,
+    settings: &Settings,
+    ws: &WindowSettings,
+) -> Option<Windows> {
+    let sd = sliding_domain_with(&SymmetricCircular::new(arch), friction.angle(), settings);
+    let psi = |k: f64| {
+        let m = stability_margin(
+            &SymmetricCircular::new(&arch.with_k(k)),
+            &sd.interval,
+            settings,
+        );
+        Ok::<f64, ()>(m.0 + settings.tol_margin)
+    };
+    let k_c = found.found().map(|s| s.k);
+    let lo = 1.0 + settings.k_search_offset;
+    let w = windows::scan(psi, lo, ws.upper_end(k_c, f64::INFINITY), k_c, ws).ok()?;
+    let first = w.windows.first();
+    let agree = match found {
+        Critical::Found(s) => first.is_some_and(|f| f.from == s.k),
+        Critical::AlwaysStands => w.windows.len() == 1 && first.is_some_and(|f| f.from == lo),
+        Critical::NeverStands => first.is_none(),
+    };
+    agree.then_some(w)
 }
 
 /// The critical friction μ_c at K: the smallest μ at which the arch stands.

@@ -13,7 +13,9 @@ mod lines;
 #[cfg(test)]
 mod tests;
 
-pub use critical::{friction_with, sliding_threshold_with, thickness_with, thrust_with};
+pub use critical::{
+    friction_with, sliding_threshold_with, thickness_windows_with, thickness_with, thrust_with,
+};
 pub use domains::{
     domains_with, rotational_domain_with, rotational_peak_with, sliding_domain_with,
 };

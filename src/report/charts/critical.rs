@@ -9,11 +9,18 @@ use crate::report::paper;
 
 const CRITICAL_CAPTION: &str = "The collapse thickness K_c(μ) (the smallest K at which the arch stands at friction μ) and the critical friction μ_c(K) (the smallest μ at which an arch of thickness K stands). Dots: bifurcations located in this run; open diamonds: the values printed in the paper, when the study is the paper's case.";
 
+/// Added to the caption of a thickness study's figure, whose panel (a) shades the windows.
+const WINDOWS_CAPTION: &str = "Shaded: every interval of K in which the arch stands at that μ (the windows of the thickness find, scanned to the larger of K = 3 and 1 + 2 (K_c − 1)); a gap above K_c is a range of thicker arches that fail again.";
+
 /// The critical-curves figure of a load case, when it has a critical curve.
 pub fn figure(data: &RunData, lc: &LoadCaseFigure) -> Option<FigureSpec> {
     let on = &lc.title_suffix;
     let c = critical(data, lc.name, on)?;
     let mut caption = CRITICAL_CAPTION.to_string();
+    if c.panels.iter().any(|p| !p.windows.is_empty()) {
+        caption.push(' ');
+        caption.push_str(WINDOWS_CAPTION);
+    }
     if let Some(note) = c.panels.first().and_then(off_the_top) {
         caption.push(' ');
         caption.push_str(&note);
@@ -57,6 +64,9 @@ fn critical(data: &RunData, lc: &str, on: &str) -> Option<CriticalChart> {
     let mut panels = Vec::new();
     if let Some(a) = a {
         let mut panel = marks.panel(Axes::COLLAPSE_THICKNESS, a);
+        if data.manifest.find_of(lc) == "thickness" {
+            panel.windows = windows(data, lc);
+        }
         // A state study covers a range of K: K_c(μ) above it is off the map too.
         if data.manifest.find_of(lc) == "state" {
             panel.y_max = data.totals.k_max.get(lc).copied();
@@ -116,6 +126,16 @@ fn curves(data: &RunData, lc: &str) -> (Option<Curve>, Option<Curve>) {
         }
         _ => (None, None),
     }
+}
+
+/// The windows of K of a thickness study over one model, (μ, from, to), shaded on panel (a).
+fn windows(data: &RunData, lc: &str) -> Vec<(f64, f64, f64)> {
+    data.results
+        .iter()
+        .filter(|r| &*r.load_case == lc)
+        .filter_map(|r| Some((r.mu.filter(|m| m.is_finite())?, &r.k_windows)))
+        .flat_map(|(mu, w)| w.iter().map(move |&(a, b)| (mu, a, b)))
+        .collect()
 }
 
 /// The words and axes of one panel.
@@ -194,6 +214,7 @@ impl Marks {
                 Vec::new()
             },
             y_max: None,
+            windows: Vec::new(),
         }
     }
 }

@@ -267,6 +267,47 @@ impl Rows {
                 format!("results.parquet row {i} {col}"),
             );
         }
+        self.fails_again(data);
+    }
+
+    /// Thickness finds in which a thicker arch than K_c fails again: how many, and the first
+    /// with its windows.
+    fn fails_again(&mut self, data: &RunData) {
+        let again: Vec<(usize, &ResultRow)> = data
+            .results
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| {
+                r.k_windows.len() > 1 || r.k_windows.first().is_some_and(|w| w.1.is_finite())
+            })
+            .collect();
+        let Some(&(i, first)) = again.first() else {
+            return;
+        };
+        let windows = first
+            .k_windows
+            .iter()
+            .map(|&(a, b)| {
+                if b.is_finite() {
+                    format!("[{}, {}]", value(a), value(b))
+                } else {
+                    format!("[{}, end of scan]", value(a))
+                }
+            })
+            .collect::<Vec<_>>()
+            .join(", ");
+        let at = first.mu.map_or("—".into(), given);
+        self.out.push(KeyResult {
+            quantity: format!(
+                "cases in which a thicker arch than K_c fails again ({} of {}); first at μ = {at}: stands for K in",
+                again.len(),
+                data.results.iter().filter(|r| &*r.find == "thickness").count()
+            ),
+            value: windows,
+            paper: "—".into(),
+            difference: "—".into(),
+            source: format!("results.parquet row {i} k_windows_from, k_windows_to"),
+        });
     }
 
     /// The continuum's critical values of a thresholds or load-factor find (a study over the
