@@ -49,3 +49,16 @@ fn thickness_voussoirs(n: u32) -> f64 {
     let s = symmetric::thickness(black_box(&arch(1.5, Some(n))), Friction::INFINITE);
     s.found().map_or(f64::NAN, |s| s.k)
 }
+
+/// The whole thickness find of the semicircle at μ = ∞ as `archstudy solve` answers it: the
+/// closed-form K_c (`thickness_continuum`) and the scan of K for windows, to compare with the
+/// search alone.
+#[divan::bench]
+fn thickness_find_with_windows() -> Option<f64> {
+    let s = archstudy::scene::Scene::new(
+        black_box(arch(1.5, None)),
+        Friction::INFINITE,
+        archstudy::scene::Find::Thickness,
+    );
+    archstudy::scene::solve(&s).k_crit
+}
