@@ -331,29 +331,29 @@ fn disagreement(scene: &Scene, s: &Solution) -> Option<String> {
     }
 }
 
+/// A drawn scene's answer is confirmed and agrees with the state find on both sides of it.
+fn agrees_with_the_state(d: &Drawn) -> Result<(), TestCaseError> {
+    let Some(scene) = d.scene() else {
+        return Ok(());
+    };
+    let s = scene::solve(&scene);
+    prop_assert_ne!(s.outcome, Some(Outcome::Unconfirmed), "{:?}", d);
+    let why = disagreement(&scene, &s);
+    prop_assert!(why.is_none(), "{:?}: {:?} {:?}", why, d, s);
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
 
     #[test]
     fn every_critical_outcome_agrees_with_the_state_on_both_sides(d in drawn()) {
-        let Some(scene) = d.scene() else {
-            return Ok(());
-        };
-        let s = scene::solve(&scene);
-        prop_assert_ne!(s.outcome, Some(Outcome::Unconfirmed), "{:?}", d);
-        let why = disagreement(&scene, &s);
-        prop_assert!(why.is_none(), "{:?}: {:?} {:?}", why, d, s);
+        agrees_with_the_state(&d)?;
     }
 
     #[test]
     fn vertical_joints_under_horizontal_loads_agree_with_the_state(d in vertical_horizontal()) {
-        let Some(scene) = d.scene() else {
-            return Ok(());
-        };
-        let s = scene::solve(&scene);
-        prop_assert_ne!(s.outcome, Some(Outcome::Unconfirmed), "{:?}", d);
-        let why = disagreement(&scene, &s);
-        prop_assert!(why.is_none(), "{:?}: {:?} {:?}", why, d, s);
+        agrees_with_the_state(&d)?;
     }
 }
 
