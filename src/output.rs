@@ -37,9 +37,21 @@ pub fn remove_pending() {
         Err(e) => e.into_inner().clone(),
     };
     for p in paths {
-        let _ = std::fs::remove_dir_all(&p).or_else(|_| std::fs::remove_file(&p));
+        // The other threads keep writing until the process exits: a file or directory they
+        // create while the tree is being removed makes the removal fail, so it is tried
+        // again while anything is left.
+        for _ in 0..REMOVE_ATTEMPTS {
+            let _ = std::fs::remove_dir_all(&p).or_else(|_| std::fs::remove_file(&p));
+            if std::fs::symlink_metadata(&p).is_err() {
+                break;
+            }
+        }
     }
 }
+
+/// How many times an interrupted run tries to remove a pending path that the still running
+/// threads write into.
+const REMOVE_ATTEMPTS: usize = 100;
 
 /// Whether `dir` is a run directory `archstudy run` wrote (a directory, not a symbolic link,
 /// holding run.json and manifest.yaml), so that a new run of the same name may replace it.
