@@ -50,6 +50,16 @@ impl Default for WindowSettings {
     }
 }
 
+/// A window as results hold it: (from, to), `to` `None` when the window is open at the end
+/// of the scan.
+pub type Span = (f64, Option<f64>);
+
+/// True when windows say that a thicker arch than the start of the first fails again: more
+/// than one window, or one that closes before the end of the scan.
+pub fn fails_again(spans: &[Span]) -> bool {
+    spans.len() > 1 || spans.first().is_some_and(|w| w.1.is_some())
+}
+
 /// One interval of K on which the arch stands.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Window {
@@ -74,7 +84,8 @@ pub struct Windows {
 impl Windows {
     /// True when a thicker arch than the start of the first window fails again.
     pub fn fails_again(&self) -> bool {
-        self.windows.len() > 1 || self.windows.first().is_some_and(|w| w.to.is_some())
+        let spans: Vec<Span> = self.windows.iter().map(|w| (w.from, w.to)).collect();
+        fails_again(&spans)
     }
 }
 
@@ -85,7 +96,9 @@ impl Windows {
 /// refined by Brent's method (which only needs the bracket, so a margin that jumps where a
 /// load crosses a joint is handled) to `settings.tol_end`, on the side where the arch stands.
 /// `first` is a root already known (the critical search's K_c): when it lies in the
-/// bracket of the first rising sign change it is used as that window's start as it is.
+/// bracket of the first rising sign change it is used as that window's start as it is, and
+/// when it lies between two failing samples before any window (a window narrower than the
+/// step) that window is kept, closed where the next sample fails.
 pub fn scan<E>(
     psi: impl Fn(f64) -> Result<f64, E>,
     lo: f64,
@@ -121,6 +134,15 @@ pub fn scan<E>(
                     from: open.take().unwrap_or(k0),
                     to: Some(end),
                 });
+            }
+            (false, false) => {
+                if let Some(k) = first.filter(|&k| windows.is_empty() && k0 < k && k <= k1) {
+                    let end = refine(&psi, k, k1, f1, settings)?;
+                    windows.push(Window {
+                        from: k,
+                        to: Some(end),
+                    });
+                }
             }
             _ => {}
         }
@@ -217,6 +239,25 @@ mod tests {
         .unwrap();
         assert_eq!(w.windows[0].from, 1.3011 + 1e-14);
         assert!(!w.fails_again());
+    }
+
+    #[test]
+    fn a_known_root_between_two_failing_samples_keeps_its_narrow_window() {
+        // Stands on [1.5003, 1.5008] only, between two samples of the 2e-3 step; the known
+        // root given is inside it.
+        let f = |k: f64| 0.00025 - (k - 1.50055).abs();
+        assert!(windows_of(f, 1.0, 3.0).is_empty());
+        let w = scan(
+            |k| Ok::<_, ()>(f(k)),
+            1.0,
+            3.0,
+            Some(1.5004),
+            &WindowSettings::DEFAULT,
+        )
+        .unwrap();
+        assert_eq!(w.windows.len(), 1);
+        assert_eq!(w.windows[0].from, 1.5004);
+        assert!((w.windows[0].to.unwrap() - 1.5008).abs() < 1e-11);
     }
 
     #[test]

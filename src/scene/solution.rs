@@ -6,7 +6,7 @@ use super::{Find, Scene};
 use crate::analysis::forms::ArchModel;
 use crate::analysis::kinematics::{ModeStatus, collapse_mechanism};
 use crate::analysis::symmetric::{Critical, CriticalState};
-use crate::analysis::windows::Windows;
+use crate::analysis::windows::{Span, Windows};
 use crate::analysis::{Hinge, MechanismKind, Regime, SlidingJoint};
 use crate::model::{Arch, Load, WeightModel};
 use serde::Serialize;
@@ -145,7 +145,7 @@ pub struct Solution {
     /// Every interval of K on which the arch stands, as [from, to] pairs in increasing K
     /// (thickness find): the first `from` is `k_crit`; `to` is null for a window that is open
     /// at the end of the scan. A window narrower than `k_windows_resolution` may be missed.
-    pub k_windows: Vec<(f64, Option<f64>)>,
+    pub k_windows: Vec<Span>,
     /// The largest K the window scan reached (thickness find).
     pub k_windows_scanned_to: Option<f64>,
     /// The step of the window scan in K (thickness find).
@@ -367,7 +367,7 @@ impl Solution {
     /// True when a thickness find found that a thicker arch than K_c fails again: more than
     /// one window, or one that closes before the end of the scan.
     pub fn fails_again(&self) -> bool {
-        self.k_windows.len() > 1 || self.k_windows.first().is_some_and(|w| w.1.is_some())
+        crate::analysis::windows::fails_again(&self.k_windows)
     }
 
     /// The regime (state find).

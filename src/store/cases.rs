@@ -4,6 +4,7 @@
 //! exactly; the rows rebuild the same results table.
 
 use super::{bool_column, f64_column, list_f64_column, list_str_column, read_parquet, str_column};
+use crate::analysis::windows::Span;
 use crate::analysis::{Face, Hinge, MechanismKind, Regime, Sense, SlidingJoint};
 use crate::engine::{CaseResult, Status};
 use crate::model::WeightModel;
@@ -192,7 +193,7 @@ fn answer_f64<'s>(s: &'s mut Solution, column: &str) -> Option<&'s mut Option<f6
 
 /// The windows of a thickness find from their stored ends; an upper end at the end of the
 /// scan is a window still open there.
-fn windows(from: &[f64], to: &[f64], scanned_to: Option<f64>) -> Result<Vec<(f64, Option<f64>)>> {
+pub(super) fn windows(from: &[f64], to: &[f64], scanned_to: Option<f64>) -> Result<Vec<Span>> {
     if from.len() != to.len() {
         bail!(
             "columns `k_windows_from` and `k_windows_to` hold {} and {} values in one row",

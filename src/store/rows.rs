@@ -7,6 +7,7 @@ use super::{
     bool_column, f64_column, list_f64_column, list_str_column, read_parquet, read_parquet_columns,
     str_column, u64_column,
 };
+use crate::analysis::windows::Span;
 use anyhow::{Context as _, Result};
 use std::collections::HashMap;
 use std::path::Path;
@@ -78,8 +79,8 @@ pub struct ResultRow {
     /// Collapse thickness ratio.
     pub k_crit: Option<f64>,
     /// Every interval of K on which the arch stands (thickness find): (from, to), `to`
-    /// infinite for a window open at the end of the scan.
-    pub k_windows: Vec<(f64, f64)>,
+    /// `None` for a window open at the end of the scan.
+    pub k_windows: Vec<Span>,
     /// Critical friction.
     pub mu_crit: Option<f64>,
     /// Minimum admissible thrust over W_half (thrust find).
@@ -101,6 +102,12 @@ pub struct ResultRow {
 }
 
 impl ResultRow {
+    /// True when a thickness find found that a thicker arch than K_c fails again: more than
+    /// one window, or one that closes before the end of the scan.
+    pub fn fails_again(&self) -> bool {
+        crate::analysis::windows::fails_again(&self.k_windows)
+    }
+
     /// The value of a numeric results column of this row by its name (the critical values
     /// compared with the continuum); `None` when the column is not one of them or is null.
     pub fn value_of(&self, column: &str) -> Option<f64> {
@@ -309,28 +316,22 @@ fn rows_of_frame(df: &polars::prelude::DataFrame, path: &Path) -> Result<Vec<Res
     Ok(out)
 }
 
-/// The windows of K of each row, an upper end at the end of the scan made infinite; empty
-/// lists where the table has no window columns (a study without thickness finds).
+/// The windows of K of each row ([`super::cases::windows`]); empty lists where the table has
+/// no window columns (a study without thickness finds).
 fn window_lists(
     df: &polars::prelude::DataFrame,
     scanned_to: Vec<Option<f64>>,
-) -> Result<Vec<Vec<(f64, f64)>>> {
+) -> Result<Vec<Vec<Span>>> {
     if df.column("k_windows_from").is_err() {
         return Ok(Vec::new());
     }
     let from = list_f64_column(df, "k_windows_from")?;
     let to = list_f64_column(df, "k_windows_to")?;
-    Ok(from
-        .into_iter()
-        .zip(to)
+    from.iter()
+        .zip(&to)
         .zip(scanned_to)
-        .map(|((a, b), end)| {
-            a.into_iter()
-                .zip(b)
-                .map(|(a, b)| (a, if Some(b) == end { f64::INFINITY } else { b }))
-                .collect()
-        })
-        .collect())
+        .map(|((a, b), end)| super::cases::windows(a, b, end))
+        .collect()
 }
 
 /// Reads boundaries.parquet.

@@ -266,6 +266,12 @@ impl<'s, G: ArchGeometry, F: Fn(f64) -> Option<G>> ThicknessFamily<'s, F> {
         }
     }
 
+    /// ψ(K), or the outcome of the first margin that failed.
+    fn checked_psi(&self, k: f64) -> Result<f64, Outcome> {
+        let v = self.psi(k);
+        self.failed.get().map_or(Ok(v), Err)
+    }
+
     /// The smallest K at which the arch stands, by Brent from K = 1.
     fn search(&self) -> Critical {
         let bracket = Bracket {
@@ -327,38 +333,14 @@ impl<'s, G: ArchGeometry, F: Fn(f64) -> Option<G>> ThicknessFamily<'s, F> {
         if !(hi > lo) {
             return (searched, None);
         }
-        let psi = |k: f64| {
-            let v = self.psi(k);
-            match self.failed.get() {
-                Some(o) => Err(o),
-                None => Ok(v),
-            }
-        };
-        let mut found = match windows::scan(psi, lo, hi, k_c, ws) {
+        let found = match windows::scan(|k| self.checked_psi(k), lo, hi, k_c, ws) {
             Ok(w) => w,
             Err(o) => return (Critical::Failed(o), None),
         };
         let first = found.windows.first().copied();
         let critical = match (searched, first) {
+            // The scan keeps the search's K_c as the start of its first window.
             (Critical::Found(s), Some(w)) if Some(w.from) == s.k => Critical::Found(s),
-            (Critical::Found(s), w) if w.is_none_or(|w| Some(w.from) > s.k) => {
-                // A window narrower than the scan step: keep the search's, closed where the
-                // next sample fails.
-                let k = s.k.unwrap_or(lo);
-                let steps = ((hi - lo) / ws.resolution).ceil().max(1.0);
-                let next = (lo
-                    + (hi - lo) * (((k - lo) / (hi - lo)) * steps + 1.0).floor() / steps)
-                    .min(hi);
-                let to = match psi(next) {
-                    Ok(f) if f < 0.0 => match windows::refine(&psi, k, next, f, ws) {
-                        Ok(e) => Some(e),
-                        Err(o) => return (Critical::Failed(o), None),
-                    },
-                    _ => Some(k),
-                };
-                found.windows.insert(0, windows::Window { from: k, to });
-                Critical::Found(s)
-            }
             (Critical::AlwaysStands, Some(w)) if w.from == lo && w.to.is_none() => {
                 Critical::AlwaysStands
             }

@@ -134,7 +134,10 @@ fn windows(data: &RunData, lc: &str) -> Vec<(f64, f64, f64)> {
         .iter()
         .filter(|r| &*r.load_case == lc)
         .filter_map(|r| Some((r.mu.filter(|m| m.is_finite())?, &r.k_windows)))
-        .flat_map(|(mu, w)| w.iter().map(move |&(a, b)| (mu, a, b)))
+        .flat_map(|(mu, w)| {
+            w.iter()
+                .map(move |&(a, b)| (mu, a, b.unwrap_or(f64::INFINITY)))
+        })
         .collect()
 }
 

@@ -277,9 +277,7 @@ impl Rows {
             .results
             .iter()
             .enumerate()
-            .filter(|(_, r)| {
-                r.k_windows.len() > 1 || r.k_windows.first().is_some_and(|w| w.1.is_finite())
-            })
+            .filter(|(_, r)| r.fails_again())
             .collect();
         let Some(&(i, first)) = again.first() else {
             return;
@@ -287,12 +285,9 @@ impl Rows {
         let windows = first
             .k_windows
             .iter()
-            .map(|&(a, b)| {
-                if b.is_finite() {
-                    format!("[{}, {}]", value(a), value(b))
-                } else {
-                    format!("[{}, end of scan]", value(a))
-                }
+            .map(|&(a, b)| match b {
+                Some(b) => format!("[{}, {}]", value(a), value(b)),
+                None => format!("[{}, end of scan]", value(a)),
             })
             .collect::<Vec<_>>()
             .join(", ");
