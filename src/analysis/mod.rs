@@ -5,6 +5,7 @@
 
 pub mod circular;
 pub mod forms;
+pub mod gap;
 pub mod general;
 pub mod kinematics;
 pub mod lp;

@@ -355,6 +355,54 @@ impl Default for GeometrySettings {
     }
 }
 
+/// Settings of the search for the first complete solution ([`crate::analysis::gap`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GapSettings {
+    /// A row is tight at a vertex when |a·y − b| ≤ this·(1 + |y|∞), rows of unit length
+    /// (default 1e-9).
+    pub tol_tight: f64,
+    /// Twists are positively dependent when the origin lies within this of their convex hull,
+    /// unit twists (default 1e-9).
+    pub tol_complete: f64,
+    /// Weights below this do not move a joint; also the tolerance of the hull's own steps
+    /// (default 1e-12).
+    pub tol_hull: f64,
+    /// A complete solution below the static limit by more than this·(1 + |limit|) opens a gap
+    /// (default 1e-9).
+    pub tol_gap: f64,
+    /// Largest load factor searched (default 1e3, as the confirmation of unbounded answers).
+    pub lambda_cap: f64,
+    /// Largest |F_x|, |F_y|, |M₀| searched, over W_half and W_half·r (default 1e6).
+    pub state_cap: f64,
+    /// Largest number of vertices the walk visits (default 200 000).
+    pub max_vertices: usize,
+    /// Largest number of tight rows at a vertex whose triples are tried as edges (default 24).
+    pub max_tight: usize,
+    /// Joints sampled per family of a continuum (default 65, ends included).
+    pub continuum_joints: usize,
+}
+
+impl GapSettings {
+    /// The defaults.
+    pub const DEFAULT: Self = GapSettings {
+        tol_tight: 1e-9,
+        tol_complete: 1e-9,
+        tol_hull: 1e-12,
+        tol_gap: 1e-9,
+        lambda_cap: 1e3,
+        state_cap: 1e6,
+        max_vertices: 200_000,
+        max_tight: 24,
+        continuum_joints: 65,
+    };
+}
+
+impl Default for GapSettings {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
 /// The settings of every analysis route.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Settings {
@@ -366,6 +414,8 @@ pub struct Settings {
     pub kinematics: KinematicsSettings,
     /// The arch geometries.
     pub geometry: GeometrySettings,
+    /// The search for the first complete solution.
+    pub gap: GapSettings,
 }
 
 impl Settings {
@@ -375,6 +425,7 @@ impl Settings {
         general: GeneralSettings::DEFAULT,
         kinematics: KinematicsSettings::DEFAULT,
         geometry: GeometrySettings::DEFAULT,
+        gap: GapSettings::DEFAULT,
     };
 }
 
