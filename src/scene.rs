@@ -10,6 +10,7 @@ use std::fmt;
 use std::time::Instant;
 
 mod confirm;
+mod gap_search;
 mod general_route;
 mod solution;
 mod summary;
@@ -163,6 +164,7 @@ pub fn state_from_domains(scene: &Scene, rot: &RotationalDomain, sld: &SlidingDo
 pub fn solve(scene: &Scene) -> Solution {
     let start = Instant::now();
     let mut out = solve_route(scene);
+    gap_search::record(scene, &mut out);
     confirm::confirm(scene, &mut out, &confirm::ConfirmSettings::DEFAULT);
     out.solve_time_us = start.elapsed().as_secs_f64() * 1e6;
     out

@@ -367,8 +367,8 @@ pub struct GapSettings {
     /// Weights below this do not move a joint; also the tolerance of the hull's own steps
     /// (default 1e-12).
     pub tol_hull: f64,
-    /// A complete solution below the static limit by more than this·(1 + |limit|) opens a gap
-    /// (default 1e-9).
+    /// A complete solution before the static limit by more than this·(1 + |limit|) along the
+    /// path opens a gap; one closer is the static limit itself (default 1e-7).
     pub tol_gap: f64,
     /// Largest load factor searched (default 1e3, as the confirmation of unbounded answers).
     pub lambda_cap: f64,
@@ -378,8 +378,33 @@ pub struct GapSettings {
     pub max_vertices: usize,
     /// Largest number of tight rows at a vertex whose triples are tried as edges (default 24).
     pub max_tight: usize,
-    /// Joints sampled per family of a continuum (default 65, ends included).
+    /// Joints sampled per family of a continuum before the exchange adds any (default 17,
+    /// ends included).
     pub continuum_joints: usize,
+    /// Largest number of exchange rounds on a continuum (default 60).
+    pub max_exchange_rounds: usize,
+    /// Tolerance of the parameter of a complete solution located between two steps of a path,
+    /// relative to 1 + |p| (default 1e-13).
+    pub tol_path: f64,
+    /// μ at which a friction path starts (default 1e3; μ = ∞ makes the Coulomb rows one).
+    pub mu_start: f64,
+    /// Largest step of a friction path in φ = atan μ, degrees (default 0.5).
+    pub phi_step_deg: f64,
+    /// Largest step of a thickness path in K (default 0.002, as the scan for windows).
+    pub k_step: f64,
+    /// Steps a path goes on beyond its static limit until its polytope is empty (default 200:
+    /// sampled joints of a continuum stand a little further than the continuum).
+    pub max_steps_beyond: usize,
+    /// Four twists of a vertex cut off between two steps are tried as a complete event when
+    /// their hull lies within this of the origin at the later step (default 1e-2: they move
+    /// with K).
+    pub tol_event: f64,
+    /// The step of a path at its static limit stops this far short of it, relative to
+    /// 1 + |limit| (default 1e-10; keep it well below `tol_gap`).
+    pub end_offset: f64,
+    /// A complete state solved on the continuum holds its rows to this, relative to
+    /// 1 + |y|∞ (default 1e-13).
+    pub tol_refine: f64,
 }
 
 impl GapSettings {
@@ -388,12 +413,21 @@ impl GapSettings {
         tol_tight: 1e-9,
         tol_complete: 1e-9,
         tol_hull: 1e-12,
-        tol_gap: 1e-9,
+        tol_gap: 1e-7,
         lambda_cap: 1e3,
         state_cap: 1e6,
         max_vertices: 200_000,
         max_tight: 24,
-        continuum_joints: 65,
+        continuum_joints: 17,
+        max_exchange_rounds: 60,
+        tol_path: 1e-13,
+        mu_start: 1e3,
+        phi_step_deg: 0.5,
+        k_step: 0.002,
+        max_steps_beyond: 200,
+        tol_event: 1e-2,
+        tol_refine: 1e-13,
+        end_offset: 1e-10,
     };
 }
 

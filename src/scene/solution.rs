@@ -4,6 +4,7 @@
 
 use super::{Find, Scene};
 use crate::analysis::forms::ArchModel;
+use crate::analysis::gap::{GapSearch, GapStatus};
 use crate::analysis::kinematics::{ModeStatus, collapse_mechanism};
 use crate::analysis::symmetric::{Critical, CriticalState};
 use crate::analysis::windows::{Span, Windows};
@@ -191,6 +192,46 @@ pub struct Solution {
     /// non-associative mechanism (docs/mechanics.md §1); the mode reported then slides in the
     /// right senses when one does, so that the work equation still holds.
     pub mechanism_admissible: Option<bool>,
+    /// Which end of the non-associative gap the find's value is (critical finds): `no_gap` (the
+    /// static limit is itself complete: a mechanism can start there and nowhere before it),
+    /// `gap` (a complete solution comes first along the find's path: `collapse_value`),
+    /// `no_complete_solution` (none within the searched range, `gap_searched_to`) or `failed`.
+    pub gap: Option<GapStatus>,
+    /// The first complete solution along the find's path (increasing λ, decreasing K,
+    /// decreasing μ): the collapse, the conservative end of the gap. The static limit
+    /// (`load_factor`, `k_crit`, `mu_crit`) is the other end: beyond it no equilibrium exists.
+    pub collapse_value: Option<f64>,
+    /// The width of the gap along the path: λ_max − λ_collapse, K_collapse − K_c or
+    /// μ_collapse − μ_c (zero without a gap; +∞ when λ_max is unbounded).
+    pub gap_width: Option<f64>,
+    /// The end of the path that the search for a complete solution started from (λ: its
+    /// largest value).
+    pub gap_searched_to: Option<f64>,
+    /// `rotational`, `mixed` or `sliding`: the mechanism of the first complete solution.
+    pub collapse_mechanism: Option<MechanismKind>,
+    /// Hinges of that mechanism (the face that stays closed).
+    pub collapse_hinges: Vec<Hinge>,
+    /// Sliding joints of that mechanism, with the sense of the crown-side part.
+    pub collapse_sliding_joints: Vec<SlidingJoint>,
+    /// Angles (degrees) of the joints that open at both faces in that mechanism (lift-off:
+    /// they carry no force).
+    pub collapse_lifted_joints: Vec<f64>,
+    /// Crown thrust F_x/W_half of the complete solution's state.
+    pub collapse_thrust_over_half_weight: Option<f64>,
+    /// Crown shear F_y/W_half of that state.
+    pub collapse_crown_shear: Option<f64>,
+    /// Crown moment m/(W_half·r) of that state (as `crown_moment`).
+    pub collapse_crown_moment: Option<f64>,
+    /// dL^(a) of the complete solution's mechanism (largest block-corner speed 1).
+    pub collapse_work_loads: Option<f64>,
+    /// dL^(r,t) = −μ Σ N |δr^t| of that mechanism.
+    pub collapse_work_friction: Option<f64>,
+    /// |dL^(a) + dL^(r,n) + dL^(r,t)| over its largest term: eq. (11) holds at zero.
+    pub collapse_work_residual: Option<f64>,
+    /// Largest breach of a flow rule by that mechanism at that state (normality, no
+    /// interpenetration, maximum dissipation), relative to the joint force: zero when every
+    /// moving joint obeys them.
+    pub collapse_flow_violation: Option<f64>,
     /// A point load at the apex of a pointed arch with radial joints sits on the crown joint
     /// between the halves, and its split between them is statically indeterminate: the
     /// critical value of the find (μ_c, K_c or λ_max) when the split is free (the most
@@ -313,6 +354,21 @@ impl Solution {
             mechanism_dof: None,
             mechanism_admissible: None,
             critical_apex_shared: None,
+            gap: None,
+            collapse_value: None,
+            gap_width: None,
+            gap_searched_to: None,
+            collapse_mechanism: None,
+            collapse_hinges: Vec::new(),
+            collapse_sliding_joints: Vec::new(),
+            collapse_lifted_joints: Vec::new(),
+            collapse_thrust_over_half_weight: None,
+            collapse_crown_shear: None,
+            collapse_crown_moment: None,
+            collapse_work_loads: None,
+            collapse_work_friction: None,
+            collapse_work_residual: None,
+            collapse_flow_violation: None,
             k_c_rotational: None,
             mu_rotational_mixed: None,
             mu_min: None,
@@ -352,6 +408,56 @@ impl Solution {
             self.work_friction = finite(w.work_friction);
             self.work_residual = finite(w.work_residual);
         }
+    }
+
+    /// Records the search for the first complete solution of a critical find: its status, the
+    /// collapse value and its mechanism, the width of the gap to the static limit
+    /// `static_value` along the path (`toward_static` is +1 when the path reaches the static
+    /// limit by increasing its parameter, −1 otherwise).
+    pub(super) fn set_gap(
+        &mut self,
+        search: &GapSearch,
+        static_value: Option<f64>,
+        toward_static: f64,
+    ) {
+        self.gap = Some(search.status);
+        self.gap_searched_to = finite(search.range[1]);
+        let Some(c) = &search.first else {
+            return;
+        };
+        // Without a gap the collapse is the static limit itself.
+        let v = match (search.status, static_value) {
+            (GapStatus::NoGap, Some(s)) => s,
+            _ => c.value,
+        };
+        self.collapse_value = finite(v);
+        self.gap_width = static_value.map(|s| {
+            if search.status == GapStatus::NoGap {
+                0.0
+            } else {
+                toward_static * (s - v)
+            }
+        });
+        let y = c.state.y;
+        self.collapse_thrust_over_half_weight = finite(y[0]);
+        self.collapse_crown_shear = finite(y[1]);
+        self.collapse_crown_moment = finite(-y[2]);
+        let m = &c.mechanism;
+        if let Some(k) = &m.mechanism {
+            self.collapse_mechanism = Some(k.kind);
+            self.collapse_hinges = k.hinges.clone();
+            self.collapse_sliding_joints = k.sliding_joints.clone();
+        }
+        self.collapse_lifted_joints = m.lifted_deg.clone();
+        if self.collapse_mechanism.is_none() && !m.lifted_deg.is_empty() {
+            // A mechanism of lift-offs alone (a whole part tipping away) turns about no hinge
+            // and slides on no joint: it is rotational.
+            self.collapse_mechanism = Some(MechanismKind::Rotational);
+        }
+        self.collapse_work_loads = finite(m.work.work_loads);
+        self.collapse_work_friction = finite(m.work.work_friction);
+        self.collapse_work_residual = finite(m.work.work_residual);
+        self.collapse_flow_violation = finite(m.work.flow_violation);
     }
 
     /// Records the windows of a thickness find.

@@ -2,6 +2,7 @@
 
 use super::solution::Outcome;
 use super::{Find, Solution};
+use crate::analysis::gap::GapStatus;
 use crate::analysis::{Hinge, SlidingJoint};
 use crate::model::WeightModel;
 use std::fmt::Write;
@@ -41,6 +42,7 @@ pub fn summary(s: &Solution) -> String {
         critical_lines(&mut o, s);
         window_lines(&mut o, s);
         mechanism_lines(&mut o, s);
+        gap_lines(&mut o, s);
         if s.find == Find::Thrust {
             thrust_lines(&mut o, s);
         }
@@ -263,6 +265,84 @@ fn mechanism_lines(o: &mut String, s: &Solution) {
             "no mechanism of this pattern obeys every flow rule (normality at the hinges, \
              slip in the sense of friction): the state is a limit of the static problem \
              without a non-associative collapse mechanism"
+        );
+    }
+}
+
+/// The first complete solution along the find's path: the other end of the gap.
+fn gap_lines(o: &mut String, s: &Solution) {
+    let Some(status) = s.gap else {
+        return;
+    };
+    let (name, path) = match s.find {
+        Find::LoadFactor => ("λ", "increasing λ"),
+        Find::Thickness => ("K", "decreasing K"),
+        _ => ("μ", "decreasing μ"),
+    };
+    let to = opt(s.gap_searched_to);
+    match status {
+        GapStatus::NoGap => {
+            let _ = writeln!(
+                o,
+                "collapse: no gap: the static limit is the first complete solution along \
+                 {path} (a mechanism obeying the flow rules starts there and nowhere before)"
+            );
+        }
+        GapStatus::Gap => {
+            let v = s.collapse_value.unwrap_or(f64::NAN);
+            let w = s.gap_width.unwrap_or(f64::NAN);
+            let _ = writeln!(
+                o,
+                "collapse: {name} = {v:.12} ≈ {v:.4}, the first complete solution along {path}; \
+                 the static limit lies {w:.6} beyond it. Between the two the outcome depends on \
+                 contact stiffness and initial stress, which rigid-block statics cannot settle"
+            );
+        }
+        GapStatus::NoCompleteSolution => {
+            let _ = writeln!(
+                o,
+                "collapse: no complete solution along {path} up to the static limit (searched \
+                 from {name} = {to}): no admissible state there admits a mechanism obeying the \
+                 flow rules"
+            );
+            return;
+        }
+        GapStatus::Failed => {
+            let _ = writeln!(o, "collapse: the search for a complete solution failed");
+            return;
+        }
+    }
+    if let Some(m) = s.collapse_mechanism {
+        let mut parts = vec![format!("collapse mechanism: {m}")];
+        if !s.collapse_hinges.is_empty() {
+            parts.push(format!("hinges {}", hinge_list(&s.collapse_hinges)));
+        }
+        if !s.collapse_sliding_joints.is_empty() {
+            parts.push(format!(
+                "sliding {}",
+                sliding_list(&s.collapse_sliding_joints)
+            ));
+        }
+        if !s.collapse_lifted_joints.is_empty() {
+            let l: Vec<String> = s
+                .collapse_lifted_joints
+                .iter()
+                .map(|a| format!("{a:.4}°"))
+                .collect();
+            parts.push(format!("lifting off at {}", l.join(", ")));
+        }
+        let _ = writeln!(o, "{}", parts.join("; "));
+    }
+    if let (Some(a), Some(f), Some(r), Some(v)) = (
+        s.collapse_work_loads,
+        s.collapse_work_friction,
+        s.collapse_work_residual,
+        s.collapse_flow_violation,
+    ) {
+        let _ = writeln!(
+            o,
+            "its work equation: dL(a) = {a:.6e}, dL(r,t) = {f:.6e}, residual {r:.1e}; \
+             largest breach of a flow rule {v:.1e}"
         );
     }
 }

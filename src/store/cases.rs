@@ -4,6 +4,7 @@
 //! exactly; the rows rebuild the same results table.
 
 use super::{bool_column, f64_column, list_f64_column, list_str_column, read_parquet, str_column};
+use crate::analysis::gap::GapStatus;
 use crate::analysis::windows::Span;
 use crate::analysis::{Face, Hinge, MechanismKind, Regime, Sense, SlidingJoint};
 use crate::engine::{CaseResult, Status};
@@ -131,7 +132,17 @@ fn same(column: &str, stored: Option<&String>, planned: &'static str) -> Result<
 }
 
 /// The answer columns of results.parquet that hold one float, each with its field.
-const ANSWER_F64: [&str; 25] = [
+const ANSWER_F64: [&str; 35] = [
+    "collapse_value",
+    "gap_width",
+    "gap_searched_to",
+    "collapse_thrust_over_half_weight",
+    "collapse_crown_shear",
+    "collapse_crown_moment",
+    "collapse_work_loads",
+    "collapse_work_friction",
+    "collapse_work_residual",
+    "collapse_flow_violation",
     "k_windows_scanned_to",
     "k_windows_resolution",
     "thrust_r_min",
@@ -187,6 +198,16 @@ fn answer_f64<'s>(s: &'s mut Solution, column: &str) -> Option<&'s mut Option<f6
         "thrust_max" => &mut s.thrust_max,
         "k" => &mut s.k,
         "t_over_r" => &mut s.t_over_r,
+        "collapse_value" => &mut s.collapse_value,
+        "gap_width" => &mut s.gap_width,
+        "gap_searched_to" => &mut s.gap_searched_to,
+        "collapse_thrust_over_half_weight" => &mut s.collapse_thrust_over_half_weight,
+        "collapse_crown_shear" => &mut s.collapse_crown_shear,
+        "collapse_crown_moment" => &mut s.collapse_crown_moment,
+        "collapse_work_loads" => &mut s.collapse_work_loads,
+        "collapse_work_friction" => &mut s.collapse_work_friction,
+        "collapse_work_residual" => &mut s.collapse_work_residual,
+        "collapse_flow_violation" => &mut s.collapse_flow_violation,
         _ => return None,
     })
 }
@@ -222,10 +243,14 @@ struct Stored {
     admissible: Vec<Option<bool>>,
     /// The windows of a thickness find: lower and upper ends.
     windows: (Vec<Vec<f64>>, Vec<Vec<f64>>),
+    /// The joints that lift off in the mechanism of the first complete solution.
+    lifted: Vec<Vec<f64>>,
 }
 
 /// The string columns read into a [`Stored`].
-const STRS: [&str; 11] = [
+const STRS: [&str; 13] = [
+    "gap",
+    "collapse_mechanism",
     "load_case",
     "find",
     "weight",
@@ -251,7 +276,9 @@ const NUMS: [&str; 9] = [
     "solve_time_us",
 ];
 /// The list columns: angles and their faces or senses.
-const LISTS: [(&str, &str); 4] = [
+const LISTS: [(&str, &str); 6] = [
+    ("collapse_hinge_angles_deg", "collapse_hinge_faces"),
+    ("collapse_sliding_angles_deg", "collapse_sliding_senses"),
     ("hinge_angles_deg", "hinge_faces"),
     ("sliding_angles_deg", "sliding_senses"),
     ("hinges_min_angles_deg", "hinges_min_faces"),
@@ -296,6 +323,7 @@ impl Stored {
                 vec![None; c.rows]
             },
             windows: (c.list_f64("k_windows_from")?, c.list_f64("k_windows_to")?),
+            lifted: c.list_f64("collapse_lifted_angles_deg")?,
         })
     }
 
@@ -320,10 +348,13 @@ impl Stored {
     fn solution(&self, i: usize, planned: Solution) -> Result<Solution> {
         let name = |column: &str| self.s(column, i).map_or("", String::as_str);
         let mu = self.n("mu", i);
-        let (sa, ss) = self
-            .lists
-            .get("sliding_angles_deg")
-            .map_or((&[][..], &[][..]), |(a, s)| (&a[i][..], &s[i][..]));
+        let slides = |column: &str| {
+            self.lists
+                .get(column)
+                .map_or((&[][..], &[][..]), |(a, s)| (&a[i][..], &s[i][..]))
+        };
+        let (sa, ss) = slides("sliding_angles_deg");
+        let (ca, cs) = slides("collapse_sliding_angles_deg");
         let mut s = Solution {
             find: parse_name(&Find::ALL, Find::as_str, "find", name("find"))?,
             mu: mu.filter(|m| !m.is_infinite()),
@@ -363,6 +394,20 @@ impl Stored {
             )?,
             hinges: self.hinges("hinge_angles_deg", "hinge_faces", i)?,
             sliding_joints: sliding(sa, ss)?,
+            gap: opt_name(&GapStatus::ALL, GapStatus::as_str, "gap", self.s("gap", i))?,
+            collapse_mechanism: opt_name(
+                &[
+                    MechanismKind::Rotational,
+                    MechanismKind::Mixed,
+                    MechanismKind::Sliding,
+                ],
+                MechanismKind::as_str,
+                "collapse_mechanism",
+                self.s("collapse_mechanism", i),
+            )?,
+            collapse_hinges: self.hinges("collapse_hinge_angles_deg", "collapse_hinge_faces", i)?,
+            collapse_sliding_joints: sliding(ca, cs)?,
+            collapse_lifted_joints: self.lifted[i].clone(),
             hinges_min: self.hinges("hinges_min_angles_deg", "hinges_min_faces", i)?,
             hinges_max: self.hinges("hinges_max_angles_deg", "hinges_max_faces", i)?,
             load_factor_unbounded: self.unbounded[i].unwrap_or(false),

@@ -185,7 +185,24 @@ pub fn filled_by(column: &str) -> Option<&'static [Find]> {
         | "work_residual"
         | "mechanism_dof"
         | "mechanism_admissible"
-        | "critical_apex_shared" => &[Thickness, Friction, LoadFactor],
+        | "critical_apex_shared"
+        | "gap"
+        | "collapse_value"
+        | "gap_width"
+        | "gap_searched_to"
+        | "collapse_mechanism"
+        | "collapse_hinge_angles_deg"
+        | "collapse_hinge_faces"
+        | "collapse_sliding_angles_deg"
+        | "collapse_sliding_senses"
+        | "collapse_lifted_angles_deg"
+        | "collapse_thrust_over_half_weight"
+        | "collapse_crown_shear"
+        | "collapse_crown_moment"
+        | "collapse_work_loads"
+        | "collapse_work_friction"
+        | "collapse_work_residual"
+        | "collapse_flow_violation" => &[Thickness, Friction, LoadFactor],
         "k_c_rotational" | "mu_rotational_mixed" | "mu_min" | "k_mixed_sliding" => &[Thresholds],
         "thrust_min"
         | "thrust_max"
@@ -299,6 +316,43 @@ fn answer_columns<'a>() -> Vec<Spec<'a>> {
         opt_u32("mechanism_dof", move |r| s(r).mechanism_dof),
         opt_bool("mechanism_admissible", move |r| s(r).mechanism_admissible),
         opt_f64("critical_apex_shared", move |r| s(r).critical_apex_shared),
+        opt_str("gap", move |r| s(r).gap.map(|g| g.as_str())),
+        opt_f64("collapse_value", move |r| s(r).collapse_value),
+        opt_f64("gap_width", move |r| s(r).gap_width),
+        opt_f64("gap_searched_to", move |r| s(r).gap_searched_to),
+        opt_str("collapse_mechanism", move |r| {
+            s(r).collapse_mechanism.map(|m| m.as_str())
+        }),
+        list_f64("collapse_hinge_angles_deg", move |r| {
+            hinge_angles(&s(r).collapse_hinges)
+        }),
+        list_str("collapse_hinge_faces", move |r| {
+            hinge_faces(&s(r).collapse_hinges)
+        }),
+        list_f64("collapse_sliding_angles_deg", move |r| {
+            sliding_angles(&s(r).collapse_sliding_joints)
+        }),
+        list_str("collapse_sliding_senses", move |r| {
+            sliding_senses(&s(r).collapse_sliding_joints)
+        }),
+        list_f64("collapse_lifted_angles_deg", move |r| {
+            s(r).collapse_lifted_joints.clone()
+        }),
+        opt_f64("collapse_thrust_over_half_weight", move |r| {
+            s(r).collapse_thrust_over_half_weight
+        }),
+        opt_f64("collapse_crown_shear", move |r| s(r).collapse_crown_shear),
+        opt_f64("collapse_crown_moment", move |r| s(r).collapse_crown_moment),
+        opt_f64("collapse_work_loads", move |r| s(r).collapse_work_loads),
+        opt_f64("collapse_work_friction", move |r| {
+            s(r).collapse_work_friction
+        }),
+        opt_f64("collapse_work_residual", move |r| {
+            s(r).collapse_work_residual
+        }),
+        opt_f64("collapse_flow_violation", move |r| {
+            s(r).collapse_flow_violation
+        }),
         opt_f64("k_c_rotational", move |r| s(r).k_c_rotational),
         opt_f64("mu_rotational_mixed", move |r| s(r).mu_rotational_mixed),
         opt_f64("mu_min", move |r| s(r).mu_min),

@@ -222,6 +222,91 @@ const COLUMN_DOCS: &[(&str, &str, &str)] = &[
         "the find's critical value (μ_c, K_c or λ_max) with an apex load of a pointed arch shared freely between the halves",
     ),
     (
+        "gap",
+        "",
+        "which end of the non-associative gap: no_gap (the static limit is complete), gap (a complete solution comes first along the find's path), no_complete_solution, failed",
+    ),
+    (
+        "collapse_value",
+        "",
+        "the first complete solution along the find's path (λ up, K down, μ down): the collapse, the conservative end of the gap",
+    ),
+    (
+        "gap_width",
+        "",
+        "distance along the path from collapse_value to the static limit (0 without gap, inf when λ_max is unbounded)",
+    ),
+    (
+        "gap_searched_to",
+        "",
+        "the far end of the path searched for a complete solution (λ: its largest value)",
+    ),
+    (
+        "collapse_mechanism",
+        "",
+        "rotational, mixed or sliding: the mechanism of the first complete solution",
+    ),
+    (
+        "collapse_hinge_angles_deg",
+        "deg",
+        "hinges of that mechanism, degrees from the crown",
+    ),
+    (
+        "collapse_hinge_faces",
+        "",
+        "face of each of those hinges that stays closed",
+    ),
+    (
+        "collapse_sliding_angles_deg",
+        "deg",
+        "sliding joints of that mechanism",
+    ),
+    (
+        "collapse_sliding_senses",
+        "",
+        "sense of each of those sliding joints (crown-side part)",
+    ),
+    (
+        "collapse_lifted_angles_deg",
+        "deg",
+        "joints that open at both faces in that mechanism (lift-off: they carry no force)",
+    ),
+    (
+        "collapse_thrust_over_half_weight",
+        "W_half",
+        "crown thrust of the complete solution's state",
+    ),
+    (
+        "collapse_crown_shear",
+        "W_half",
+        "crown shear of the complete solution's state",
+    ),
+    (
+        "collapse_crown_moment",
+        "W_half·r",
+        "crown moment of the complete solution's state",
+    ),
+    (
+        "collapse_work_loads",
+        "W_half·r",
+        "work of the loads on the complete solution's mechanism (eq. 11), largest corner speed 1",
+    ),
+    (
+        "collapse_work_friction",
+        "W_half·r",
+        "friction dissipation -μ Σ N |dr^t| of that mechanism",
+    ),
+    (
+        "collapse_work_residual",
+        "",
+        "|dL(a) + dL(r,n) + dL(r,t)| over its largest term: eq. 11 holds at zero",
+    ),
+    (
+        "collapse_flow_violation",
+        "",
+        "largest breach of a flow rule by that mechanism (normality, no interpenetration, maximum dissipation), relative to the joint force",
+    ),
+    (
         "k_windows_from",
         "R/r",
         "lower end of each interval of K on which the arch stands (the first is k_crit)",

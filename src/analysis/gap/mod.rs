@@ -17,24 +17,31 @@
 //! λ) the admissible states form a convex polytope (a discrete arch); a complete solution at λ
 //! lies on a face whose rows are positively dependent, and the lowest λ on that face is a
 //! vertex with at least those rows tight. So the first complete λ is the lowest complete vertex:
-//! [`walk`] visits every vertex from the static limit along the edges.
+//! [`walk`] visits every vertex from the static limit along the edges. A continuum is walked
+//! on sampled joints, and joints where the lowest complete vertex violates a row are added
+//! until it violates none (an exchange, as for the static limit): an admissible state whose
+//! tight rows at real joints are positively dependent is a complete solution of the continuum.
 
 pub mod hull;
+mod load_factor;
 mod mechanism;
+mod path;
+mod refine;
 mod rows;
 mod walk;
 
+pub use load_factor::first_complete_load_factor;
 pub use mechanism::{MovingMechanism, StateY, WorkCheck};
 
 use self::mechanism::JointMove;
 use self::rows::{RowKind, StateRows};
-use self::walk::{Vertex, WalkLimits};
-use super::lp;
+use self::walk::Vertex;
 use super::statics::ArchGeometry;
 pub use crate::analysis::settings::GapSettings as Settings;
 
 /// Which end of the gap a find's answer sits at.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum GapStatus {
     /// The static limit is the first complete solution: no gap.
     NoGap,
@@ -47,6 +54,14 @@ pub enum GapStatus {
 }
 
 impl GapStatus {
+    /// Every status.
+    pub const ALL: [GapStatus; 4] = [
+        GapStatus::NoGap,
+        GapStatus::Gap,
+        GapStatus::NoCompleteSolution,
+        GapStatus::Failed,
+    ];
+
     /// `no_gap`, `gap`, `no_complete_solution` or `failed`.
     pub fn as_str(self) -> &'static str {
         match self {
@@ -61,6 +76,8 @@ impl GapStatus {
 /// A complete solution: the value, the state and the mechanism that starts there.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Complete {
+    /// The value of the find's parameter there: λ, K or μ.
+    pub value: f64,
     /// The state (F_x, F_y, M₀, λ) and μ.
     pub state: StateY,
     /// The mechanism, with its work equation and flow rules checked.
@@ -83,7 +100,7 @@ pub struct GapSearch {
 }
 
 impl GapSearch {
-    fn failed(range: [f64; 2]) -> Self {
+    pub(super) fn failed(range: [f64; 2]) -> Self {
         GapSearch {
             status: GapStatus::Failed,
             first: None,
@@ -91,94 +108,6 @@ impl GapSearch {
             range,
             vertices: 0,
         }
-    }
-}
-
-/// The joints a search uses: a discrete arch's own; for a continuum, `continuum_joints` per
-/// family, ends included, and the isolated joints.
-fn joints_of<G: ArchGeometry + ?Sized>(geom: &G, settings: &Settings) -> Vec<f64> {
-    if let Some(j) = geom.discrete_joints() {
-        return j;
-    }
-    let n = settings.continuum_joints.max(2);
-    let mut out: Vec<f64> = geom.isolated_joints();
-    for [a, b] in geom.families() {
-        for k in 0..n {
-            out.push(a + (b - a) * k as f64 / (n - 1) as f64);
-        }
-    }
-    out.sort_by(f64::total_cmp);
-    out.dedup();
-    out
-}
-
-/// The first complete solution along increasing λ ≥ 0 at friction angle φ (radians): the
-/// lowest load factor at which the live load of `geom` on its dead load can start a mechanism.
-pub fn first_complete_load_factor<G: ArchGeometry + ?Sized>(
-    geom: &G,
-    phi: f64,
-    settings: &Settings,
-) -> GapSearch {
-    let range = [0.0, settings.lambda_cap];
-    let thetas = joints_of(geom, settings);
-    let rows = StateRows::new(geom, &thetas, phi, settings.lambda_cap, settings.state_cap);
-    let lp_settings = lp::Settings::for_rows(rows.len());
-    let Ok(top) = lp::maximise(&[0.0, 0.0, 0.0, 1.0], &rows.a, &rows.b, &lp_settings) else {
-        return GapSearch::failed(range);
-    };
-    match top.status {
-        lp::Status::Optimal => {}
-        lp::Status::Infeasible => {
-            return GapSearch {
-                status: GapStatus::NoCompleteSolution,
-                first: None,
-                static_limit: None,
-                range,
-                vertices: 0,
-            };
-        }
-        _ => return GapSearch::failed(range),
-    }
-    let limits = WalkLimits {
-        tol_tight: settings.tol_tight,
-        max_vertices: settings.max_vertices,
-        max_tight: settings.max_tight,
-    };
-    let Ok(vertices) = walk::vertices(&rows.a, &rows.b, top.x, &limits) else {
-        return GapSearch::failed(range);
-    };
-    let mu = phi.tan();
-    let mut best: Option<(f64, Vec<JointMove>, [f64; 4])> = None;
-    for v in &vertices {
-        if best.as_ref().is_some_and(|(l, _, _)| *l <= v.y[3]) {
-            continue;
-        }
-        if let Some(moves) = complete_moves(geom, &rows, v, settings) {
-            best = Some((v.y[3], moves, v.y));
-        }
-    }
-    let static_limit = top.x[3];
-    let first = best.and_then(|(_, moves, y)| {
-        let state = StateY { y, mu };
-        let angle = |t: f64| geom.angle_deg(t);
-        mechanism::check(geom, &moves, &state, &angle).map(|m| Complete {
-            state,
-            mechanism: m,
-        })
-    });
-    let status = match &first {
-        None => GapStatus::NoCompleteSolution,
-        Some(c) if static_limit - c.state.y[3] > settings.tol_gap * (1.0 + static_limit.abs()) => {
-            GapStatus::Gap
-        }
-        Some(_) => GapStatus::NoGap,
-    };
-    GapSearch {
-        status,
-        first,
-        static_limit: Some(static_limit),
-        range,
-        vertices: vertices.len(),
     }
 }
 
@@ -190,8 +119,7 @@ fn complete_moves<G: ArchGeometry + ?Sized>(
     v: &Vertex,
     settings: &Settings,
 ) -> Option<Vec<JointMove>> {
-    let mut twists: Vec<[f64; 3]> = Vec::new();
-    let mut joints: Vec<usize> = Vec::new();
+    let mut twists: Vec<([f64; 3], f64)> = Vec::new();
     for &r in &v.tight {
         let RowKind::Joint {
             joint,
@@ -202,16 +130,63 @@ fn complete_moves<G: ArchGeometry + ?Sized>(
         else {
             continue;
         };
-        if zero_force_only && !carries_no_force(geom, rows.thetas[joint], &v.y, settings) {
+        let theta = rows.thetas[joint];
+        if zero_force_only && !carries_no_force(geom, theta, &v.y, settings) {
             continue;
         }
-        twists.push(t);
-        joints.push(joint);
+        twists.push((t, theta));
     }
+    moves_of(&twists, settings)
+}
+
+/// The moving joints of the twists (each with its joint parameter) when they are positively
+/// dependent with some joint moving: each joint moves by −Σ w_i t_i over its own rows, w the
+/// weights of the origin in their hull.
+///
+/// A joint whose cone of twists holds a line (both Coulomb rows of a joint carrying no force:
+/// ±τ; both faces of a joint shrunk to a point) would let the weights cancel within it while
+/// nothing moves; each such opposite pair is tried with one of its twists at a time, so that
+/// every joint's cone is pointed and a vanishing combination moves some joint.
+fn moves_of(twists: &[([f64; 3], f64)], settings: &Settings) -> Option<Vec<JointMove>> {
     if twists.len() < 2 {
         return None;
     }
-    let m = hull::min_norm_point(&twists, settings.tol_hull)?;
+    let mut pairs: Vec<(usize, usize)> = Vec::new();
+    for i in 0..twists.len() {
+        for j in i + 1..twists.len() {
+            let (a, b) = (twists[i], twists[j]);
+            if a.1 == b.1 && (0..3).all(|c| (a.0[c] + b.0[c]).abs() <= settings.tol_complete) {
+                pairs.push((i, j));
+            }
+        }
+    }
+    let variants = 1usize << pairs.len().min(MAX_OPPOSITE_PAIRS);
+    (0..variants).find_map(|mask| {
+        let dropped: Vec<usize> = pairs
+            .iter()
+            .take(MAX_OPPOSITE_PAIRS)
+            .enumerate()
+            .map(|(k, &(i, j))| if mask >> k & 1 == 0 { j } else { i })
+            .collect();
+        let kept: Vec<([f64; 3], f64)> = twists
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| !dropped.contains(i))
+            .map(|(_, t)| *t)
+            .collect();
+        moves_of_pointed(&kept, settings)
+    })
+}
+
+/// Opposite pairs of twists tried one at a time, at most (2^this variants).
+const MAX_OPPOSITE_PAIRS: usize = 4;
+
+fn moves_of_pointed(twists: &[([f64; 3], f64)], settings: &Settings) -> Option<Vec<JointMove>> {
+    if twists.len() < 2 {
+        return None;
+    }
+    let vectors: Vec<[f64; 3]> = twists.iter().map(|t| t.0).collect();
+    let m = hull::min_norm_point(&vectors, settings.tol_hull)?;
     if m.norm() > settings.tol_complete {
         return None;
     }
@@ -220,7 +195,7 @@ fn complete_moves<G: ArchGeometry + ?Sized>(
         if *w <= settings.tol_hull {
             continue;
         }
-        let theta = rows.thetas[joints[k]];
+        let (t, theta) = twists[k];
         let idx = match moves.iter().position(|mv| mv.theta == theta) {
             Some(i) => i,
             None => {
@@ -232,8 +207,12 @@ fn complete_moves<G: ArchGeometry + ?Sized>(
             }
         };
         for c in 0..3 {
-            moves[idx].relative[c] -= w * twists[k][c];
+            moves[idx].relative[c] -= w * t[c];
         }
+    }
+    moves.retain(|mv| mv.relative.iter().any(|v| v.abs() > settings.tol_complete));
+    if moves.len() < 2 {
+        return None;
     }
     moves.sort_by(|a, b| a.theta.total_cmp(&b.theta));
     Some(moves)
@@ -252,6 +231,53 @@ fn carries_no_force<G: ArchGeometry + ?Sized>(
     let size = 1.0 + y.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let f = (y[0] + c.fx).hypot(y[1] + c.fy).max((y[2] + c.m).abs());
     f <= settings.tol_tight * size
+}
+
+/// The first complete solution along decreasing μ, from [`Settings::mu_start`] down to the
+/// static limit `mu_static` (the critical friction), at the fixed load factor `lambda` of the
+/// live load of `geom`.
+pub fn first_complete_friction<G: ArchGeometry + Copy>(
+    geom: &G,
+    lambda: f64,
+    mu_static: f64,
+    settings: &Settings,
+) -> GapSearch {
+    let g = *geom;
+    let at = move |phi: f64| Some((g, phi));
+    let start = settings.mu_start.max(mu_static).atan();
+    let end = mu_static.atan();
+    let (found, visited) = path::first_complete(
+        &at,
+        start,
+        end,
+        settings.phi_step_deg.to_radians(),
+        lambda,
+        settings,
+    );
+    path::search_result(found, f64::tan, mu_static, start, visited, settings)
+}
+
+/// The first complete solution along decreasing K, from `k_start` down to the static limit
+/// `k_static` (the critical thickness), at friction angle φ and the fixed load factor
+/// `lambda`; `make` gives the arch at K (`None` where the form does not exist).
+pub fn first_complete_thickness<G: ArchGeometry + Copy>(
+    make: &dyn Fn(f64) -> Option<G>,
+    phi: f64,
+    lambda: f64,
+    k_static: f64,
+    k_start: f64,
+    settings: &Settings,
+) -> GapSearch {
+    let at = |k: f64| make(k).map(|g| (g, phi));
+    let (found, visited) = path::first_complete(
+        &at,
+        k_start.max(k_static),
+        k_static,
+        settings.k_step,
+        lambda,
+        settings,
+    );
+    path::search_result(found, |k| k, k_static, k_start, visited, settings)
 }
 
 #[cfg(test)]

@@ -50,49 +50,39 @@ fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
 }
 
 impl StateRows {
-    /// The rows of the joints `thetas` (increasing) at friction angle φ, with λ free in
-    /// [0, `lambda_cap`] and |F_x|, |F_y|, |M₀| ≤ `state_cap`. The Coulomb rows are scaled by
-    /// cos φ (statics.rs), so below `cos_phi_infinite` μ counts as infinite.
+    /// The rows of the joints `thetas` (increasing) at friction angle φ, with λ in
+    /// `lambda` = [from, to] (from = to pins it) and |F_x|, |F_y|, |M₀| ≤ `state_cap`. The
+    /// Coulomb rows are scaled by cos φ (statics.rs), so below [`COS_PHI_INFINITE`] μ counts
+    /// as infinite.
     pub fn new<G: ArchGeometry + ?Sized>(
         geom: &G,
         thetas: &[f64],
         phi: f64,
-        lambda_cap: f64,
+        lambda: [f64; 2],
         state_cap: f64,
     ) -> Self {
         let mut rows = StateRows {
             thetas: thetas.to_vec(),
             ..StateRows::default()
         };
-        let infinite = phi.cos() <= COS_PHI_INFINITE;
         for (joint, &theta) in thetas.iter().enumerate() {
-            let frame = geom.joint(theta);
-            let tau = frame.along();
-            for r in joint_rows(geom, theta, phi) {
-                let a = [r.a[0], r.a[1], r.a[2], r.a_lambda];
-                let n = a.iter().map(|v| v * v).sum::<f64>().sqrt();
-                if n == 0.0 || !n.is_finite() {
-                    continue;
+            for condition in Condition::ALL {
+                if let Some(r) = row_at(geom, theta, phi, condition) {
+                    rows.push(
+                        r.a,
+                        r.b,
+                        RowKind::Joint {
+                            joint,
+                            condition,
+                            twist: r.twist,
+                            zero_force_only: r.zero_force_only,
+                        },
+                    );
                 }
-                let twist = match r.condition {
-                    Condition::Intrados | Condition::Extrados => unit(r.a),
-                    Condition::SlideOutward => unit([tau[0], tau[1], 0.0]),
-                    Condition::SlideInward => unit([-tau[0], -tau[1], 0.0]),
-                };
-                rows.push(
-                    [a[0] / n, a[1] / n, a[2] / n, a[3] / n],
-                    r.b / n,
-                    RowKind::Joint {
-                        joint,
-                        condition: r.condition,
-                        twist,
-                        zero_force_only: infinite && !r.condition.is_rotational(),
-                    },
-                );
             }
         }
-        rows.push([0.0, 0.0, 0.0, -1.0], 0.0, RowKind::Bound);
-        rows.push([0.0, 0.0, 0.0, 1.0], lambda_cap, RowKind::Bound);
+        rows.push([0.0, 0.0, 0.0, -1.0], -lambda[0], RowKind::Bound);
+        rows.push([0.0, 0.0, 0.0, 1.0], lambda[1], RowKind::Bound);
         for i in 0..3 {
             for s in [1.0, -1.0] {
                 let mut a = [0.0; 4];
@@ -115,5 +105,47 @@ impl StateRows {
     }
 }
 
+/// One row of a joint scaled to unit length, with its twist.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct JointRowAt {
+    /// Coefficients on (F_x, F_y, M₀, λ).
+    pub a: [f64; 4],
+    /// Right-hand side.
+    pub b: f64,
+    /// The twist its flow rule allows, unit length.
+    pub twist: Option<[f64; 3]>,
+    /// True for a Coulomb row at μ = ∞ ([`RowKind::Joint`]).
+    pub zero_force_only: bool,
+}
+
+/// The row of `condition` at joint θ and friction angle φ; `None` when the row is left out
+/// (relaxed) or degenerate.
+pub(super) fn row_at<G: ArchGeometry + ?Sized>(
+    geom: &G,
+    theta: f64,
+    phi: f64,
+    condition: Condition,
+) -> Option<JointRowAt> {
+    let i = Condition::ALL.iter().position(|c| *c == condition)?;
+    let r = joint_rows(geom, theta, phi)[i];
+    let a = [r.a[0], r.a[1], r.a[2], r.a_lambda];
+    let n = a.iter().map(|v| v * v).sum::<f64>().sqrt();
+    if n == 0.0 || !n.is_finite() {
+        return None;
+    }
+    let tau = geom.joint(theta).along();
+    let twist = match condition {
+        Condition::Intrados | Condition::Extrados => unit(r.a),
+        Condition::SlideOutward => unit([tau[0], tau[1], 0.0]),
+        Condition::SlideInward => unit([-tau[0], -tau[1], 0.0]),
+    };
+    Some(JointRowAt {
+        a: [a[0] / n, a[1] / n, a[2] / n, a[3] / n],
+        b: r.b / n,
+        twist,
+        zero_force_only: phi.cos() <= COS_PHI_INFINITE && !condition.is_rotational(),
+    })
+}
+
 /// cos φ at or below which the Coulomb rows are those of μ = ∞.
-const COS_PHI_INFINITE: f64 = 1e-12;
+pub(super) const COS_PHI_INFINITE: f64 = 1e-12;

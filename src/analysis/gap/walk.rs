@@ -68,10 +68,14 @@ pub(super) fn tight_rows(a: &[[f64; 4]], b: &[f64], y: &[f64; 4], tol: f64) -> V
         .collect()
 }
 
-/// Every vertex reachable from `start` (a vertex of the polytope).
+/// Every vertex reachable from `start` (a vertex of the polytope) without leaving from a
+/// vertex on a row marked `fence` (such vertices are listed, not expanded). The vertices off
+/// one facet are connected through paths that rise toward the vertex farthest from it, so a
+/// fence of one facet hides nothing beyond it.
 pub(super) fn vertices(
     a: &[[f64; 4]],
     b: &[f64],
+    fence: &[bool],
     start: [f64; 4],
     limits: &WalkLimits,
 ) -> Result<Vec<Vertex>, WalkError> {
@@ -83,7 +87,14 @@ pub(super) fn vertices(
     seen.insert(first.tight.clone());
     let mut queue = VecDeque::from([first]);
     let mut out = Vec::new();
+    let mut first_vertex = true;
     while let Some(v) = queue.pop_front() {
+        let fenced = v.tight.iter().any(|&r| fence[r]);
+        if fenced && !std::mem::take(&mut first_vertex) {
+            out.push(v);
+            continue;
+        }
+        first_vertex = false;
         for next in neighbours(a, b, &v, limits) {
             if seen.insert(next.tight.clone()) {
                 if seen.len() > limits.max_vertices {
@@ -172,7 +183,7 @@ mod tests {
             max_vertices: 100,
             max_tight: 16,
         };
-        let v = vertices(&a, &b, [1.0; 4], &limits).unwrap();
+        let v = vertices(&a, &b, &[false; 8], [1.0; 4], &limits).unwrap();
         assert_eq!(v.len(), 16);
         assert!(
             v.iter()
@@ -194,7 +205,7 @@ mod tests {
             max_vertices: 100,
             max_tight: 16,
         };
-        let v = vertices(&a, &b, [1.0, 0.0, 0.0, 0.0], &limits).unwrap();
+        let v = vertices(&a, &b, &[false; 16], [1.0, 0.0, 0.0, 0.0], &limits).unwrap();
         assert_eq!(v.len(), 8);
         assert!(v.iter().all(|v| v.tight.len() == 8));
     }

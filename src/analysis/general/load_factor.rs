@@ -57,3 +57,29 @@ pub fn load_factor<G: ArchGeometry + ?Sized>(
         iterations: s.iterations,
     }
 }
+
+/// The joints of a continuum at which the state z = (F_x, F_y, M₀, λ) violates a row by more
+/// than the exchange tolerance ([`Settings::tol_exchange`]), each with the largest such
+/// violation (distance over |(a_x, a_y, a_M)|): the refined local maxima of every condition,
+/// as one exchange step finds them. Empty when z is admissible everywhere.
+pub fn violated_joints<G: ArchGeometry + ?Sized>(
+    geom: &G,
+    phi: f64,
+    z: &[f64; 4],
+    settings: &Settings,
+) -> Vec<(f64, f64)> {
+    let p = Problem {
+        geom,
+        phi,
+        set: RowSet::All,
+        objective: Objective::LoadFactor,
+        half: false,
+    };
+    let samples = p.samples(settings);
+    let tol = settings.tol_exchange * Problem::<G>::scale(z);
+    p.scan(&samples, z, false, settings)
+        .into_iter()
+        .filter(|c| c.violation > tol)
+        .map(|c| (c.theta, c.violation))
+        .collect()
+}

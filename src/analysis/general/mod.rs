@@ -46,7 +46,7 @@ pub use active::{mechanism_of, pattern_of_rows};
 pub use critical::{
     Critical, LimitState, friction, sliding_threshold, thickness, thickness_windows, thickness_with,
 };
-pub use load_factor::{LoadFactor, load_factor};
+pub use load_factor::{LoadFactor, load_factor, violated_joints};
 pub use margin::{MarginSolution, RegimeReport, margin, regime};
 pub use rows::{JointRow, LinearRows, OBJECTIVE};
 

@@ -1,0 +1,197 @@
+//! The first complete solution along increasing λ: a walk over the vertices of the state
+//! polytope, with an exchange of joints on a continuum.
+
+use super::mechanism::{self, JointMove, StateY};
+use super::rows::{RowKind, StateRows};
+use super::walk::{self, WalkLimits};
+use super::{Complete, GapSearch, GapStatus, Settings, complete_moves};
+use crate::analysis::general::{self, Outcome};
+use crate::analysis::lp;
+use crate::analysis::statics::ArchGeometry;
+
+/// The lowest complete vertex of the polytope of one set of joints.
+struct Pass {
+    /// The lowest complete vertex and its moving joints.
+    best: Option<(Vec<JointMove>, [f64; 4])>,
+    /// The highest λ of the polytope (the static limit of these joints).
+    top: f64,
+    vertices: usize,
+}
+
+/// Why a pass gives no vertex.
+enum PassError {
+    /// No admissible state for any λ in the range.
+    Infeasible,
+    /// The programme or the walk failed.
+    Failed,
+}
+
+fn pass<G: ArchGeometry + ?Sized>(
+    geom: &G,
+    phi: f64,
+    thetas: &[f64],
+    settings: &Settings,
+) -> Result<Pass, PassError> {
+    let rows = StateRows::new(
+        geom,
+        thetas,
+        phi,
+        [0.0, settings.lambda_cap],
+        settings.state_cap,
+    );
+    let lp_settings = lp::Settings::for_rows(rows.len());
+    let top = lp::maximise(&[0.0, 0.0, 0.0, 1.0], &rows.a, &rows.b, &lp_settings)
+        .map_err(|_| PassError::Failed)?;
+    match top.status {
+        lp::Status::Optimal => {}
+        lp::Status::Infeasible => return Err(PassError::Infeasible),
+        _ => return Err(PassError::Failed),
+    }
+    let limits = WalkLimits {
+        tol_tight: settings.tol_tight,
+        max_vertices: settings.max_vertices,
+        max_tight: settings.max_tight,
+    };
+    // λ ≥ 0 and the state box fence the walk; the cap on λ does not, since an arch that stands
+    // for every λ starts the walk there.
+    let fence: Vec<bool> = rows
+        .kind
+        .iter()
+        .zip(&rows.a)
+        .map(|(k, a)| *k == RowKind::Bound && a[3] <= 0.0)
+        .collect();
+    let vertices =
+        walk::vertices(&rows.a, &rows.b, &fence, top.x, &limits).map_err(|_| PassError::Failed)?;
+    let mut best: Option<(Vec<JointMove>, [f64; 4])> = None;
+    for v in &vertices {
+        if best.as_ref().is_some_and(|(_, y)| y[3] <= v.y[3]) {
+            continue;
+        }
+        if let Some(moves) = complete_moves(geom, &rows, v, settings) {
+            best = Some((moves, v.y));
+        }
+    }
+    Ok(Pass {
+        best,
+        top: top.x[3],
+        vertices: vertices.len(),
+    })
+}
+
+/// The first joints of a continuum: `continuum_joints` per family, ends included, and the
+/// isolated joints.
+pub(super) fn initial_joints<G: ArchGeometry + ?Sized>(geom: &G, settings: &Settings) -> Vec<f64> {
+    let n = settings.continuum_joints.max(2);
+    let mut out: Vec<f64> = geom.isolated_joints();
+    for [a, b] in geom.families() {
+        for k in 0..n {
+            out.push(if k + 1 == n {
+                b
+            } else {
+                a + (b - a) * k as f64 / (n - 1) as f64
+            });
+        }
+    }
+    out.sort_by(f64::total_cmp);
+    out.dedup();
+    out
+}
+
+/// The first complete solution along increasing λ ≥ 0 at friction angle φ (radians): the
+/// lowest load factor at which the live load of `geom` on its dead load can start a
+/// mechanism, searched up to [`Settings::lambda_cap`].
+pub fn first_complete_load_factor<G: ArchGeometry + ?Sized>(
+    geom: &G,
+    phi: f64,
+    settings: &Settings,
+) -> GapSearch {
+    let range = [0.0, settings.lambda_cap];
+    let general_settings = general::Settings::default();
+    let discrete = geom.discrete_joints();
+    let mut thetas = discrete
+        .clone()
+        .unwrap_or_else(|| initial_joints(geom, settings));
+    let mut visited = 0;
+    let mut result = None;
+    for _ in 0..settings.max_exchange_rounds {
+        let p = match pass(geom, phi, &thetas, settings) {
+            Ok(p) => p,
+            Err(PassError::Infeasible) => {
+                return GapSearch {
+                    status: GapStatus::NoCompleteSolution,
+                    first: None,
+                    static_limit: None,
+                    range,
+                    vertices: visited,
+                };
+            }
+            Err(PassError::Failed) => return GapSearch::failed(range),
+        };
+        visited += p.vertices;
+        let Some((_, y)) = &p.best else {
+            result = Some(p);
+            break;
+        };
+        if discrete.is_some() {
+            result = Some(p);
+            break;
+        }
+        let cuts = general::violated_joints(geom, phi, y, &general_settings);
+        if cuts.is_empty() {
+            result = Some(p);
+            break;
+        }
+        let before = thetas.len();
+        thetas.extend(cuts.iter().map(|c| c.0));
+        thetas.sort_by(f64::total_cmp);
+        thetas.dedup();
+        if thetas.len() == before {
+            return GapSearch::failed(range);
+        }
+    }
+    let Some(p) = result else {
+        return GapSearch::failed(range);
+    };
+    // The static limit: the walk's own top on a discrete arch; the exchange's on a continuum.
+    let static_limit = if discrete.is_some() {
+        Some(p.top)
+    } else {
+        let lf = general::load_factor(geom, phi, &general_settings);
+        match lf.outcome {
+            Outcome::Solved => Some(lf.lambda),
+            Outcome::Unbounded => Some(f64::INFINITY),
+            _ => None,
+        }
+    };
+    let static_limit = static_limit.map(|l| {
+        if l >= settings.lambda_cap {
+            f64::INFINITY
+        } else {
+            l
+        }
+    });
+    let mu = phi.tan();
+    let first = p.best.and_then(|(moves, y)| {
+        let state = StateY { y, mu };
+        let angle = |t: f64| geom.angle_deg(t);
+        mechanism::check(geom, &moves, &state, &angle).map(|m| Complete {
+            value: y[3],
+            state,
+            mechanism: m,
+        })
+    });
+    let status = match (&first, static_limit) {
+        (None, _) => GapStatus::NoCompleteSolution,
+        (Some(c), Some(l)) if l - c.state.y[3] > settings.tol_gap * (1.0 + l.abs().min(1e300)) => {
+            GapStatus::Gap
+        }
+        (Some(_), _) => GapStatus::NoGap,
+    };
+    GapSearch {
+        status,
+        first,
+        static_limit,
+        range,
+        vertices: visited,
+    }
+}

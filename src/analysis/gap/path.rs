@@ -1,0 +1,477 @@
+//! The first complete solution along a path of scenes at a fixed λ: decreasing μ (friction
+//! find) or decreasing K (thickness find).
+//!
+//! At each parameter value p the admissible states form a polytope in (F_x, F_y, M₀); its
+//! vertices are walked at a sequence of values from the start of the path to its static
+//! limit and on until the polytope is empty. A complete solution at one p needs as many tight
+//! rows as a vertex in (x, p), one more than a vertex at fixed p: it shows up between two steps
+//! as a vertex that is cut off (its three rows meet a fourth), and is located there by Brent's
+//! method on the fourth row's slack. Families of complete states (two sliding joints whose
+//! twists cancel, as when a crown part drops between vertical joints) are complete at the
+//! steps themselves; their onset is located by bisection. A continuum is walked on sampled
+//! joints; its first complete state is then solved on the continuum itself ([`refine`]), and
+//! where that fails the joints it violates are added and the path walked again.
+
+use super::mechanism::{self, JointMove, StateY};
+use super::refine::{self, Pattern};
+use super::rows::{RowKind, StateRows, row_at};
+use super::walk::{self, Vertex, WalkLimits};
+use super::{Complete, GapSearch, GapStatus, Settings, complete_moves, load_factor};
+use crate::analysis::general;
+use crate::analysis::lp;
+use crate::analysis::roots;
+use crate::analysis::statics::{ArchGeometry, Condition};
+use std::collections::BTreeMap;
+
+/// A row named by its joint (index into the joint list) and condition.
+type RowName = (usize, Condition);
+
+fn order(c: Condition) -> u8 {
+    match c {
+        Condition::Intrados => 0,
+        Condition::Extrados => 1,
+        Condition::SlideOutward => 2,
+        Condition::SlideInward => 3,
+    }
+}
+
+/// The joint rows tight at a vertex, by name.
+fn key(rows: &StateRows, v: &Vertex) -> Vec<(usize, u8)> {
+    let mut k: Vec<(usize, u8)> = v
+        .tight
+        .iter()
+        .filter_map(|&r| match rows.kind[r] {
+            RowKind::Joint {
+                joint, condition, ..
+            } => Some((joint, order(condition))),
+            RowKind::Bound => None,
+        })
+        .collect();
+    k.sort_unstable();
+    k
+}
+
+fn condition_of(code: u8) -> Condition {
+    Condition::ALL[code as usize]
+}
+
+/// A scene along the path: the geometry and friction angle at parameter p.
+pub(super) type SceneAt<'a, G> = &'a dyn Fn(f64) -> Option<(G, f64)>;
+
+/// The joints of the walk: a discrete arch's own (`None`) or sampled joints of a continuum.
+type Joints<'a> = Option<&'a [f64]>;
+
+fn joints_at<G: ArchGeometry>(geom: &G, thetas: Joints<'_>) -> Option<Vec<f64>> {
+    match thetas {
+        Some(t) => Some(t.to_vec()),
+        None => geom.discrete_joints(),
+    }
+}
+
+/// The polytope at one parameter value: its rows and vertices by key.
+pub(super) struct Slice {
+    p: f64,
+    rows: StateRows,
+    pub(super) vertices: BTreeMap<Vec<(usize, u8)>, Vertex>,
+}
+
+/// What a path search holds fixed: λ, the joints, the settings.
+pub(super) struct Walker<'a, G> {
+    pub(super) at: SceneAt<'a, G>,
+    pub(super) thetas: Joints<'a>,
+    pub(super) lambda: f64,
+    pub(super) settings: &'a Settings,
+}
+
+/// A complete solution found on the path: where, its state, the moving joints and the
+/// joint rows tight there.
+struct Found {
+    p: f64,
+    y: [f64; 4],
+    moves: Vec<JointMove>,
+    tight: Vec<(f64, Condition)>,
+}
+
+impl<G: ArchGeometry> Walker<'_, G> {
+    pub(super) fn slice(&self, p: f64) -> Option<(G, Slice)> {
+        let (geom, phi) = (self.at)(p)?;
+        let joints = joints_at(&geom, self.thetas)?;
+        let rows = StateRows::new(
+            &geom,
+            &joints,
+            phi,
+            [self.lambda, self.lambda],
+            self.settings.state_cap,
+        );
+        let mut out = Slice {
+            p,
+            rows,
+            vertices: BTreeMap::new(),
+        };
+        let lp_settings = lp::Settings::for_rows(out.rows.len());
+        let sol = lp::maximise(
+            &[1.0, 0.0, 0.0, 0.0],
+            &out.rows.a,
+            &out.rows.b,
+            &lp_settings,
+        )
+        .ok()?;
+        if sol.status == lp::Status::Optimal {
+            let limits = WalkLimits {
+                tol_tight: self.settings.tol_tight,
+                max_vertices: self.settings.max_vertices,
+                max_tight: self.settings.max_tight,
+            };
+            let fence: Vec<bool> = out
+                .rows
+                .kind
+                .iter()
+                .zip(&out.rows.a)
+                .map(|(k, a)| *k == RowKind::Bound && a[3] == 0.0)
+                .collect();
+            let vs = walk::vertices(&out.rows.a, &out.rows.b, &fence, sol.x, &limits).ok()?;
+            for v in vs {
+                out.vertices.insert(key(&out.rows, &v), v);
+            }
+        }
+        Some((geom, out))
+    }
+
+    /// The named rows at p, scaled to unit length.
+    fn rows_at(&self, p: f64, names: &[RowName]) -> Option<Vec<super::rows::JointRowAt>> {
+        let (geom, phi) = (self.at)(p)?;
+        let joints = joints_at(&geom, self.thetas)?;
+        names
+            .iter()
+            .map(|(j, c)| row_at(&geom, *joints.get(*j)?, phi, *c))
+            .collect()
+    }
+
+    /// The vertex of three named rows at p and the slack b − a·y of a fourth.
+    fn slack(&self, p: f64, three: &[RowName; 3], fourth: RowName) -> Option<([f64; 3], f64)> {
+        let r = self.rows_at(p, &[three[0], three[1], three[2], fourth])?;
+        let mut m = nalgebra::Matrix3::zeros();
+        let mut rhs = nalgebra::Vector3::zeros();
+        for i in 0..3 {
+            for c in 0..3 {
+                m[(i, c)] = r[i].a[c];
+            }
+            rhs[i] = r[i].b - r[i].a[3] * self.lambda;
+        }
+        let x = m.lu().solve(&rhs)?;
+        let x = [x[0], x[1], x[2]];
+        let a = r[3].a;
+        Some((
+            x,
+            r[3].b - (a[0] * x[0] + a[1] * x[1] + a[2] * x[2] + a[3] * self.lambda),
+        ))
+    }
+
+    /// The first complete vertex of a slice.
+    fn complete_in(&self, geom: &G, s: &Slice) -> Option<Found> {
+        let joints = joints_at(geom, self.thetas)?;
+        s.vertices.iter().find_map(|(k, v)| {
+            complete_moves(geom, &s.rows, v, self.settings).map(|moves| Found {
+                p: s.p,
+                y: v.y,
+                moves,
+                tight: k
+                    .iter()
+                    .map(|(j, c)| (joints[*j], condition_of(*c)))
+                    .collect(),
+            })
+        })
+    }
+
+    /// The complete vertex at p nearest to `near`.
+    fn complete_at(&self, p: f64, near: &[f64; 4]) -> Option<Found> {
+        let (geom, s) = self.slice(p)?;
+        let joints = joints_at(&geom, self.thetas)?;
+        let dist = |v: &Vertex| (0..3).map(|c| (v.y[c] - near[c]).abs()).fold(0.0, f64::max);
+        let mut vs: Vec<(&Vec<(usize, u8)>, &Vertex)> = s.vertices.iter().collect();
+        vs.sort_by(|a, b| dist(a.1).total_cmp(&dist(b.1)));
+        vs.into_iter().take(4).find_map(|(k, v)| {
+            complete_moves(&geom, &s.rows, v, self.settings).map(|moves| Found {
+                p,
+                y: v.y,
+                moves,
+                tight: k
+                    .iter()
+                    .map(|(j, c)| (joints[*j], condition_of(*c)))
+                    .collect(),
+            })
+        })
+    }
+
+    /// The first complete event between two slices: a vertex of `prev` cut off before `cur`
+    /// where its three rows meet a fourth whose twists with theirs are positively dependent.
+    fn events(&self, prev: &Slice, cur: &Slice) -> Option<Found> {
+        let mut found: Option<Found> = None;
+        let forward = (cur.p - prev.p).signum();
+        let tol_p = self.settings.tol_path * (1.0 + prev.p.abs());
+        for (k, v) in &prev.vertices {
+            if cur.vertices.contains_key(k) || k.len() != 3 {
+                continue;
+            }
+            let three: [RowName; 3] = std::array::from_fn(|i| (k[i].0, condition_of(k[i].1)));
+            let Some((x_end, _)) = self.slack(cur.p, &three, three[0]) else {
+                continue;
+            };
+            let y_end = [x_end[0], x_end[1], x_end[2], self.lambda];
+            let scale = 1.0 + y_end.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+            let tol = self.settings.tol_tight * scale;
+            for (r, a) in cur.rows.a.iter().enumerate() {
+                let RowKind::Joint {
+                    joint, condition, ..
+                } = cur.rows.kind[r]
+                else {
+                    continue;
+                };
+                let name = (joint, condition);
+                if three.contains(&name) {
+                    continue;
+                }
+                let s_end = cur.rows.b[r] - (0..4).map(|c| a[c] * y_end[c]).sum::<f64>();
+                if s_end >= -tol {
+                    continue;
+                }
+                // The four twists must be positively dependent where the rows meet; they move
+                // with p on a thickness path, so a loose test first.
+                let Some(rows4) = self.rows_at(cur.p, &[three[0], three[1], three[2], name]) else {
+                    continue;
+                };
+                let twists: Option<Vec<[f64; 3]>> = rows4.iter().map(|r| r.twist).collect();
+                let Some(twists) = twists else {
+                    continue;
+                };
+                if super::hull::min_norm_point(&twists, self.settings.tol_hull)
+                    .is_none_or(|m| m.norm() > self.settings.tol_event)
+                {
+                    continue;
+                }
+                let slack = |p: f64| self.slack(p, &three, name).map_or(f64::NAN, |v| v.1);
+                if !(slack(prev.p) >= -tol) {
+                    continue;
+                }
+                let Some(p_star) = roots::brent(slack, prev.p, cur.p, tol_p) else {
+                    continue;
+                };
+                if found
+                    .as_ref()
+                    .is_some_and(|f| forward * (p_star - f.p) >= 0.0)
+                {
+                    continue;
+                }
+                if let Some(f) = self.complete_at(p_star, &v.y) {
+                    found = Some(f);
+                }
+            }
+        }
+        found
+    }
+
+    /// True when the slice at p has a complete vertex.
+    fn has_complete(&self, p: f64) -> Option<Found> {
+        let (geom, s) = self.slice(p)?;
+        self.complete_in(&geom, &s)
+    }
+
+    /// The onset of a family of complete states between `from` (none) and `to` (one), by
+    /// bisection.
+    fn onset(&self, mut from: f64, mut to: Found) -> Found {
+        let tol = self.settings.tol_path * (1.0 + to.p.abs());
+        for _ in 0..200 {
+            if (to.p - from).abs() <= tol {
+                break;
+            }
+            let mid = 0.5 * (from + to.p);
+            match self.has_complete(mid) {
+                Some(f) => to = f,
+                None => from = mid,
+            }
+        }
+        to
+    }
+
+    /// One scan of the path on fixed joints, from `start` past `end` until the polytope is
+    /// empty: the first complete solution and the vertices seen.
+    fn scan(&self, start: f64, end: f64, step: f64) -> (Option<Found>, usize) {
+        let mut prev: Option<Slice> = None;
+        let mut visited = 0;
+        let forward = (end - start).signum();
+        let n = (((end - start).abs() / step).ceil() as usize).max(1);
+        let mut i = 0;
+        loop {
+            // The static limit itself is a degenerate polytope (a point or a segment): the step
+            // there stops just short of it, where every row of the limit is tight within the
+            // walk's tolerance.
+            let p = if i < n {
+                start + (end - start) * i as f64 / n as f64
+            } else if i == n {
+                end - forward * self.settings.end_offset * (1.0 + end.abs())
+            } else {
+                end + forward * step * (i - n) as f64
+            };
+            i += 1;
+            let beyond = i > n;
+            let Some((geom, cur)) = self.slice(p) else {
+                if beyond {
+                    break;
+                }
+                prev = None;
+                continue;
+            };
+            visited += cur.vertices.len();
+            if let Some(pr) = &prev
+                && let Some(f) = self.events(pr, &cur)
+            {
+                return (Some(f), visited);
+            }
+            if let Some(f) = self.complete_in(&geom, &cur) {
+                let f = match &prev {
+                    Some(pr) => self.onset(pr.p, f),
+                    None => f,
+                };
+                return (Some(f), visited);
+            }
+            if beyond && (cur.vertices.is_empty() || i > n + self.settings.max_steps_beyond) {
+                break;
+            }
+            prev = Some(cur);
+        }
+        (None, visited)
+    }
+}
+
+/// The first complete solution along the path from `start` to `end` (the static limit), at
+/// load factor `lambda`, scanned at steps no longer than `step`: the path parameter and the
+/// solution, and the vertices visited.
+pub(super) fn first_complete<G: ArchGeometry + Copy>(
+    at: SceneAt<'_, G>,
+    start: f64,
+    end: f64,
+    step: f64,
+    lambda: f64,
+    settings: &Settings,
+) -> (Option<(f64, Complete)>, usize) {
+    let Some((g0, _)) = at(start).or_else(|| at(end)) else {
+        return (None, 0);
+    };
+    let mut thetas: Option<Vec<f64>> = g0
+        .discrete_joints()
+        .is_none()
+        .then(|| load_factor::initial_joints(&g0, settings));
+    let general_settings = general::Settings::default();
+    let mut visited = 0;
+    for _ in 0..settings.max_exchange_rounds {
+        let walker = Walker {
+            at,
+            thetas: thetas.as_deref(),
+            lambda,
+            settings,
+        };
+        let (found, n) = walker.scan(start, end, step);
+        visited += n;
+        let Some(f) = found else {
+            return (None, visited);
+        };
+        let Some(t) = thetas.as_mut() else {
+            return (finish(at, f, settings), visited);
+        };
+        let Some((geom, phi)) = at(f.p) else {
+            return (None, visited);
+        };
+        let cuts = general::violated_joints(&geom, phi, &f.y, &general_settings);
+        if cuts.is_empty() {
+            return (finish(at, f, settings), visited);
+        }
+        let pattern = Pattern::of(&geom, &f.tight, t);
+        if let Some(r) = refine::on_continuum(at, &pattern, f.p, &f.y, lambda, settings) {
+            return (finish(at, r, settings), visited);
+        }
+        let before = t.len();
+        t.extend(cuts.iter().map(|c| c.0));
+        t.sort_by(f64::total_cmp);
+        t.dedup();
+        if t.len() == before {
+            return (None, visited);
+        }
+    }
+    (None, visited)
+}
+
+fn finish<G: ArchGeometry>(
+    at: SceneAt<'_, G>,
+    f: impl Into<FoundState>,
+    _settings: &Settings,
+) -> Option<(f64, Complete)> {
+    let f: FoundState = f.into();
+    let (geom, phi) = at(f.p)?;
+    let state = StateY {
+        y: f.y,
+        mu: phi.tan(),
+    };
+    let angle = |t: f64| geom.angle_deg(t);
+    mechanism::check(&geom, &f.moves, &state, &angle).map(|m| {
+        (
+            f.p,
+            Complete {
+                value: f.p,
+                state,
+                mechanism: m,
+            },
+        )
+    })
+}
+
+/// A complete state at path parameter p with its moving joints.
+pub(super) struct FoundState {
+    pub p: f64,
+    pub y: [f64; 4],
+    pub moves: Vec<JointMove>,
+}
+
+impl From<Found> for FoundState {
+    fn from(f: Found) -> Self {
+        FoundState {
+            p: f.p,
+            y: f.y,
+            moves: f.moves,
+        }
+    }
+}
+
+/// The result of a path search as a [`GapSearch`]: `found` is the first complete solution at
+/// path parameter p, `value` turns p into the find's value (μ from φ, K from K),
+/// `static_value` is the static limit and `start` the far end of the path.
+pub(super) fn search_result(
+    found: Option<(f64, Complete)>,
+    value: impl Fn(f64) -> f64,
+    static_value: f64,
+    start: f64,
+    visited: usize,
+    settings: &Settings,
+) -> GapSearch {
+    let range = [static_value, value(start)];
+    let status = match &found {
+        None => GapStatus::NoCompleteSolution,
+        Some((p, _)) => {
+            let v = value(*p);
+            if (v - static_value).abs() > settings.tol_gap * (1.0 + static_value.abs()) {
+                GapStatus::Gap
+            } else {
+                GapStatus::NoGap
+            }
+        }
+    };
+    GapSearch {
+        status,
+        first: found.map(|(p, c)| Complete {
+            value: value(p),
+            ..c
+        }),
+        static_limit: Some(static_value),
+        range,
+        vertices: visited,
+    }
+}

@@ -1,0 +1,57 @@
+//! The other end of the non-associative gap for every critical find: the first complete
+//! solution along the find's path (increasing λ, decreasing K, decreasing μ), searched after
+//! the static limit is known ([`crate::analysis::gap`]).
+
+use super::{Find, Outcome, Scene, Solution};
+use crate::analysis::forms::ArchModel;
+use crate::analysis::gap::{self, Settings};
+use crate::analysis::windows::WindowSettings;
+
+/// Searches for the first complete solution of a critical find whose static limit was found
+/// (or, for the load factor, is unbounded) and records it in `out`.
+pub(super) fn record(scene: &Scene, out: &mut Solution) {
+    let settings = Settings::DEFAULT;
+    let model = |k: f64| ArchModel::new(scene.arch.with_k(k), scene.form, scene.load).ok();
+    match scene.find {
+        Find::LoadFactor => {
+            let static_value = match out.outcome {
+                Some(Outcome::Found) => out.load_factor,
+                Some(Outcome::Unbounded) => Some(f64::INFINITY),
+                _ => return,
+            };
+            let Some(m) = model(scene.arch.k) else {
+                return;
+            };
+            let search = gap::first_complete_load_factor(&m, scene.friction.angle(), &settings);
+            out.set_gap(&search, static_value, 1.0);
+        }
+        Find::Friction => {
+            let (Some(mu_c), Some(m)) = (out.mu_crit, model(scene.arch.k)) else {
+                return;
+            };
+            let search = gap::first_complete_friction(&m, scene.lambda, mu_c, &settings);
+            out.set_gap(&search, Some(mu_c), -1.0);
+        }
+        Find::Thickness => {
+            let Some(k_c) = out.k_crit else {
+                return;
+            };
+            let cap = scene
+                .form
+                .max_k_with_load(scene.arch.half_angle, scene.load);
+            let start = out
+                .k_windows_scanned_to
+                .unwrap_or_else(|| WindowSettings::DEFAULT.upper_end(Some(k_c), cap));
+            let search = gap::first_complete_thickness(
+                &model,
+                scene.friction.angle(),
+                scene.lambda,
+                k_c,
+                start,
+                &settings,
+            );
+            out.set_gap(&search, Some(k_c), -1.0);
+        }
+        _ => {}
+    }
+}
