@@ -10,6 +10,7 @@ mod citation;
 mod common;
 mod damaged;
 mod disk_full;
+mod gap;
 mod hardening;
 mod keystone;
 mod loads;

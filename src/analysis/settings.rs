@@ -378,7 +378,7 @@ pub struct GapSettings {
     pub max_vertices: usize,
     /// Largest number of tight rows at a vertex whose triples are tried as edges (default 24).
     pub max_tight: usize,
-    /// Joints sampled per family of a continuum before the exchange adds any (default 17,
+    /// Joints sampled per family of a continuum before the exchange adds any (default 9,
     /// ends included).
     pub continuum_joints: usize,
     /// Largest number of exchange rounds on a continuum (default 60).
@@ -388,9 +388,9 @@ pub struct GapSettings {
     pub tol_path: f64,
     /// μ at which a friction path starts (default 1e3; μ = ∞ makes the Coulomb rows one).
     pub mu_start: f64,
-    /// Largest step of a friction path in φ = atan μ, degrees (default 0.5).
+    /// Step of a friction path in φ = atan μ, degrees, before halving (default 2).
     pub phi_step_deg: f64,
-    /// Largest step of a thickness path in K (default 0.002, as the scan for windows).
+    /// Step of a thickness path in K before halving (default 0.05).
     pub k_step: f64,
     /// Steps a path goes on beyond its static limit until its polytope is empty (default 200:
     /// sampled joints of a continuum stand a little further than the continuum).
@@ -418,12 +418,12 @@ impl GapSettings {
         state_cap: 1e6,
         max_vertices: 200_000,
         max_tight: 24,
-        continuum_joints: 17,
+        continuum_joints: 9,
         max_exchange_rounds: 60,
         tol_path: 1e-13,
         mu_start: 1e3,
-        phi_step_deg: 0.5,
-        k_step: 0.002,
+        phi_step_deg: 2.0,
+        k_step: 0.05,
         max_steps_beyond: 200,
         tol_event: 1e-2,
         tol_refine: 1e-13,

@@ -52,13 +52,13 @@ fn pass<G: ArchGeometry + ?Sized>(
         max_vertices: settings.max_vertices,
         max_tight: settings.max_tight,
     };
-    // λ ≥ 0 and the state box fence the walk; the cap on λ does not, since an arch that stands
-    // for every λ starts the walk there.
+    // The facet λ = 0 fences the walk: every vertex off it rises to the start along vertices
+    // off it. The bounds of the box and of λ do not: vertices on them are walked through.
     let fence: Vec<bool> = rows
         .kind
         .iter()
         .zip(&rows.a)
-        .map(|(k, a)| *k == RowKind::Bound && a[3] <= 0.0)
+        .map(|(k, a)| *k == RowKind::Bound && a[3] < 0.0)
         .collect();
     let vertices =
         walk::vertices(&rows.a, &rows.b, &fence, top.x, &limits).map_err(|_| PassError::Failed)?;
@@ -67,7 +67,7 @@ fn pass<G: ArchGeometry + ?Sized>(
         if best.as_ref().is_some_and(|(_, y)| y[3] <= v.y[3]) {
             continue;
         }
-        if let Some(moves) = complete_moves(geom, &rows, v, settings) {
+        if let Some((moves, _)) = complete_moves(geom, &rows, v, settings) {
             best = Some((moves, v.y));
         }
     }

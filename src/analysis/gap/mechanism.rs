@@ -61,29 +61,25 @@ pub(super) struct JointMove {
 /// Threshold (relative to the largest corner speed 1) below which a motion is none.
 const TOL_MOTION: f64 = 1e-9;
 
-/// Names, normalises and checks the mechanism of moving joints `moves` (increasing θ) at
-/// `state`; `None` when nothing moves.
-pub(super) fn check<G: ArchGeometry + ?Sized>(
-    geom: &G,
-    moves: &[JointMove],
-    state: &StateY,
-    angle_deg: &dyn Fn(f64) -> f64,
-) -> Option<MovingMechanism> {
-    if moves.is_empty() {
-        return None;
-    }
-    // Block k lies between moving joints k and k + 1; its velocity is the sum of the relative
-    // velocities of the joints on its left.
-    let mut blocks: Vec<(f64, f64, Twist)> = Vec::new();
+/// The blocks between consecutive moving joints, each with its velocity: the sum of the
+/// relative velocities of the joints on its left.
+fn blocks_of(moves: &[JointMove]) -> Vec<(f64, f64, Twist)> {
     let mut t: Twist = [0.0; 3];
-    for w in moves.windows(2) {
-        for c in 0..3 {
-            t[c] += w[0].relative[c];
-        }
-        blocks.push((w[0].theta, w[1].theta, t));
-    }
+    moves
+        .windows(2)
+        .map(|w| {
+            for (tc, rc) in t.iter_mut().zip(&w[0].relative) {
+                *tc += rc;
+            }
+            (w[0].theta, w[1].theta, t)
+        })
+        .collect()
+}
+
+/// The largest speed of a block corner (the joint ends of each block).
+fn corner_speed<G: ArchGeometry + ?Sized>(geom: &G, blocks: &[(f64, f64, Twist)]) -> f64 {
     let mut top = 0.0_f64;
-    for (from, to, tw) in &blocks {
+    for (from, to, tw) in blocks {
         for theta in [*from, *to] {
             let j = geom.joint(theta);
             for p in [j.intrados, j.extrados] {
@@ -92,21 +88,120 @@ pub(super) fn check<G: ArchGeometry + ?Sized>(
             }
         }
     }
+    top
+}
+
+/// What one moving joint does at the state: its works, its breach of the flow rules and how
+/// it moves.
+struct JointReport {
+    /// F·v₀ + M ω of the joint force on its relative velocity.
+    total: f64,
+    /// T δr^t.
+    tangential: f64,
+    /// Largest breach of a flow rule, relative to `force_scale`.
+    flow: f64,
+    /// The face that stays closed while the joint turns about it.
+    hinge: Option<Face>,
+    /// The sense in which the crown-side part slips.
+    slip: Option<Sense>,
+    /// True when both faces open.
+    lifted: bool,
+}
+
+fn joint_report<G: ArchGeometry + ?Sized>(
+    geom: &G,
+    theta: f64,
+    rel: &Twist,
+    state: &StateY,
+    force_scale: f64,
+) -> JointReport {
+    let j = geom.joint(theta);
+    let (tau, nu) = (j.along(), j.normal());
+    let c = geom
+        .dead_load(theta)
+        .plus(geom.live_load(theta).scale(state.y[3]));
+    let f = [state.y[0] + c.fx, state.y[1] + c.fy];
+    let moment = state.y[2] + c.m;
+    let normal = f[0] * nu[0] + f[1] * nu[1];
+    let shear = f[0] * tau[0] + f[1] * tau[1];
+    let total = f[0] * rel[0] + f[1] * rel[1] + moment * rel[2];
+    let vi = velocity_at(rel, j.intrados);
+    let ve = velocity_at(rel, j.extrados);
+    let open_i = vi[0] * nu[0] + vi[1] * nu[1];
+    let open_e = ve[0] * nu[0] + ve[1] * nu[1];
+    let along = vi[0] * tau[0] + vi[1] * tau[1];
+    let tangential = shear * along;
+    // No face presses into its neighbour; the normal force does no work (normality).
+    let mut flow = (-open_i)
+        .max(-open_e)
+        .max((total - tangential).abs() / force_scale);
+    let slipping = along.abs() > TOL_MOTION;
+    if slipping {
+        // Maximum dissipation: T δr^t = −μ N |δr^t|.
+        let dissipation = if state.mu.is_finite() {
+            state.mu * normal * along.abs()
+        } else {
+            0.0
+        };
+        flow = flow
+            .max((tangential + dissipation).abs() / force_scale)
+            .max(tangential / force_scale);
+    }
+    let (oi, oe) = (open_i > TOL_MOTION, open_e > TOL_MOTION);
+    let lifted = oi && oe;
+    let crown_side = if theta >= 0.0 { 1.0 } else { -1.0 };
+    JointReport {
+        total,
+        tangential,
+        flow,
+        hinge: (!lifted && (oi || oe)).then_some(if oe { Face::Intrados } else { Face::Extrados }),
+        slip: (slipping && !lifted).then(|| {
+            if -crown_side * along > 0.0 {
+                Sense::Outward
+            } else {
+                Sense::Inward
+            }
+        }),
+        lifted,
+    }
+}
+
+/// Names, normalises and checks the mechanism of moving joints `moves` (increasing θ) at
+/// `state`; `None` when nothing moves.
+pub(super) fn check<G: ArchGeometry + ?Sized>(
+    geom: &G,
+    moves: &[JointMove],
+    state: &StateY,
+    angle_deg: &dyn Fn(f64) -> f64,
+) -> Option<MovingMechanism> {
+    let blocks = blocks_of(moves);
+    let top = corner_speed(geom, &blocks);
     if !(top > 0.0 && top.is_finite()) {
         return None;
     }
     let s = 1.0 / top;
     let lam = state.y[3];
     let load = |th: f64| geom.dead_load(th).plus(geom.live_load(th).scale(lam));
-    let power = |r: Resultant, tw: &Twist| s * (r.fx * tw[0] + r.fy * tw[1] + r.m * tw[2]);
     let mut work_loads = 0.0;
+    // The size of the works: each block's load against its velocity, term by term, so that a
+    // mechanism on which the loads do no work (a part tipping about a corner through which
+    // its load passes) is judged against the work its loads could do.
     let mut scale = 0.0_f64;
     for (from, to, tw) in &blocks {
-        let r = load(*to).plus(load(*from).scale(-1.0));
-        let p = power(r, tw);
-        work_loads += p;
-        scale = scale.max(p.abs());
+        let r: Resultant = load(*to).plus(load(*from).scale(-1.0));
+        work_loads += s * (r.fx * tw[0] + r.fy * tw[1] + r.m * tw[2]);
+        scale += s * ((r.fx * tw[0]).abs() + (r.fy * tw[1]).abs() + (r.m * tw[2]).abs());
     }
+    // Joint forces are judged against the largest of them (a joint that lifts off carries
+    // none of its own).
+    let force_scale = moves
+        .iter()
+        .map(|m| {
+            let c = load(m.theta);
+            let f = [state.y[0] + c.fx, state.y[1] + c.fy];
+            f[0].hypot(f[1]).max((state.y[2] + c.m).abs())
+        })
+        .fold(1.0_f64, f64::max);
     let mut work_friction = 0.0;
     let mut work_normal = 0.0;
     let mut flow = 0.0_f64;
@@ -114,59 +209,26 @@ pub(super) fn check<G: ArchGeometry + ?Sized>(
     let mut sliding = Vec::new();
     let mut lifted = Vec::new();
     for m in moves {
-        let rel = [s * m.relative[0], s * m.relative[1], s * m.relative[2]];
-        let j = geom.joint(m.theta);
-        let (tau, nu) = (j.along(), j.normal());
-        let c = load(m.theta);
-        let f = [state.y[0] + c.fx, state.y[1] + c.fy];
-        let moment = state.y[2] + c.m;
-        let normal = f[0] * nu[0] + f[1] * nu[1];
-        let shear = f[0] * tau[0] + f[1] * tau[1];
-        let total = f[0] * rel[0] + f[1] * rel[1] + moment * rel[2];
-        let vi = velocity_at(&rel, j.intrados);
-        let ve = velocity_at(&rel, j.extrados);
-        let open_i = vi[0] * nu[0] + vi[1] * nu[1];
-        let open_e = ve[0] * nu[0] + ve[1] * nu[1];
-        let along = vi[0] * tau[0] + vi[1] * tau[1];
-        let tangential = shear * along;
-        let normal_work = total - tangential;
-        work_friction += tangential;
-        work_normal += normal_work;
-        scale = scale.max(total.abs()).max(tangential.abs());
-        let size = f[0].hypot(f[1]).max(moment.abs()).max(f64::MIN_POSITIVE);
-        flow = flow.max(-open_i / 1.0).max(-open_e / 1.0);
-        flow = flow.max(normal_work.abs() / size);
-        if along.abs() > TOL_MOTION {
-            let dissipation = if state.mu.is_finite() {
-                state.mu * normal * along.abs()
-            } else {
-                0.0
-            };
-            flow = flow.max((tangential + dissipation).abs() / size);
-            flow = flow.max(tangential / size);
-        }
-        let crown_side = if m.theta >= 0.0 { 1.0 } else { -1.0 };
+        let rel = m.relative.map(|v| s * v);
+        let r = joint_report(geom, m.theta, &rel, state, force_scale);
+        work_friction += r.tangential;
+        work_normal += r.total - r.tangential;
+        scale = scale.max(r.total.abs()).max(r.tangential.abs());
+        flow = flow.max(r.flow);
         let angle = angle_deg(m.theta);
-        let (oi, oe) = (open_i > TOL_MOTION, open_e > TOL_MOTION);
-        if oi && oe {
+        if r.lifted {
             lifted.push(angle);
-        } else if oi || oe || rel[2].abs() > TOL_MOTION {
-            if oi || oe {
-                hinges.push(Hinge {
-                    angle_deg: angle,
-                    face: if oe { Face::Intrados } else { Face::Extrados },
-                });
-            }
         }
-        if along.abs() > TOL_MOTION && !(oi && oe) {
-            let slip = -crown_side * along;
+        if let Some(face) = r.hinge {
+            hinges.push(Hinge {
+                angle_deg: angle,
+                face,
+            });
+        }
+        if let Some(sense) = r.slip {
             sliding.push(SlidingJoint {
                 angle_deg: angle,
-                sense: if slip > 0.0 {
-                    Sense::Outward
-                } else {
-                    Sense::Inward
-                },
+                sense,
             });
         }
     }

@@ -111,15 +111,24 @@ impl GapSearch {
     }
 }
 
-/// The moving joints of a complete solution at vertex `v`, or `None` when the twists of its
-/// tight rows are not positively dependent.
+/// The moving joints of a complete solution at vertex `v` and the rows (indices into `rows`)
+/// whose twists move them, or `None` when the twists of its tight rows are not positively
+/// dependent.
 fn complete_moves<G: ArchGeometry + ?Sized>(
     geom: &G,
     rows: &StateRows,
     v: &Vertex,
     settings: &Settings,
-) -> Option<Vec<JointMove>> {
+) -> Option<(Vec<JointMove>, Vec<usize>)> {
+    // A vertex on the box of the state or on the cap of λ is an artefact of those bounds.
+    if v.tight
+        .iter()
+        .any(|&r| rows.kind[r] == RowKind::Bound && rows.a[r][3] >= 0.0)
+    {
+        return None;
+    }
     let mut twists: Vec<([f64; 3], f64)> = Vec::new();
+    let mut index: Vec<usize> = Vec::new();
     for &r in &v.tight {
         let RowKind::Joint {
             joint,
@@ -135,8 +144,10 @@ fn complete_moves<G: ArchGeometry + ?Sized>(
             continue;
         }
         twists.push((t, theta));
+        index.push(r);
     }
-    moves_of(&twists, settings)
+    let (moves, support) = moves_of(&twists, settings)?;
+    Some((moves, support.into_iter().map(|i| index[i]).collect()))
 }
 
 /// The moving joints of the twists (each with its joint parameter) when they are positively
@@ -147,7 +158,10 @@ fn complete_moves<G: ArchGeometry + ?Sized>(
 /// ±τ; both faces of a joint shrunk to a point) would let the weights cancel within it while
 /// nothing moves; each such opposite pair is tried with one of its twists at a time, so that
 /// every joint's cone is pointed and a vanishing combination moves some joint.
-fn moves_of(twists: &[([f64; 3], f64)], settings: &Settings) -> Option<Vec<JointMove>> {
+fn moves_of(
+    twists: &[([f64; 3], f64)],
+    settings: &Settings,
+) -> Option<(Vec<JointMove>, Vec<usize>)> {
     if twists.len() < 2 {
         return None;
     }
@@ -168,20 +182,22 @@ fn moves_of(twists: &[([f64; 3], f64)], settings: &Settings) -> Option<Vec<Joint
             .enumerate()
             .map(|(k, &(i, j))| if mask >> k & 1 == 0 { j } else { i })
             .collect();
-        let kept: Vec<([f64; 3], f64)> = twists
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| !dropped.contains(i))
-            .map(|(_, t)| *t)
-            .collect();
-        moves_of_pointed(&kept, settings)
+        let kept: Vec<usize> = (0..twists.len()).filter(|i| !dropped.contains(i)).collect();
+        let sub: Vec<([f64; 3], f64)> = kept.iter().map(|&i| twists[i]).collect();
+        moves_of_pointed(&sub, settings)
+            .map(|(m, support)| (m, support.into_iter().map(|i| kept[i]).collect()))
     })
 }
 
 /// Opposite pairs of twists tried one at a time, at most (2^this variants).
 const MAX_OPPOSITE_PAIRS: usize = 4;
 
-fn moves_of_pointed(twists: &[([f64; 3], f64)], settings: &Settings) -> Option<Vec<JointMove>> {
+/// [`moves_of`] for twists whose joint cones are pointed; the support is the indices of the
+/// twists with positive weight.
+fn moves_of_pointed(
+    twists: &[([f64; 3], f64)],
+    settings: &Settings,
+) -> Option<(Vec<JointMove>, Vec<usize>)> {
     if twists.len() < 2 {
         return None;
     }
@@ -191,10 +207,12 @@ fn moves_of_pointed(twists: &[([f64; 3], f64)], settings: &Settings) -> Option<V
         return None;
     }
     let mut moves: Vec<JointMove> = Vec::new();
+    let mut support = Vec::new();
     for (k, w) in m.weights.iter().enumerate() {
         if *w <= settings.tol_hull {
             continue;
         }
+        support.push(k);
         let (t, theta) = twists[k];
         let idx = match moves.iter().position(|mv| mv.theta == theta) {
             Some(i) => i,
@@ -206,8 +224,8 @@ fn moves_of_pointed(twists: &[([f64; 3], f64)], settings: &Settings) -> Option<V
                 moves.len() - 1
             }
         };
-        for c in 0..3 {
-            moves[idx].relative[c] -= w * t[c];
+        for (r, tc) in moves[idx].relative.iter_mut().zip(&t) {
+            *r -= w * tc;
         }
     }
     moves.retain(|mv| mv.relative.iter().any(|v| v.abs() > settings.tol_complete));
@@ -215,7 +233,7 @@ fn moves_of_pointed(twists: &[([f64; 3], f64)], settings: &Settings) -> Option<V
         return None;
     }
     moves.sort_by(|a, b| a.theta.total_cmp(&b.theta));
-    Some(moves)
+    Some((moves, support))
 }
 
 /// True when the joint at θ transmits no force and no moment at state y.

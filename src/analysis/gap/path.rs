@@ -55,6 +55,19 @@ fn condition_of(code: u8) -> Condition {
     Condition::ALL[code as usize]
 }
 
+/// The joint parameter and condition of rows of `rows`.
+fn names(rows: &StateRows, joints: &[f64], index: &[usize]) -> Vec<(f64, Condition)> {
+    index
+        .iter()
+        .filter_map(|&r| match rows.kind[r] {
+            RowKind::Joint {
+                joint, condition, ..
+            } => Some((joints[joint], condition)),
+            RowKind::Bound => None,
+        })
+        .collect()
+}
+
 /// A scene along the path: the geometry and friction angle at parameter p.
 pub(super) type SceneAt<'a, G> = &'a dyn Fn(f64) -> Option<(G, f64)>;
 
@@ -90,6 +103,8 @@ struct Found {
     y: [f64; 4],
     moves: Vec<JointMove>,
     tight: Vec<(f64, Condition)>,
+    /// The rows whose twists move the joints.
+    support: Vec<(f64, Condition)>,
 }
 
 impl<G: ArchGeometry> Walker<'_, G> {
@@ -108,30 +123,36 @@ impl<G: ArchGeometry> Walker<'_, G> {
             rows,
             vertices: BTreeMap::new(),
         };
-        let lp_settings = lp::Settings::for_rows(out.rows.len());
-        let sol = lp::maximise(
-            &[1.0, 0.0, 0.0, 0.0],
-            &out.rows.a,
-            &out.rows.b,
-            &lp_settings,
-        )
-        .ok()?;
+        // The polytope in (F_x, F_y, M₀) at the pinned λ: rows with an x part, renormalised.
+        let mut a3: Vec<[f64; 3]> = Vec::with_capacity(out.rows.len());
+        let mut b3: Vec<f64> = Vec::with_capacity(out.rows.len());
+        let mut index: Vec<usize> = Vec::with_capacity(out.rows.len());
+        let mut fence: Vec<bool> = Vec::with_capacity(out.rows.len());
+        for (r, a) in out.rows.a.iter().enumerate() {
+            let n = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+            if n <= 0.0 {
+                continue;
+            }
+            a3.push([a[0] / n, a[1] / n, a[2] / n]);
+            b3.push((out.rows.b[r] - a[3] * self.lambda) / n);
+            index.push(r);
+            fence.push(false);
+        }
+        let lp_settings = lp::Settings::for_rows(a3.len());
+        let sol = lp::maximise(&[1.0, 0.0, 0.0], &a3, &b3, &lp_settings).ok()?;
         if sol.status == lp::Status::Optimal {
             let limits = WalkLimits {
                 tol_tight: self.settings.tol_tight,
                 max_vertices: self.settings.max_vertices,
                 max_tight: self.settings.max_tight,
             };
-            let fence: Vec<bool> = out
-                .rows
-                .kind
-                .iter()
-                .zip(&out.rows.a)
-                .map(|(k, a)| *k == RowKind::Bound && a[3] == 0.0)
-                .collect();
-            let vs = walk::vertices(&out.rows.a, &out.rows.b, &fence, sol.x, &limits).ok()?;
+            let vs = walk::vertices(&a3, &b3, &fence, sol.x, &limits).ok()?;
             for v in vs {
-                out.vertices.insert(key(&out.rows, &v), v);
+                let v4 = Vertex {
+                    y: [v.y[0], v.y[1], v.y[2], self.lambda],
+                    tight: v.tight.iter().map(|&i| index[i]).collect(),
+                };
+                out.vertices.insert(key(&out.rows, &v4), v4);
             }
         }
         Some((geom, out))
@@ -171,7 +192,7 @@ impl<G: ArchGeometry> Walker<'_, G> {
     fn complete_in(&self, geom: &G, s: &Slice) -> Option<Found> {
         let joints = joints_at(geom, self.thetas)?;
         s.vertices.iter().find_map(|(k, v)| {
-            complete_moves(geom, &s.rows, v, self.settings).map(|moves| Found {
+            complete_moves(geom, &s.rows, v, self.settings).map(|(moves, support)| Found {
                 p: s.p,
                 y: v.y,
                 moves,
@@ -179,6 +200,7 @@ impl<G: ArchGeometry> Walker<'_, G> {
                     .iter()
                     .map(|(j, c)| (joints[*j], condition_of(*c)))
                     .collect(),
+                support: names(&s.rows, &joints, &support),
             })
         })
     }
@@ -191,7 +213,7 @@ impl<G: ArchGeometry> Walker<'_, G> {
         let mut vs: Vec<(&Vec<(usize, u8)>, &Vertex)> = s.vertices.iter().collect();
         vs.sort_by(|a, b| dist(a.1).total_cmp(&dist(b.1)));
         vs.into_iter().take(4).find_map(|(k, v)| {
-            complete_moves(&geom, &s.rows, v, self.settings).map(|moves| Found {
+            complete_moves(&geom, &s.rows, v, self.settings).map(|(moves, support)| Found {
                 p,
                 y: v.y,
                 moves,
@@ -199,6 +221,7 @@ impl<G: ArchGeometry> Walker<'_, G> {
                     .iter()
                     .map(|(j, c)| (joints[*j], condition_of(*c)))
                     .collect(),
+                support: names(&s.rows, &joints, &support),
             })
         })
     }
@@ -293,6 +316,23 @@ impl<G: ArchGeometry> Walker<'_, G> {
         to
     }
 
+    /// The first complete solution from slice `prev` (none there) to slice `cur`.
+    fn advance(&self, prev: &Slice, cur: &(G, Slice)) -> Option<Found> {
+        if let Some(f) = self.events(prev, &cur.1) {
+            return Some(f);
+        }
+        // A complete vertex at a step: a family of complete states (its moving rows are fewer
+        // than four, so they stay tight over an interval of p) began somewhere in the step,
+        // and its onset is bisected; four or more moving rows meet at this p alone.
+        self.complete_in(&cur.0, &cur.1).map(|f| {
+            if f.support.len() < 4 {
+                self.onset(prev.p, f)
+            } else {
+                f
+            }
+        })
+    }
+
     /// One scan of the path on fixed joints, from `start` past `end` until the polytope is
     /// empty: the first complete solution and the vertices seen.
     fn scan(&self, start: f64, end: f64, step: f64) -> (Option<Found>, usize) {
@@ -314,30 +354,25 @@ impl<G: ArchGeometry> Walker<'_, G> {
             };
             i += 1;
             let beyond = i > n;
-            let Some((geom, cur)) = self.slice(p) else {
+            let Some(cur) = self.slice(p) else {
                 if beyond {
                     break;
                 }
                 prev = None;
                 continue;
             };
-            visited += cur.vertices.len();
-            if let Some(pr) = &prev
-                && let Some(f) = self.events(pr, &cur)
-            {
-                return (Some(f), visited);
+            visited += cur.1.vertices.len();
+            let found = match &prev {
+                Some(pr) => self.advance(pr, &cur),
+                None => self.complete_in(&cur.0, &cur.1),
+            };
+            if found.is_some() {
+                return (found, visited);
             }
-            if let Some(f) = self.complete_in(&geom, &cur) {
-                let f = match &prev {
-                    Some(pr) => self.onset(pr.p, f),
-                    None => f,
-                };
-                return (Some(f), visited);
-            }
-            if beyond && (cur.vertices.is_empty() || i > n + self.settings.max_steps_beyond) {
+            if beyond && (cur.1.vertices.is_empty() || i > n + self.settings.max_steps_beyond) {
                 break;
             }
-            prev = Some(cur);
+            prev = Some(cur.1);
         }
         (None, visited)
     }
@@ -372,22 +407,29 @@ pub(super) fn first_complete<G: ArchGeometry + Copy>(
         };
         let (found, n) = walker.scan(start, end, step);
         visited += n;
-        let Some(f) = found else {
+        let Some(mut f) = found else {
             return (None, visited);
         };
+        // A complete state found within the gap's tolerance of the static limit is the static
+        // limit's own (the step there stops just short of it, and tightness holds to the walk's
+        // tolerance): it is solved there.
+        if (f.p - end).abs() <= settings.tol_gap * (1.0 + end.abs()) {
+            f.p = end;
+        }
         let Some(t) = thetas.as_mut() else {
             return (finish(at, f, settings), visited);
         };
         let Some((geom, phi)) = at(f.p) else {
             return (None, visited);
         };
-        let cuts = general::violated_joints(&geom, phi, &f.y, &general_settings);
-        if cuts.is_empty() {
-            return (finish(at, f, settings), visited);
-        }
+        // On a continuum the sampled state is solved on the continuum's own joints first.
         let pattern = Pattern::of(&geom, &f.tight, t);
         if let Some(r) = refine::on_continuum(at, &pattern, f.p, &f.y, lambda, settings) {
             return (finish(at, r, settings), visited);
+        }
+        let cuts = general::violated_joints(&geom, phi, &f.y, &general_settings);
+        if cuts.is_empty() {
+            return (finish(at, f, settings), visited);
         }
         let before = t.len();
         t.extend(cuts.iter().map(|c| c.0));
@@ -408,7 +450,7 @@ fn finish<G: ArchGeometry>(
     let f: FoundState = f.into();
     let (geom, phi) = at(f.p)?;
     let state = StateY {
-        y: f.y,
+        y: polish(&geom, phi, f.y, &f.support),
         mu: phi.tan(),
     };
     let angle = |t: f64| geom.angle_deg(t);
@@ -424,11 +466,13 @@ fn finish<G: ArchGeometry>(
     })
 }
 
-/// A complete state at path parameter p with its moving joints.
+/// A complete state at path parameter p with its moving joints and the rows that move them
+/// (empty when the state already holds them exactly).
 pub(super) struct FoundState {
     pub p: f64,
     pub y: [f64; 4],
     pub moves: Vec<JointMove>,
+    pub support: Vec<(f64, Condition)>,
 }
 
 impl From<Found> for FoundState {
@@ -437,7 +481,36 @@ impl From<Found> for FoundState {
             p: f.p,
             y: f.y,
             moves: f.moves,
+            support: f.support,
         }
+    }
+}
+
+/// The state nearest to y (λ fixed) on which the rows `support` hold exactly at (geometry,
+/// φ): the walk's tolerance leaves them tight only to within it, the flow rules of the
+/// mechanism they move want them exact.
+fn polish<G: ArchGeometry>(
+    geom: &G,
+    phi: f64,
+    y: [f64; 4],
+    support: &[(f64, Condition)],
+) -> [f64; 4] {
+    let rows: Vec<_> = support
+        .iter()
+        .filter_map(|&(t, c)| row_at(geom, t, phi, c))
+        .collect();
+    if rows.is_empty() {
+        return y;
+    }
+    let a = nalgebra::DMatrix::from_fn(rows.len(), 3, |i, j| rows[i].a[j]);
+    let r = nalgebra::DVector::from_iterator(
+        rows.len(),
+        rows.iter()
+            .map(|r| r.b - (r.a[0] * y[0] + r.a[1] * y[1] + r.a[2] * y[2] + r.a[3] * y[3])),
+    );
+    match a.svd(true, true).solve(&r, 1e-12) {
+        Ok(d) => [y[0] + d[0], y[1] + d[1], y[2] + d[2], y[3]],
+        Err(_) => y,
     }
 }
 

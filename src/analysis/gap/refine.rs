@@ -94,6 +94,42 @@ const H_THETA: f64 = 1e-6;
 const H_JACOBIAN: f64 = 1e-7;
 /// Newton steps.
 const MAX_NEWTON: usize = 40;
+/// Tolerance of a tangency equation, relative to 1 + |y|∞: rounding in the central
+/// difference of a row's value is about 1e-16/H_THETA.
+const TOL_TANGENCY: f64 = 1e-8;
+
+/// Newton's method on `residual` from `u` (forward-difference Jacobian, least-squares
+/// steps) until `converged`; the last residual.
+fn newton(
+    residual: &dyn Fn(&[f64]) -> Option<Vec<f64>>,
+    u: &mut [f64],
+    n_eq: usize,
+    converged: &dyn Fn(&[f64]) -> bool,
+) -> Option<Vec<f64>> {
+    let mut f = residual(u)?;
+    for _ in 0..MAX_NEWTON {
+        if converged(&f) {
+            break;
+        }
+        let mut jac = nalgebra::DMatrix::<f64>::zeros(n_eq, u.len());
+        for c in 0..u.len() {
+            let h = H_JACOBIAN * (1.0 + u[c].abs());
+            let mut v = u.to_vec();
+            v[c] += h;
+            let g = residual(&v)?;
+            for r in 0..n_eq {
+                jac[(r, c)] = (g[r] - f[r]) / h;
+            }
+        }
+        let rhs = nalgebra::DVector::from_iterator(n_eq, f.iter().map(|v| -v));
+        let step = jac.svd(true, true).solve(&rhs, 1e-14).ok()?;
+        for (ui, si) in u.iter_mut().zip(step.iter()) {
+            *ui += si;
+        }
+        f = residual(u)?;
+    }
+    Some(f)
+}
 
 /// The complete state of the continuum near a sampled one: `None` when Newton does not
 /// converge, the state violates a joint of the continuum, or its twists are not positively
@@ -138,31 +174,29 @@ pub(super) fn on_continuum<G: ArchGeometry>(
         Some(out)
     };
     let scale = 1.0 + y0.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-    let mut f = residual(&u)?;
-    for _ in 0..MAX_NEWTON {
-        let norm = f.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-        if norm <= settings.tol_refine * scale {
-            break;
-        }
-        let mut jac = nalgebra::DMatrix::<f64>::zeros(n_eq, u.len());
-        for c in 0..u.len() {
-            let h = H_JACOBIAN * (1.0 + u[c].abs());
-            let mut v = u.clone();
-            v[c] += h;
-            let g = residual(&v)?;
-            for r in 0..n_eq {
-                jac[(r, c)] = (g[r] - f[r]) / h;
-            }
-        }
-        let rhs = nalgebra::DVector::from_iterator(n_eq, f.iter().map(|v| -v));
-        let step = jac.svd(true, true).solve(&rhs, 1e-14).ok()?;
-        for (ui, si) in u.iter_mut().zip(step.iter()) {
-            *ui += si;
-        }
-        f = residual(&u)?;
-    }
-    let norm = f.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-    if !(norm <= settings.tol_refine * scale) {
+    // The rows must hold to `tol_refine`; the tangency equations, differences of rounded
+    // values over 2·H_THETA, only to where they place θ well enough (a row at a tangency
+    // changes quadratically with θ).
+    let is_value: Vec<bool> = pattern
+        .rows
+        .iter()
+        .flat_map(|r| match r.0 {
+            Joint::End(_) => vec![true],
+            Joint::Inner(_) => vec![true, false],
+        })
+        .collect();
+    let converged = |f: &[f64]| {
+        f.iter().zip(&is_value).all(|(v, value)| {
+            v.abs()
+                <= if *value {
+                    settings.tol_refine * scale
+                } else {
+                    TOL_TANGENCY * scale
+                }
+        })
+    };
+    let f = newton(&residual, &mut u, n_eq, &converged)?;
+    if !converged(&f) {
         return None;
     }
     let (geom, phi) = at(u[3])?;
@@ -185,6 +219,11 @@ pub(super) fn on_continuum<G: ArchGeometry>(
             twists.push((tw, t));
         }
     }
-    let moves = moves_of(&twists, settings)?;
-    Some(FoundState { p: u[3], y, moves })
+    let (moves, _) = moves_of(&twists, settings)?;
+    Some(FoundState {
+        p: u[3],
+        y,
+        moves,
+        support: Vec::new(),
+    })
 }

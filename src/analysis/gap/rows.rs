@@ -13,7 +13,7 @@
 //! Σ κ_i t_i = 0 over all moving joints, since the three redundant unknowns are the force and
 //! moment that every joint transmits in a self-stress.
 
-use crate::analysis::statics::{ArchGeometry, Condition, joint_rows};
+use crate::analysis::statics::{ArchGeometry, Condition, Row, joint_rows};
 
 /// What a row of the state space is.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -66,8 +66,10 @@ impl StateRows {
             ..StateRows::default()
         };
         for (joint, &theta) in thetas.iter().enumerate() {
-            for condition in Condition::ALL {
-                if let Some(r) = row_at(geom, theta, phi, condition) {
+            let all = joint_rows(geom, theta, phi);
+            let tau = geom.joint(theta).along();
+            for (i, condition) in Condition::ALL.into_iter().enumerate() {
+                if let Some(r) = scaled(&all[i], tau, phi) {
                     rows.push(
                         r.a,
                         r.b,
@@ -128,12 +130,17 @@ pub(super) fn row_at<G: ArchGeometry + ?Sized>(
 ) -> Option<JointRowAt> {
     let i = Condition::ALL.iter().position(|c| *c == condition)?;
     let r = joint_rows(geom, theta, phi)[i];
+    scaled(&r, geom.joint(theta).along(), phi)
+}
+
+/// A row of the statics scaled to unit length, with its twist (τ the joint's direction).
+fn scaled(r: &Row, tau: [f64; 2], phi: f64) -> Option<JointRowAt> {
+    let condition = r.condition;
     let a = [r.a[0], r.a[1], r.a[2], r.a_lambda];
     let n = a.iter().map(|v| v * v).sum::<f64>().sqrt();
     if n == 0.0 || !n.is_finite() {
         return None;
     }
-    let tau = geom.joint(theta).along();
     let twist = match condition {
         Condition::Intrados | Condition::Extrados => unit(r.a),
         Condition::SlideOutward => unit([tau[0], tau[1], 0.0]),

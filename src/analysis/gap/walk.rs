@@ -1,14 +1,15 @@
-//! Every vertex of a bounded polytope {y ∈ ℝ⁴ : a_i·y ≤ b_i} (rows of unit length), by a walk
-//! along its edges from one vertex. At a vertex with tight rows T, every edge lies on three
-//! independent planes of T; its direction is their generalised cross product, taken in the
-//! sense that leaves no plane of T, and it ends where the first other row becomes tight.
+//! Every vertex of a bounded polytope {y ∈ ℝᴰ : a_i·y ≤ b_i} (D = 3 or 4, rows of unit length),
+//! by a walk along its edges from one vertex. At a vertex with tight rows T, every edge lies
+//! on D − 1 independent planes of T; its direction is their generalised cross product, taken
+//! in the sense that leaves no plane of T, and it ends where the first other row becomes
+//! tight.
 
 use std::collections::{HashSet, VecDeque};
 
 /// A vertex and the rows tight at it (within the walk's tolerance), increasing.
 #[derive(Debug, Clone, PartialEq)]
-pub(super) struct Vertex {
-    pub y: [f64; 4],
+pub(super) struct Vertex<const D: usize = 4> {
+    pub y: [f64; D],
     pub tight: Vec<usize>,
 }
 
@@ -30,8 +31,8 @@ pub(super) struct WalkLimits {
     pub max_tight: usize,
 }
 
-fn dot(a: &[f64; 4], y: &[f64; 4]) -> f64 {
-    a[0] * y[0] + a[1] * y[1] + a[2] * y[2] + a[3] * y[3]
+fn dot<const D: usize>(a: &[f64; D], y: &[f64; D]) -> f64 {
+    a.iter().zip(y).map(|(p, q)| p * q).sum()
 }
 
 fn det3(m: [[f64; 3]; 3]) -> f64 {
@@ -60,8 +61,33 @@ fn cross4(r: [&[f64; 4]; 3]) -> [f64; 4] {
     d
 }
 
+/// The vector orthogonal to D − 1 vectors of ℝᴰ (zero when they are dependent); D = 3 or 4.
+fn orth<const D: usize>(r: &[&[f64; D]]) -> [f64; D] {
+    let mut out = [0.0; D];
+    match D {
+        3 => {
+            let (a, b) = (r[0], r[1]);
+            out[0] = a[1] * b[2] - a[2] * b[1];
+            out[1] = a[2] * b[0] - a[0] * b[2];
+            out[2] = a[0] * b[1] - a[1] * b[0];
+        }
+        4 => {
+            let f = |v: &[f64; D]| [v[0], v[1], v[2], v[3]];
+            let d = cross4([&f(r[0]), &f(r[1]), &f(r[2])]);
+            out.copy_from_slice(&d[..D]);
+        }
+        _ => {}
+    }
+    out
+}
+
 /// The rows tight at y.
-pub(super) fn tight_rows(a: &[[f64; 4]], b: &[f64], y: &[f64; 4], tol: f64) -> Vec<usize> {
+pub(super) fn tight_rows<const D: usize>(
+    a: &[[f64; D]],
+    b: &[f64],
+    y: &[f64; D],
+    tol: f64,
+) -> Vec<usize> {
     let scale = 1.0 + y.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     (0..a.len())
         .filter(|&i| (dot(&a[i], y) - b[i]).abs() <= tol * scale)
@@ -72,13 +98,13 @@ pub(super) fn tight_rows(a: &[[f64; 4]], b: &[f64], y: &[f64; 4], tol: f64) -> V
 /// vertex on a row marked `fence` (such vertices are listed, not expanded). The vertices off
 /// one facet are connected through paths that rise toward the vertex farthest from it, so a
 /// fence of one facet hides nothing beyond it.
-pub(super) fn vertices(
-    a: &[[f64; 4]],
+pub(super) fn vertices<const D: usize>(
+    a: &[[f64; D]],
     b: &[f64],
     fence: &[bool],
-    start: [f64; 4],
+    start: [f64; D],
     limits: &WalkLimits,
-) -> Result<Vec<Vertex>, WalkError> {
+) -> Result<Vec<Vertex<D>>, WalkError> {
     let first = Vertex {
         tight: tight_rows(a, b, &start, limits.tol_tight),
         y: start,
@@ -88,6 +114,7 @@ pub(super) fn vertices(
     let mut queue = VecDeque::from([first]);
     let mut out = Vec::new();
     let mut first_vertex = true;
+    let mut scratch = vec![false; a.len()];
     while let Some(v) = queue.pop_front() {
         let fenced = v.tight.iter().any(|&r| fence[r]);
         if fenced && !std::mem::take(&mut first_vertex) {
@@ -95,7 +122,7 @@ pub(super) fn vertices(
             continue;
         }
         first_vertex = false;
-        for next in neighbours(a, b, &v, limits) {
+        for next in neighbours(a, b, &v, limits, &mut scratch) {
             if seen.insert(next.tight.clone()) {
                 if seen.len() > limits.max_vertices {
                     return Err(WalkError::TooManyVertices);
@@ -108,56 +135,70 @@ pub(super) fn vertices(
     Ok(out)
 }
 
-/// The far ends of the edges leaving `v`.
-fn neighbours(a: &[[f64; 4]], b: &[f64], v: &Vertex, limits: &WalkLimits) -> Vec<Vertex> {
+/// The far ends of the edges leaving `v`; `tight` is scratch space of one flag per row.
+fn neighbours<const D: usize>(
+    a: &[[f64; D]],
+    b: &[f64],
+    v: &Vertex<D>,
+    limits: &WalkLimits,
+    tight: &mut [bool],
+) -> Vec<Vertex<D>> {
     let t = &v.tight[..v.tight.len().min(limits.max_tight)];
     let scale = 1.0 + v.y.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
     let tol_dir = 1e-10;
+    for &r in &v.tight {
+        tight[r] = true;
+    }
     let mut out = Vec::new();
-    let mut dirs: Vec<[f64; 4]> = Vec::new();
-    for i in 0..t.len() {
-        for j in i + 1..t.len() {
-            for k in j + 1..t.len() {
-                let d = cross4([&a[t[i]], &a[t[j]], &a[t[k]]]);
-                let n = dot(&d, &d).sqrt();
-                if n < 1e-9 {
-                    continue;
-                }
-                for s in [1.0, -1.0] {
-                    let d = [s * d[0] / n, s * d[1] / n, s * d[2] / n, s * d[3] / n];
-                    if v.tight.iter().any(|&r| dot(&a[r], &d) > tol_dir) {
-                        continue;
-                    }
-                    if dirs
-                        .iter()
-                        .any(|e| (0..4).all(|c| (e[c] - d[c]).abs() < 1e-9))
-                    {
-                        continue;
-                    }
-                    dirs.push(d);
-                    let mut step = f64::INFINITY;
-                    for r in 0..a.len() {
-                        let rate = dot(&a[r], &d);
-                        if rate > tol_dir && !v.tight.contains(&r) {
-                            step = step.min(((b[r] - dot(&a[r], &v.y)) / rate).max(0.0));
-                        }
-                    }
-                    if !step.is_finite() || step <= limits.tol_tight * scale {
-                        continue;
-                    }
-                    let y = [
-                        v.y[0] + step * d[0],
-                        v.y[1] + step * d[1],
-                        v.y[2] + step * d[2],
-                        v.y[3] + step * d[3],
-                    ];
-                    out.push(Vertex {
-                        tight: tight_rows(a, b, &y, limits.tol_tight),
-                        y,
-                    });
+    let mut dirs: Vec<[f64; D]> = Vec::new();
+    let mut edge = |d: [f64; D], out: &mut Vec<Vertex<D>>| {
+        let n = dot(&d, &d).sqrt();
+        if n < 1e-9 {
+            return;
+        }
+        for s in [1.0, -1.0] {
+            let d: [f64; D] = std::array::from_fn(|c| s * d[c] / n);
+            if v.tight.iter().any(|&r| dot(&a[r], &d) > tol_dir) {
+                continue;
+            }
+            if dirs
+                .iter()
+                .any(|e| (0..D).all(|c| (e[c] - d[c]).abs() < 1e-9))
+            {
+                continue;
+            }
+            dirs.push(d);
+            let mut step = f64::INFINITY;
+            for (r, row) in a.iter().enumerate() {
+                let rate = dot(row, &d);
+                if rate > tol_dir && !tight[r] {
+                    step = step.min(((b[r] - dot(row, &v.y)) / rate).max(0.0));
                 }
             }
+            if !step.is_finite() || step <= limits.tol_tight * scale {
+                continue;
+            }
+            let y: [f64; D] = std::array::from_fn(|c| v.y[c] + step * d[c]);
+            out.push(Vertex {
+                tight: tight_rows(a, b, &y, limits.tol_tight),
+                y,
+            });
         }
+    };
+    let n = t.len();
+    for i in 0..n {
+        for j in i + 1..n {
+            if D == 3 {
+                edge(orth(&[&a[t[i]], &a[t[j]]]), &mut out);
+                continue;
+            }
+            for k in j + 1..n {
+                edge(orth(&[&a[t[i]], &a[t[j]], &a[t[k]]]), &mut out);
+            }
+        }
+    }
+    for &r in &v.tight {
+        tight[r] = false;
     }
     out
 }
@@ -188,6 +229,30 @@ mod tests {
         assert!(
             v.iter()
                 .all(|v| v.tight.len() == 4 && v.y.iter().all(|c| c.abs() == 1.0))
+        );
+    }
+
+    #[test]
+    fn the_cube_has_eight_vertices_in_three_dimensions() {
+        let mut a = Vec::new();
+        for i in 0..3 {
+            for s in [1.0, -1.0] {
+                let mut r = [0.0; 3];
+                r[i] = s;
+                a.push(r);
+            }
+        }
+        let b = vec![2.0; 6];
+        let limits = WalkLimits {
+            tol_tight: 1e-12,
+            max_vertices: 100,
+            max_tight: 16,
+        };
+        let v = vertices(&a, &b, &[false; 6], [2.0, -2.0, 2.0], &limits).unwrap();
+        assert_eq!(v.len(), 8);
+        assert!(
+            v.iter()
+                .all(|v| v.tight.len() == 3 && v.y.iter().all(|c| c.abs() == 2.0))
         );
     }
 

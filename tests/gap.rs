@@ -1,0 +1,562 @@
+//! The other end of the non-associative gap: the first complete solution of every critical
+//! find against an enumeration of candidate mechanisms, the issue's example, the paper's
+//! scenes (no gap) and the work equation of every reported mechanism (docs/mechanics.md §5).
+
+use archstudy::analysis::Face;
+use archstudy::analysis::forms::ArchModel;
+use archstudy::analysis::gap::{self, GapStatus, Settings};
+use archstudy::analysis::lp;
+use archstudy::analysis::statics::{ArchGeometry, Condition, joint_rows};
+use archstudy::model::{
+    Arch, ArchForm, Discretisation, Friction, JointOrientation, Load, Shape, WeightModel,
+};
+use archstudy::scene::{self, Find, Scene, Solution};
+
+/// How a joint of a candidate mechanism moves.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Motion {
+    /// Turns about a face point and opens at the other.
+    Hinge(Face),
+    /// Slips without opening, the right part against the friction force of its row (+1:
+    /// the row T ≤ μN, −1: −T ≤ μN).
+    Slide(f64),
+    /// Turns about a face point, opens at the other and slips.
+    LaHire(Face, f64),
+    /// Carries no force and moves freely away from its neighbour.
+    LiftOff,
+}
+
+impl Motion {
+    const ALL: [Motion; 9] = [
+        Motion::Hinge(Face::Intrados),
+        Motion::Hinge(Face::Extrados),
+        Motion::Slide(1.0),
+        Motion::Slide(-1.0),
+        Motion::LaHire(Face::Intrados, 1.0),
+        Motion::LaHire(Face::Intrados, -1.0),
+        Motion::LaHire(Face::Extrados, 1.0),
+        Motion::LaHire(Face::Extrados, -1.0),
+        Motion::LiftOff,
+    ];
+
+    /// The rows that are tight in every state this motion may start from.
+    fn rows(self) -> Vec<Condition> {
+        let face = |f: Face| match f {
+            Face::Intrados => Condition::Intrados,
+            Face::Extrados => Condition::Extrados,
+        };
+        let slide = |s: f64| {
+            if s > 0.0 {
+                Condition::SlideOutward
+            } else {
+                Condition::SlideInward
+            }
+        };
+        match self {
+            Motion::Hinge(f) => vec![face(f)],
+            Motion::Slide(s) => vec![slide(s)],
+            Motion::LaHire(f, s) => vec![face(f), slide(s)],
+            Motion::LiftOff => Condition::ALL.to_vec(),
+        }
+    }
+}
+
+/// Largest number of blocks between the moving joints of a candidate (four moving joints).
+const BLOCKS: usize = 3;
+
+/// True when the joints `moving` (increasing θ) can move as `motions` say, some of them
+/// moving: a linear programme in the velocities (u_x, u_y, ω about the origin) of the blocks
+/// between them, written from the joint geometry alone: no interpenetration at either face,
+/// a hinge's point at rest, a slide without opening and against its friction force, and the
+/// openings and slips adding up to one.
+fn moves(m: &ArchModel, moving: &[(f64, Motion)]) -> bool {
+    let n_blocks = moving.len() - 1;
+    if n_blocks == 0 || n_blocks > BLOCKS {
+        return false;
+    }
+    let mut a: Vec<[f64; 3 * BLOCKS]> = Vec::new();
+    let mut b: Vec<f64> = Vec::new();
+    // Velocity of point p of block k (None: a support, at rest), as coefficients.
+    let point = |k: Option<usize>, p: [f64; 2], e: [f64; 2]| {
+        let mut c = [0.0; 3 * BLOCKS];
+        if let Some(k) = k {
+            c[3 * k] = e[0];
+            c[3 * k + 1] = e[1];
+            c[3 * k + 2] = -p[1] * e[0] + p[0] * e[1];
+        }
+        c
+    };
+    let rel = |j: usize, p: [f64; 2], e: [f64; 2]| {
+        let left = (j > 0).then(|| j - 1);
+        let right = (j < n_blocks).then_some(j);
+        let (r, l) = (point(right, p, e), point(left, p, e));
+        let mut c = [0.0; 3 * BLOCKS];
+        for i in 0..3 * BLOCKS {
+            c[i] = r[i] - l[i];
+        }
+        c
+    };
+    let rot = |j: usize| {
+        let mut c = [0.0; 3 * BLOCKS];
+        if j < n_blocks {
+            c[3 * j + 2] += 1.0;
+        }
+        if j > 0 {
+            c[3 * (j - 1) + 2] -= 1.0;
+        }
+        c
+    };
+    let eq = |c: [f64; 3 * BLOCKS], a: &mut Vec<[f64; 3 * BLOCKS]>, b: &mut Vec<f64>| {
+        a.push(c);
+        b.push(1e-12);
+        a.push(c.map(|v| -v));
+        b.push(1e-12);
+    };
+    let mut total = [0.0; 3 * BLOCKS];
+    for (j, &(theta, motion)) in moving.iter().enumerate() {
+        let joint = m.joint(theta);
+        let (tau, nu) = (joint.along(), joint.normal());
+        let (i_pt, e_pt) = (joint.intrados, joint.extrados);
+        let face_pt = |f: Face| if f == Face::Intrados { i_pt } else { e_pt };
+        let other_pt = |f: Face| if f == Face::Intrados { e_pt } else { i_pt };
+        // No face presses into the other part.
+        for p in [i_pt, e_pt] {
+            a.push(rel(j, p, nu).map(|v| -v));
+            b.push(0.0);
+        }
+        let mut add = |c: [f64; 3 * BLOCKS]| {
+            for i in 0..3 * BLOCKS {
+                total[i] += c[i];
+            }
+        };
+        match motion {
+            Motion::Hinge(f) => {
+                eq(rel(j, face_pt(f), nu), &mut a, &mut b);
+                eq(rel(j, face_pt(f), tau), &mut a, &mut b);
+                add(rel(j, other_pt(f), nu));
+            }
+            Motion::Slide(s) => {
+                eq(rot(j), &mut a, &mut b);
+                eq(rel(j, i_pt, nu), &mut a, &mut b);
+                // The friction force on the right part acts along s·τ: it slips along −s·τ.
+                let slip = rel(j, i_pt, tau).map(|v| -s * v);
+                a.push(slip.map(|v| -v));
+                b.push(0.0);
+                add(slip);
+            }
+            Motion::LaHire(f, s) => {
+                eq(rel(j, face_pt(f), nu), &mut a, &mut b);
+                let slip = rel(j, face_pt(f), tau).map(|v| -s * v);
+                a.push(slip.map(|v| -v));
+                b.push(0.0);
+                add(slip);
+                add(rel(j, other_pt(f), nu));
+            }
+            Motion::LiftOff => {
+                // Free to open and to slip: only the openings count toward the motion.
+                add(rel(j, i_pt, nu));
+                add(rel(j, e_pt, nu));
+            }
+        }
+    }
+    // The motions add up to one (all of them are ≥ 0 by the rows above).
+    a.push(total);
+    b.push(1.0);
+    a.push(total.map(|v| -v));
+    b.push(-1.0);
+    let Ok(sol) = lp::maximise(&[0.0; 3 * BLOCKS], &a, &b, &lp::Settings::for_rows(a.len())) else {
+        return false;
+    };
+    sol.status == lp::Status::Optimal && sol.max_violation <= 1e-9
+}
+
+/// The lowest λ ≥ 0 at which a candidate mechanism of at most four moving joints (each a hinge,
+/// a slide, a La Hire joint or a lift-off) moves ([`moves`]) from an admissible state whose
+/// rows are tight where it moves (a linear programme in the state): an enumeration of every
+/// candidate, independent of the route's twists and walk.
+fn oracle_load_factor(m: &ArchModel, phi: f64) -> Option<f64> {
+    let thetas = m.discrete_joints().expect("voussoirs");
+    let mut base_a: Vec<[f64; 4]> = Vec::new();
+    let mut base_b: Vec<f64> = Vec::new();
+    for &theta in &thetas {
+        for r in joint_rows(m, theta, phi) {
+            base_a.push([r.a[0], r.a[1], r.a[2], r.a_lambda]);
+            base_b.push(r.b);
+        }
+    }
+    base_a.push([0.0, 0.0, 0.0, -1.0]);
+    base_b.push(0.0);
+    base_a.push([0.0, 0.0, 0.0, 1.0]);
+    base_b.push(1e3);
+    let nj = thetas.len();
+    let mut best: Option<f64> = None;
+    // Every assignment of a motion (or none) to each joint, at most four moving.
+    let choices = Motion::ALL.len() + 1;
+    let total = choices.pow(nj as u32);
+    for code in 0..total {
+        let mut c = code;
+        let mut moving: Vec<(f64, Motion)> = Vec::new();
+        let mut tight: Vec<usize> = Vec::new();
+        for (j, &theta) in thetas.iter().enumerate() {
+            let pick = c % choices;
+            c /= choices;
+            if pick == 0 {
+                continue;
+            }
+            let motion = Motion::ALL[pick - 1];
+            for cond in motion.rows() {
+                let k = Condition::ALL
+                    .iter()
+                    .position(|x| *x == cond)
+                    .expect("a condition");
+                tight.push(4 * j + k);
+            }
+            moving.push((theta, motion));
+        }
+        if moving.len() < 2 || moving.len() > 4 || !moves(m, &moving) {
+            continue;
+        }
+        let mut a = base_a.clone();
+        let mut b = base_b.clone();
+        for &i in &tight {
+            a.push(base_a[i].map(|v| -v));
+            b.push(-base_b[i] + 1e-9 * (1.0 + base_b[i].abs()));
+        }
+        let Ok(sol) = lp::maximise(
+            &[0.0, 0.0, 0.0, -1.0],
+            &a,
+            &b,
+            &lp::Settings::for_rows(a.len()),
+        ) else {
+            continue;
+        };
+        if sol.status == lp::Status::Optimal && best.is_none_or(|v| sol.x[3] < v) {
+            best = Some(sol.x[3]);
+        }
+    }
+    best
+}
+
+/// A small pseudo-random generator (the scenes are the same on every run).
+struct Draw(u64);
+
+impl Draw {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next()
+    }
+}
+
+fn form(pointed: bool, vertical: bool, e: f64) -> ArchForm {
+    ArchForm {
+        shape: if pointed {
+            Shape::Pointed { eccentricity: e }
+        } else {
+            Shape::Circular
+        },
+        joints: if vertical {
+            JointOrientation::Vertical
+        } else {
+            JointOrientation::Radial
+        },
+        keystone: false,
+    }
+}
+
+#[test]
+fn the_first_complete_load_factor_is_the_lowest_of_every_candidate_mechanism() {
+    let mut draw = Draw(20261127);
+    let mut compared = 0;
+    let mut gaps = 0;
+    let mut tries = 0;
+    while compared < 24 && tries < 400 {
+        tries += 1;
+        let n = 2 + (draw.next() * 2.0) as u32;
+        let pointed = draw.next() < 0.4;
+        let vertical = draw.next() < 0.4;
+        let half = draw.range(35.0, if pointed { 75.0 } else { 90.0 });
+        let k = draw.range(1.1, 1.7);
+        let mu = draw.range(0.4, 1.3);
+        let load = if draw.next() < 0.5 {
+            Load::Horizontal
+        } else {
+            Load::Point {
+                at_deg: draw.range(-0.9 * half, 0.9 * half),
+            }
+        };
+        let Ok(arch) = Arch::new(k, half, WeightModel::Annular, Discretisation::Voussoirs(n))
+        else {
+            continue;
+        };
+        let e = draw.range(0.1, 0.5);
+        let Ok(m) = ArchModel::new(arch, form(pointed, vertical, e), load) else {
+            continue;
+        };
+        let phi = mu.atan();
+        let search = gap::first_complete_load_factor(&m, phi, &Settings::DEFAULT);
+        let oracle = oracle_load_factor(&m, phi);
+        let found = search.first.as_ref();
+        let lifted = found.is_some_and(|c| !c.mechanism.lifted_deg.is_empty());
+        let what = format!(
+            "N = {n}, pointed {pointed} (e = {e}), vertical {vertical}, α = {half}, K = {k}, μ = {mu}, \
+             {load:?}: route {:?} {:?}, oracle {oracle:?}",
+            search.status,
+            found.map(|c| (c.value, &c.mechanism))
+        );
+        match (found, oracle) {
+            (Some(c), Some(o)) => {
+                let tol = 1e-7 * (1.0 + o.abs());
+                assert!(c.value <= o + tol, "{what}");
+                if !lifted {
+                    assert!((c.value - o).abs() <= tol, "{what}");
+                }
+            }
+            (None, Some(_)) => panic!("the route misses a complete solution: {what}"),
+            (Some(_), None) => assert!(lifted, "{what}"),
+            (None, None) => {}
+        }
+        if let Some(c) = found {
+            let w = c.mechanism.work;
+            assert!(w.work_residual <= 1e-9, "{what}: {w:?}");
+            assert!(w.flow_violation <= 1e-9, "{what}: {w:?}");
+        }
+        if search.status == GapStatus::Gap {
+            gaps += 1;
+        }
+        compared += 1;
+    }
+    assert_eq!(compared, 24, "too few scenes drawn");
+    assert!(gaps > 0, "no scene with a gap among those drawn");
+}
+
+/// A scene of the tests below: the find, K (or the μ of a thickness find), the half-angle,
+/// the joints and the form; μ, the load and λ as given.
+struct Case {
+    find: Find,
+    k: f64,
+    half: f64,
+    joints: Discretisation,
+    form: ArchForm,
+    mu: f64,
+    load: Load,
+}
+
+fn solve(c: Case) -> Solution {
+    scene::solve(&Scene {
+        arch: Arch::new(c.k, c.half, WeightModel::Annular, c.joints).expect("an arch"),
+        friction: Friction::new(c.mu).expect("μ ≥ 0"),
+        find: c.find,
+        form: c.form,
+        load: c.load,
+        lambda: 0.0,
+    })
+}
+
+/// Every reported mechanism of a first complete solution satisfies eq. (11) and the flow rules.
+fn assert_checked(s: &Solution) {
+    assert!(
+        s.collapse_work_residual.expect("a work equation") <= 1e-9,
+        "{s:#?}"
+    );
+    assert!(
+        s.collapse_flow_violation.expect("a flow check") <= 1e-9,
+        "{s:#?}"
+    );
+}
+
+#[test]
+fn twelve_voussoirs_under_a_horizontal_load_start_to_move_below_the_static_limit() {
+    let s = solve(Case {
+        find: Find::LoadFactor,
+        k: 1.5278,
+        half: 50.367,
+        joints: Discretisation::Voussoirs(12),
+        form: ArchForm::default(),
+        mu: 1.0396,
+        load: Load::Horizontal,
+    });
+    assert!((s.load_factor.unwrap() - 8.518042010862).abs() < 1e-9);
+    assert_eq!(s.mechanism_admissible, Some(false));
+    assert_eq!(s.gap, Some(GapStatus::Gap));
+    let c = s.collapse_value.unwrap();
+    assert!((c - 7.383083).abs() < 5e-7, "{c}");
+    assert!((s.gap_width.unwrap() - (8.518042010862 - c)).abs() < 1e-9);
+    // Left springing hinging at the intrados and sliding inward, the first joint sliding
+    // outward, the right springing hinging at the extrados.
+    let hinges: Vec<(f64, Face)> = s
+        .collapse_hinges
+        .iter()
+        .map(|h| (h.angle_deg, h.face))
+        .collect();
+    assert_eq!(
+        hinges,
+        vec![(-50.367, Face::Intrados), (50.367, Face::Extrados)]
+    );
+    let slides: Vec<(f64, &str)> = s
+        .collapse_sliding_joints
+        .iter()
+        .map(|j| (j.angle_deg, j.sense.as_str()))
+        .collect();
+    assert_eq!(slides.len(), 2);
+    assert_eq!(slides[0], (-50.367, "inward"));
+    assert!((slides[1].0 - (-50.367 + 2.0 * 50.367 / 12.0)).abs() < 1e-9);
+    assert_eq!(slides[1].1, "outward");
+    assert!(s.collapse_lifted_joints.is_empty());
+    assert_checked(&s);
+}
+
+#[test]
+fn the_papers_scenes_have_no_gap() {
+    for (find, k, mu, joints) in [
+        (Find::Thickness, 1.3, 0.6, Discretisation::Continuum),
+        (Find::Thickness, 1.3, 1e9, Discretisation::Continuum),
+        (Find::Friction, 1.3, 0.6, Discretisation::Continuum),
+        (Find::Friction, 1.15, 0.6, Discretisation::Continuum),
+        (Find::Thickness, 1.3, 0.6, Discretisation::Voussoirs(9)),
+        (Find::Friction, 1.3, 0.6, Discretisation::Voussoirs(9)),
+    ] {
+        let s = solve(Case {
+            find,
+            k,
+            half: 90.0,
+            joints,
+            form: ArchForm::default(),
+            mu,
+            load: Load::SelfWeight,
+        });
+        assert_eq!(
+            s.gap,
+            Some(GapStatus::NoGap),
+            "{find:?} {k} {mu} {joints:?}"
+        );
+        let limit = s.k_crit.or(s.mu_crit).unwrap();
+        assert_eq!(s.collapse_value, Some(limit));
+        assert_eq!(s.gap_width, Some(0.0));
+        assert_checked(&s);
+    }
+    let s = solve(Case {
+        find: Find::Thickness,
+        k: 1.3,
+        half: 90.0,
+        joints: Discretisation::Continuum,
+        form: ArchForm::default(),
+        mu: 1e9,
+        load: Load::SelfWeight,
+    });
+    assert!((s.collapse_value.unwrap() - 1.113581813339).abs() < 1e-9);
+    assert_eq!(
+        s.collapse_mechanism,
+        Some(archstudy::analysis::MechanismKind::Rotational)
+    );
+}
+
+#[test]
+fn a_crown_part_drops_between_vertical_joints_far_above_the_critical_friction() {
+    let vertical = ArchForm {
+        shape: Shape::Circular,
+        joints: JointOrientation::Vertical,
+        keystone: false,
+    };
+    let s = solve(Case {
+        find: Find::Friction,
+        k: 1.3,
+        half: 90.0,
+        joints: Discretisation::Voussoirs(5),
+        form: vertical,
+        mu: 0.5,
+        load: Load::SelfWeight,
+    });
+    let mu_c = s.mu_crit.unwrap();
+    assert_eq!(s.gap, Some(GapStatus::Gap));
+    let mu = s.collapse_value.unwrap();
+    assert!(mu > 2.0 * mu_c, "{mu} against μ_c = {mu_c}");
+    // The crown part slides down on the two outermost vertical joints, nothing turns.
+    assert!(s.collapse_hinges.is_empty());
+    let slides: Vec<(f64, &str)> = s
+        .collapse_sliding_joints
+        .iter()
+        .map(|j| (j.angle_deg, j.sense.as_str()))
+        .collect();
+    assert_eq!(slides, vec![(-54.0, "inward"), (54.0, "inward")]);
+    assert_checked(&s);
+    // Independently: the part between the joints ±θ weighs W_c and hangs on two vertical
+    // joints whose normal force is the crown thrust H; it can drop once friction μH on each
+    // side no longer exceeds W_c/2 for the smallest thrust that stands at that μ. That
+    // smallest thrust, a linear programme over the rows, gives μ = W_c / (2 H_min).
+    let arch = Arch::new(
+        1.3,
+        90.0,
+        WeightModel::Annular,
+        Discretisation::Voussoirs(5),
+    )
+    .unwrap();
+    let m = ArchModel::new(arch, vertical, Load::SelfWeight).unwrap();
+    let theta = m
+        .discrete_joints()
+        .unwrap()
+        .into_iter()
+        .find(|t| (m.angle_deg(*t) - 54.0).abs() < 1e-9)
+        .expect("the joint at 54°");
+    let w_c = m.dead_load(theta).fy - m.dead_load(-theta).fy;
+    let mut a: Vec<[f64; 3]> = Vec::new();
+    let mut b: Vec<f64> = Vec::new();
+    for t in m.discrete_joints().unwrap() {
+        for r in joint_rows(&m, t, mu.atan()) {
+            a.push(r.a);
+            b.push(r.b);
+        }
+    }
+    let sol = lp::maximise(&[-1.0, 0.0, 0.0], &a, &b, &lp::Settings::for_rows(a.len())).unwrap();
+    assert_eq!(sol.status, lp::Status::Optimal);
+    let h_min = sol.x[0];
+    assert!(
+        (mu - w_c.abs() / (2.0 * h_min)).abs() < 1e-8 * mu,
+        "μ = {mu}, W_c = {w_c}, H_min = {h_min}"
+    );
+}
+
+#[test]
+fn a_thick_shallow_arch_tips_about_its_right_springing_under_a_horizontal_load() {
+    let s = solve(Case {
+        find: Find::LoadFactor,
+        k: 1.5,
+        half: 40.0,
+        joints: Discretisation::Voussoirs(6),
+        form: ArchForm::default(),
+        mu: 1.5,
+        load: Load::Horizontal,
+    });
+    assert!(s.load_factor_unbounded, "{s:#?}");
+    assert_eq!(s.gap, Some(GapStatus::Gap));
+    assert_eq!(s.collapse_lifted_joints, vec![-40.0]);
+    assert_eq!(s.collapse_hinges.len(), 1);
+    assert_eq!(s.collapse_hinges[0].face, Face::Extrados);
+    assert_checked(&s);
+    // Independently: the whole arch tips about the extrados corner E of its right springing
+    // when the resultant of its dead load and λ times the horizontal load passes through E.
+    let arch = Arch::new(
+        1.5,
+        40.0,
+        WeightModel::Annular,
+        Discretisation::Voussoirs(6),
+    )
+    .unwrap();
+    let m = ArchModel::new(arch, ArchForm::default(), Load::Horizontal).unwrap();
+    let alpha = m.half_angle();
+    let e = m.joint(alpha).extrados;
+    let moment = |r: archstudy::analysis::statics::Resultant| r.m - (e[0] * r.fy - e[1] * r.fx);
+    let dead = m.dead_load(alpha).plus(m.dead_load(-alpha).scale(-1.0));
+    let live = m.live_load(alpha).plus(m.live_load(-alpha).scale(-1.0));
+    let lambda_tip = -moment(dead) / moment(live);
+    assert!(
+        (s.collapse_value.unwrap() - lambda_tip).abs() < 1e-9 * lambda_tip,
+        "{:?} against {lambda_tip}",
+        s.collapse_value
+    );
+}
