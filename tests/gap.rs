@@ -1,6 +1,6 @@
 //! The other end of the non-associative gap: the first complete solution of every critical
 //! find against an enumeration of candidate mechanisms, the example, the paper's
-//! scenes (no gap) and the work equation of every reported mechanism (docs/mechanics.md §5).
+//! scenes (no gap) and the work equation of every reported mechanism (docs/mechanics.md §4).
 
 use archstudy::analysis::Face;
 use archstudy::analysis::forms::ArchModel;

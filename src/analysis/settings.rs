@@ -381,6 +381,9 @@ pub struct GapSettings {
     /// Joints sampled per family of a continuum before the exchange adds any (default 9,
     /// ends included).
     pub continuum_joints: usize,
+    /// A discrete arch with more joints than this is not searched: its polytopes are too
+    /// large to walk in the time of a find, and the continuum is its limit (default 401).
+    pub max_walk_joints: usize,
     /// Largest number of exchange rounds on a continuum (default 60).
     pub max_exchange_rounds: usize,
     /// Tolerance of the parameter of a complete solution located between two steps of a path,
@@ -419,6 +422,7 @@ impl GapSettings {
         max_vertices: 200_000,
         max_tight: 24,
         continuum_joints: 9,
+        max_walk_joints: 401,
         max_exchange_rounds: 60,
         tol_path: 1e-13,
         mu_start: 1e3,

@@ -299,16 +299,24 @@ fn gap_lines(o: &mut String, s: &Solution) {
             );
         }
         GapStatus::NoCompleteSolution => {
+            let from = if s.find == Find::LoadFactor {
+                format!("from λ = 0 up to the static limit or λ = {to}")
+            } else {
+                format!("from {name} = {to} to the static limit")
+            };
             let _ = writeln!(
                 o,
-                "collapse: no complete solution along {path} up to the static limit (searched \
-                 from {name} = {to}): no admissible state there admits a mechanism obeying the \
-                 flow rules"
+                "collapse: no complete solution along {path} ({from}): no admissible state \
+                 there admits a mechanism obeying the flow rules"
             );
             return;
         }
         GapStatus::Failed => {
-            let _ = writeln!(o, "collapse: the search for a complete solution failed");
+            let _ = writeln!(
+                o,
+                "collapse: not searched or not finished (an arch of more than 400 voussoirs is \
+                 not searched: its continuum is its limit)"
+            );
             return;
         }
     }

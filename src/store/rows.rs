@@ -95,6 +95,12 @@ pub struct ResultRow {
     pub k_mixed_sliding: Option<f64>,
     /// Largest load factor λ of the live load (load_factor find; null when unbounded).
     pub load_factor: Option<f64>,
+    /// `no_gap`, `gap`, `no_complete_solution` or `failed` (critical finds).
+    pub gap: Option<Arc<str>>,
+    /// The first complete solution along the find's path (critical finds).
+    pub collapse_value: Option<f64>,
+    /// Its distance to the static limit along the path.
+    pub gap_width: Option<f64>,
     /// `ok` or `error`.
     pub status: Arc<str>,
     /// Wall time of the analysis, µs.
@@ -204,7 +210,7 @@ fn required<T>(v: Vec<Option<T>>, name: &str, path: &Path) -> Result<Vec<T>> {
 }
 
 /// The columns of results.parquet that make a [`ResultRow`].
-const RESULT_ROW_COLUMNS: [&str; 23] = [
+const RESULT_ROW_COLUMNS: [&str; 26] = [
     "case_id",
     "load_case",
     "find",
@@ -226,6 +232,9 @@ const RESULT_ROW_COLUMNS: [&str; 23] = [
     "mu_min",
     "k_mixed_sliding",
     "load_factor",
+    "gap",
+    "collapse_value",
+    "gap_width",
     "status",
     "solve_time_us",
 ];
@@ -285,6 +294,8 @@ fn rows_of_frame(df: &polars::prelude::DataFrame, path: &Path) -> Result<Vec<Res
     let (kcr, murm) = (f("k_c_rotational")?, f("mu_rotational_mixed")?);
     let (mumin, kms) = (f("mu_min")?, f("k_mixed_sliding")?);
     let load_factor = f("load_factor")?;
+    let mut gap = s("gap")?;
+    let (collapse, width) = (f("collapse_value")?, f("gap_width")?);
     let status = required(s("status")?, "status", path)?;
     let time = f("solve_time_us")?;
     let mut out = Vec::with_capacity(case_id.len());
@@ -309,6 +320,9 @@ fn rows_of_frame(df: &polars::prelude::DataFrame, path: &Path) -> Result<Vec<Res
             mu_min: mumin[i],
             k_mixed_sliding: kms[i],
             load_factor: load_factor[i],
+            gap: gap[i].take(),
+            collapse_value: collapse[i],
+            gap_width: width[i],
             status: status[i].clone(),
             solve_time_us: time[i].unwrap_or(f64::NAN),
         });

@@ -1,6 +1,7 @@
 //! The first complete solution along increasing λ: a walk over the vertices of the state
 //! polytope, with an exchange of joints on a continuum.
 
+use super::joints;
 use super::mechanism::{self, JointMove, StateY};
 use super::rows::{RowKind, StateRows};
 use super::walk::{self, WalkLimits};
@@ -106,15 +107,20 @@ pub fn first_complete_load_factor<G: ArchGeometry + ?Sized>(
     settings: &Settings,
 ) -> GapSearch {
     let range = [0.0, settings.lambda_cap];
+    if joints::too_many(geom, settings) {
+        return GapSearch::failed(range);
+    }
     let general_settings = general::Settings::default();
     let discrete = geom.discrete_joints();
-    let mut thetas = discrete
-        .clone()
-        .unwrap_or_else(|| initial_joints(geom, settings));
+    let mut thetas = joints::initial(geom, settings);
     let mut visited = 0;
     let mut result = None;
     for _ in 0..settings.max_exchange_rounds {
-        let p = match pass(geom, phi, &thetas, settings) {
+        let walked = thetas
+            .clone()
+            .or_else(|| discrete.clone())
+            .unwrap_or_default();
+        let p = match pass(geom, phi, &walked, settings) {
             Ok(p) => p,
             Err(PassError::Infeasible) => {
                 return GapSearch {
@@ -128,32 +134,29 @@ pub fn first_complete_load_factor<G: ArchGeometry + ?Sized>(
             Err(PassError::Failed) => return GapSearch::failed(range),
         };
         visited += p.vertices;
-        let Some((_, y)) = &p.best else {
+        let (Some(t), Some((_, y))) = (thetas.as_mut(), &p.best) else {
             result = Some(p);
             break;
         };
-        if discrete.is_some() {
-            result = Some(p);
-            break;
-        }
-        let cuts = general::violated_joints(geom, phi, y, &general_settings);
+        let cuts = joints::violated(geom, phi, y);
         if cuts.is_empty() {
             result = Some(p);
             break;
         }
-        let before = thetas.len();
-        thetas.extend(cuts.iter().map(|c| c.0));
-        thetas.sort_by(f64::total_cmp);
-        thetas.dedup();
-        if thetas.len() == before {
+        let before = t.len();
+        t.extend(cuts);
+        t.sort_by(f64::total_cmp);
+        t.dedup();
+        if t.len() == before {
             return GapSearch::failed(range);
         }
     }
     let Some(p) = result else {
         return GapSearch::failed(range);
     };
-    // The static limit: the walk's own top on a discrete arch; the exchange's on a continuum.
-    let static_limit = if discrete.is_some() {
+    // The static limit: the walk's own top when it walked every joint of a discrete arch; the
+    // general route's otherwise.
+    let static_limit = if discrete.is_some() && thetas.is_none() {
         Some(p.top)
     } else {
         let lf = general::load_factor(geom, phi, &general_settings);

@@ -3,7 +3,7 @@
 //! With Coulomb friction and no dilatancy the flow rule is non-associative and the static
 //! theorem does not hold: the static limit (the largest λ at which an admissible state exists)
 //! is only the upper end of a gap within which the collapse "is a priori not unique"
-//! (docs/mechanics.md §5). A *complete solution* at a value is an admissible state together
+//! (docs/mechanics.md §4). A *complete solution* at a value is an admissible state together
 //! with a mechanism whose moving joints obey the flow rules at that state: a hinge turns about
 //! the face where the resultant sits and opens at the other, a sliding joint slips without
 //! opening against a friction force μN, a joint that carries no force may open freely
@@ -23,6 +23,7 @@
 //! tight rows at real joints are positively dependent is a complete solution of the continuum.
 
 pub mod hull;
+mod joints;
 mod load_factor;
 mod mechanism;
 mod path;
@@ -260,6 +261,9 @@ pub fn first_complete_friction<G: ArchGeometry + Copy>(
     mu_static: f64,
     settings: &Settings,
 ) -> GapSearch {
+    if joints::too_many(geom, settings) {
+        return GapSearch::failed([mu_static, settings.mu_start]);
+    }
     let g = *geom;
     let at = move |phi: f64| Some((g, phi));
     let start = settings.mu_start.max(mu_static).atan();
@@ -286,6 +290,9 @@ pub fn first_complete_thickness<G: ArchGeometry + Copy>(
     k_start: f64,
     settings: &Settings,
 ) -> GapSearch {
+    if make(k_static).is_some_and(|g| joints::too_many(&g, settings)) {
+        return GapSearch::failed([k_static, k_start]);
+    }
     let at = |k: f64| make(k).map(|g| (g, phi));
     let (found, visited) = path::first_complete(
         &at,

@@ -16,8 +16,7 @@ use super::mechanism::{self, JointMove, StateY};
 use super::refine::{self, Pattern};
 use super::rows::{RowKind, StateRows, row_at};
 use super::walk::{self, Vertex, WalkLimits};
-use super::{Complete, GapSearch, GapStatus, Settings, complete_moves, load_factor};
-use crate::analysis::general;
+use super::{Complete, GapSearch, GapStatus, Settings, complete_moves, joints};
 use crate::analysis::lp;
 use crate::analysis::roots;
 use crate::analysis::statics::{ArchGeometry, Condition};
@@ -66,6 +65,14 @@ fn names(rows: &StateRows, joints: &[f64], index: &[usize]) -> Vec<(f64, Conditi
             RowKind::Bound => None,
         })
         .collect()
+}
+
+/// What one scan of a path found: the first complete state, the vertices seen, and a vertex of
+/// the last slice that had any (with its p): the joints walked stand there.
+struct Scan {
+    found: Option<Found>,
+    visited: usize,
+    last: Option<(f64, [f64; 4])>,
 }
 
 /// A scene along the path: the geometry and friction angle at parameter p.
@@ -232,12 +239,49 @@ impl<G: ArchGeometry> Walker<'_, G> {
         let mut found: Option<Found> = None;
         let forward = (cur.p - prev.p).signum();
         let tol_p = self.settings.tol_path * (1.0 + prev.p.abs());
+        // The rows of the later slice by name, with their twists there.
+        let mut by_name: BTreeMap<(usize, u8), usize> = BTreeMap::new();
+        for (r, kind) in cur.rows.kind.iter().enumerate() {
+            if let RowKind::Joint {
+                joint, condition, ..
+            } = kind
+            {
+                by_name.insert((*joint, order(*condition)), r);
+            }
+        }
+        let twist = |r: usize| match cur.rows.kind[r] {
+            RowKind::Joint { twist, .. } => twist,
+            RowKind::Bound => None,
+        };
         for (k, v) in &prev.vertices {
             if cur.vertices.contains_key(k) || k.len() != 3 {
                 continue;
             }
+            let Some(key_rows) = k
+                .iter()
+                .map(|n| by_name.get(n).copied())
+                .collect::<Option<Vec<usize>>>()
+            else {
+                continue;
+            };
+            let Some(key_twists) = key_rows
+                .iter()
+                .map(|&r| twist(r))
+                .collect::<Option<Vec<_>>>()
+            else {
+                continue;
+            };
             let three: [RowName; 3] = std::array::from_fn(|i| (k[i].0, condition_of(k[i].1)));
-            let Some((x_end, _)) = self.slack(cur.p, &three, three[0]) else {
+            // Where the vertex's three rows meet at the later step.
+            let mut m = nalgebra::Matrix3::zeros();
+            let mut rhs = nalgebra::Vector3::zeros();
+            for (i, &r) in key_rows.iter().enumerate() {
+                for c in 0..3 {
+                    m[(i, c)] = cur.rows.a[r][c];
+                }
+                rhs[i] = cur.rows.b[r] - cur.rows.a[r][3] * self.lambda;
+            }
+            let Some(x_end) = m.lu().solve(&rhs) else {
                 continue;
             };
             let y_end = [x_end[0], x_end[1], x_end[2], self.lambda];
@@ -245,7 +289,10 @@ impl<G: ArchGeometry> Walker<'_, G> {
             let tol = self.settings.tol_tight * scale;
             for (r, a) in cur.rows.a.iter().enumerate() {
                 let RowKind::Joint {
-                    joint, condition, ..
+                    joint,
+                    condition,
+                    twist: Some(t),
+                    ..
                 } = cur.rows.kind[r]
                 else {
                     continue;
@@ -259,15 +306,9 @@ impl<G: ArchGeometry> Walker<'_, G> {
                     continue;
                 }
                 // The four twists must be positively dependent where the rows meet; they move
-                // with p on a thickness path, so a loose test first.
-                let Some(rows4) = self.rows_at(cur.p, &[three[0], three[1], three[2], name]) else {
-                    continue;
-                };
-                let twists: Option<Vec<[f64; 3]>> = rows4.iter().map(|r| r.twist).collect();
-                let Some(twists) = twists else {
-                    continue;
-                };
-                if super::hull::min_norm_point(&twists, self.settings.tol_hull)
+                // with p on a thickness path, so a loose test at the later step first.
+                let four = [key_twists[0], key_twists[1], key_twists[2], t];
+                if super::hull::min_norm_point(&four, self.settings.tol_hull)
                     .is_none_or(|m| m.norm() > self.settings.tol_event)
                 {
                     continue;
@@ -335,9 +376,10 @@ impl<G: ArchGeometry> Walker<'_, G> {
 
     /// One scan of the path on fixed joints, from `start` past `end` until the polytope is
     /// empty: the first complete solution and the vertices seen.
-    fn scan(&self, start: f64, end: f64, step: f64) -> (Option<Found>, usize) {
+    fn scan(&self, start: f64, end: f64, step: f64) -> Scan {
         let mut prev: Option<Slice> = None;
         let mut visited = 0;
+        let mut last: Option<(f64, [f64; 4])> = None;
         let forward = (end - start).signum();
         let n = (((end - start).abs() / step).ceil() as usize).max(1);
         let mut i = 0;
@@ -362,19 +404,30 @@ impl<G: ArchGeometry> Walker<'_, G> {
                 continue;
             };
             visited += cur.1.vertices.len();
+            if let Some(v) = cur.1.vertices.values().next() {
+                last = Some((p, v.y));
+            }
             let found = match &prev {
                 Some(pr) => self.advance(pr, &cur),
                 None => self.complete_in(&cur.0, &cur.1),
             };
             if found.is_some() {
-                return (found, visited);
+                return Scan {
+                    found,
+                    visited,
+                    last,
+                };
             }
             if beyond && (cur.1.vertices.is_empty() || i > n + self.settings.max_steps_beyond) {
                 break;
             }
             prev = Some(cur.1);
         }
-        (None, visited)
+        Scan {
+            found: None,
+            visited,
+            last,
+        }
     }
 }
 
@@ -392,11 +445,8 @@ pub(super) fn first_complete<G: ArchGeometry + Copy>(
     let Some((g0, _)) = at(start).or_else(|| at(end)) else {
         return (None, 0);
     };
-    let mut thetas: Option<Vec<f64>> = g0
-        .discrete_joints()
-        .is_none()
-        .then(|| load_factor::initial_joints(&g0, settings));
-    let general_settings = general::Settings::default();
+    let continuum = g0.discrete_joints().is_none();
+    let mut thetas = joints::initial(&g0, settings);
     let mut visited = 0;
     for _ in 0..settings.max_exchange_rounds {
         let walker = Walker {
@@ -405,10 +455,25 @@ pub(super) fn first_complete<G: ArchGeometry + Copy>(
             lambda,
             settings,
         };
-        let (found, n) = walker.scan(start, end, step);
-        visited += n;
-        let Some(mut f) = found else {
-            return (None, visited);
+        let scan = walker.scan(start, end, step);
+        visited += scan.visited;
+        let Some(mut f) = scan.found else {
+            // Sampled joints stand further than the arch: the joints that the last standing
+            // state of the walk violates are added, and the path walked again.
+            let Some((t, (p, y))) = thetas.as_mut().zip(scan.last) else {
+                return (None, visited);
+            };
+            let Some((geom, phi)) = at(p) else {
+                return (None, visited);
+            };
+            let before = t.len();
+            t.extend(joints::violated(&geom, phi, &y));
+            t.sort_by(f64::total_cmp);
+            t.dedup();
+            if t.len() == before {
+                return (None, visited);
+            }
+            continue;
         };
         // A complete state found within the gap's tolerance of the static limit is the static
         // limit's own (the step there stops just short of it, and tightness holds to the walk's
@@ -423,16 +488,18 @@ pub(super) fn first_complete<G: ArchGeometry + Copy>(
             return (None, visited);
         };
         // On a continuum the sampled state is solved on the continuum's own joints first.
-        let pattern = Pattern::of(&geom, &f.tight, t);
-        if let Some(r) = refine::on_continuum(at, &pattern, f.p, &f.y, lambda, settings) {
-            return (finish(at, r, settings), visited);
+        if continuum {
+            let pattern = Pattern::of(&geom, &f.tight, t);
+            if let Some(r) = refine::on_continuum(at, &pattern, f.p, &f.y, lambda, settings) {
+                return (finish(at, r, settings), visited);
+            }
         }
-        let cuts = general::violated_joints(&geom, phi, &f.y, &general_settings);
+        let cuts = joints::violated(&geom, phi, &f.y);
         if cuts.is_empty() {
             return (finish(at, f, settings), visited);
         }
         let before = t.len();
-        t.extend(cuts.iter().map(|c| c.0));
+        t.extend(cuts);
         t.sort_by(f64::total_cmp);
         t.dedup();
         if t.len() == before {

@@ -268,6 +268,71 @@ impl Rows {
             );
         }
         self.fails_again(data);
+        self.gaps(data);
+    }
+
+    /// Critical finds in which a complete solution comes before the static limit (a gap), or
+    /// none comes at all: how many, and the widest gap relative to its static limit.
+    fn gaps(&mut self, data: &RunData) {
+        let critical = data.results.iter().filter(|r| r.gap.is_some()).count();
+        let with = |status: &str| -> Vec<(usize, &ResultRow)> {
+            data.results
+                .iter()
+                .enumerate()
+                .filter(|(_, r)| r.gap.as_deref() == Some(status))
+                .collect()
+        };
+        let gaps = with("gap");
+        let relative = |r: &ResultRow| {
+            let limit = r.load_factor.or(r.k_crit).or(r.mu_crit);
+            match (limit, r.gap_width) {
+                (Some(l), Some(w)) if l != 0.0 => w / l.abs(),
+                (None, _) => f64::INFINITY,
+                _ => 0.0,
+            }
+        };
+        if let Some(&(i, widest)) = gaps
+            .iter()
+            .max_by(|a, b| relative(a.1).total_cmp(&relative(b.1)))
+        {
+            let limit = widest.load_factor.or(widest.k_crit).or(widest.mu_crit);
+            let at = [
+                widest.k.map(|k| format!("K = {}", given(k))),
+                widest.mu.map(|m| format!("μ = {}", given(m))),
+            ]
+            .into_iter()
+            .flatten()
+            .collect::<Vec<_>>()
+            .join(", ");
+            self.out.push(KeyResult {
+                quantity: format!(
+                    "finds in which the arch can start to move before its static limit (a gap: {} of {critical}); the widest{}: collapse (first complete solution) against static limit",
+                    gaps.len(),
+                    if at.is_empty() { String::new() } else { format!(" at {at}") }
+                ),
+                value: format!(
+                    "{} against {}",
+                    widest.collapse_value.map_or("—".into(), value),
+                    limit.map_or("unbounded".into(), value)
+                ),
+                paper: "—".into(),
+                difference: "—".into(),
+                source: format!("results.parquet row {i} collapse_value, gap_width"),
+            });
+        }
+        let none = with("no_complete_solution");
+        if let Some(&(i, _)) = none.first() {
+            self.out.push(KeyResult {
+                quantity: format!(
+                    "finds with no complete solution up to the static limit ({} of {critical}): no mechanism obeying the flow rules can start before it",
+                    none.len()
+                ),
+                value: "—".into(),
+                paper: "—".into(),
+                difference: "—".into(),
+                source: format!("results.parquet row {i} gap"),
+            });
+        }
     }
 
     /// Thickness finds in which a thicker arch than K_c fails again: how many, and the first
