@@ -384,6 +384,9 @@ pub struct GapSettings {
     /// A discrete arch with more joints than this is not searched: its polytopes are too
     /// large to walk in the time of a find, and the continuum is its limit (default 401).
     pub max_walk_joints: usize,
+    /// Largest number of polytopes a friction or thickness search walks, over all its
+    /// exchange rounds; beyond it the search fails rather than run on (default 3000).
+    pub max_slices: usize,
     /// Largest number of exchange rounds on a continuum (default 60).
     pub max_exchange_rounds: usize,
     /// Tolerance of the parameter of a complete solution located between two steps of a path,
@@ -423,6 +426,7 @@ impl GapSettings {
         max_tight: 24,
         continuum_joints: 9,
         max_walk_joints: 401,
+        max_slices: 3000,
         max_exchange_rounds: 60,
         tol_path: 1e-13,
         mu_start: 1e3,

@@ -97,6 +97,8 @@ pub(super) struct Slice {
 
 /// What a path search holds fixed: λ, the joints, the settings.
 pub(super) struct Walker<'a, G> {
+    /// Slices walked so far, over every scan of one search.
+    pub(super) slices: &'a std::cell::Cell<usize>,
     pub(super) at: SceneAt<'a, G>,
     pub(super) thetas: Joints<'a>,
     pub(super) lambda: f64,
@@ -116,6 +118,10 @@ struct Found {
 
 impl<G: ArchGeometry> Walker<'_, G> {
     pub(super) fn slice(&self, p: f64) -> Option<(G, Slice)> {
+        self.slices.set(self.slices.get() + 1);
+        if self.exhausted() {
+            return None;
+        }
         let (geom, phi) = (self.at)(p)?;
         let joints = joints_at(&geom, self.thetas)?;
         let rows = StateRows::new(
@@ -163,6 +169,11 @@ impl<G: ArchGeometry> Walker<'_, G> {
             }
         }
         Some((geom, out))
+    }
+
+    /// True when the search has walked as many slices as it may.
+    fn exhausted(&self) -> bool {
+        self.slices.get() > self.settings.max_slices
     }
 
     /// The named rows at p, scaled to unit length.
@@ -397,7 +408,7 @@ impl<G: ArchGeometry> Walker<'_, G> {
             i += 1;
             let beyond = i > n;
             let Some(cur) = self.slice(p) else {
-                if beyond {
+                if beyond || self.exhausted() {
                     break;
                 }
                 prev = None;
@@ -442,6 +453,22 @@ pub(super) fn first_complete<G: ArchGeometry + Copy>(
     lambda: f64,
     settings: &Settings,
 ) -> (Option<(f64, Complete)>, usize) {
+    let slices = std::cell::Cell::new(0);
+    let out = first_complete_counted(at, (start, end, step), lambda, settings, &slices);
+    if slices.get() > settings.max_slices {
+        // Out of budget: no answer rather than a partial one.
+        return (None, usize::MAX);
+    }
+    out
+}
+
+fn first_complete_counted<G: ArchGeometry + Copy>(
+    at: SceneAt<'_, G>,
+    (start, end, step): (f64, f64, f64),
+    lambda: f64,
+    settings: &Settings,
+    slices: &std::cell::Cell<usize>,
+) -> (Option<(f64, Complete)>, usize) {
     let Some((g0, _)) = at(start).or_else(|| at(end)) else {
         return (None, 0);
     };
@@ -450,6 +477,7 @@ pub(super) fn first_complete<G: ArchGeometry + Copy>(
     let mut visited = 0;
     for _ in 0..settings.max_exchange_rounds {
         let walker = Walker {
+            slices,
             at,
             thetas: thetas.as_deref(),
             lambda,
@@ -575,9 +603,9 @@ fn polish<G: ArchGeometry>(
         rows.iter()
             .map(|r| r.b - (r.a[0] * y[0] + r.a[1] * y[1] + r.a[2] * y[2] + r.a[3] * y[3])),
     );
-    match a.svd(true, true).solve(&r, 1e-12) {
-        Ok(d) => [y[0] + d[0], y[1] + d[1], y[2] + d[2], y[3]],
-        Err(_) => y,
+    match refine::least_squares(a, &r) {
+        Some(d) => [y[0] + d[0], y[1] + d[1], y[2] + d[2], y[3]],
+        None => y,
     }
 }
 
@@ -594,6 +622,7 @@ pub(super) fn search_result(
 ) -> GapSearch {
     let range = [static_value, value(start)];
     let status = match &found {
+        None if visited == usize::MAX => GapStatus::Failed,
         None => GapStatus::NoCompleteSolution,
         Some((p, _)) => {
             let v = value(*p);

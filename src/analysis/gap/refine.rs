@@ -122,13 +122,30 @@ fn newton(
             }
         }
         let rhs = nalgebra::DVector::from_iterator(n_eq, f.iter().map(|v| -v));
-        let step = jac.svd(true, true).solve(&rhs, 1e-14).ok()?;
+        let step = least_squares(jac, &rhs)?;
         for (ui, si) in u.iter_mut().zip(step.iter()) {
             *ui += si;
         }
         f = residual(u)?;
     }
     Some(f)
+}
+
+/// Iterations of an SVD before it is given up.
+const MAX_SVD_ITERATIONS: usize = 200;
+
+/// The least-squares solution of a x = b by SVD; `None` for non-finite input or an SVD that
+/// does not converge.
+pub(super) fn least_squares(
+    a: nalgebra::DMatrix<f64>,
+    b: &nalgebra::DVector<f64>,
+) -> Option<nalgebra::DVector<f64>> {
+    if a.iter().chain(b.iter()).any(|v| !v.is_finite()) {
+        return None;
+    }
+    let svd = nalgebra::SVD::try_new(a, true, true, f64::EPSILON, MAX_SVD_ITERATIONS)?;
+    let x = svd.solve(b, 1e-14).ok()?;
+    x.iter().all(|v| v.is_finite()).then_some(x)
 }
 
 /// The complete state of the continuum near a sampled one: `None` when Newton does not

@@ -225,7 +225,7 @@ fn lambda_curves(
         stem: format!("load-factor{stem}"),
         title: format!("Collapse load factor λ{}{on}{at}", lc.title_suffix),
         caption: format!(
-            "The largest load factor λ of the live load at which the arch still stands (λ_max, from results.parquet), {}. Each point is one case, coloured by its collapse mechanism at λ_max; a gap is a case where λ is unbounded or the arch does not stand under its own weight.",
+            "The largest load factor λ of the live load at which the arch still stands (λ_max, from results.parquet), {}. Each point is one case, coloured by its collapse mechanism at λ_max; a break in a line is a case where λ is unbounded or the arch does not stand under its own weight. λ_max is the static limit; where a complete solution comes first (key results), the arch can start to move below it.",
             match (ks.len() > 1, finite_mus.len() > 1) {
                 (true, true) => format!(
                     "against the thickness K for up to {MAX_LINES} values of μ (left) and against the friction coefficient for up to {MAX_LINES} values of K (right; μ = ∞ is the left panel's line of that name)"
