@@ -159,12 +159,27 @@ pub fn state_from_domains(scene: &Scene, rot: &RotationalDomain, sld: &SlidingDo
     out
 }
 
-/// Analyses one scene. An answer for a whole range (`always_stands`, `never_stands`,
-/// `unbounded`) is confirmed by the state find at the ends of that range ([`confirm`]).
+/// Analyses one scene: the static limit of a critical find and the first complete solution
+/// along its path ([`crate::analysis::gap`]). An answer for a whole range (`always_stands`,
+/// `never_stands`, `unbounded`) is confirmed by the state find at the ends of that range
+/// ([`confirm`]).
 pub fn solve(scene: &Scene) -> Solution {
+    solve_with(scene, true)
+}
+
+/// [`solve`] without the search for the first complete solution: the static limit alone, its
+/// mechanism and its confirmation, with `gap` and the `collapse_*` keys null. For callers that
+/// need the static limit only (it costs the search's time less).
+pub fn solve_static(scene: &Scene) -> Solution {
+    solve_with(scene, false)
+}
+
+fn solve_with(scene: &Scene, gap: bool) -> Solution {
     let start = Instant::now();
     let mut out = solve_route(scene);
-    gap_search::record(scene, &mut out);
+    if gap {
+        gap_search::record(scene, &mut out);
+    }
     confirm::confirm(scene, &mut out, &confirm::ConfirmSettings::DEFAULT);
     out.solve_time_us = start.elapsed().as_secs_f64() * 1e6;
     out

@@ -560,3 +560,67 @@ fn a_thick_shallow_arch_tips_about_its_right_springing_under_a_horizontal_load()
         s.collapse_value
     );
 }
+
+/// Every first complete solution reported on random scenes of every find, form, joint kind
+/// and load satisfies the work equation and the flow rules to 1e-9, and lies on the find's
+/// path before (or at) its static limit.
+#[test]
+fn every_reported_collapse_mechanism_obeys_the_flow_rules() {
+    let mut draw = Draw(31);
+    let mut checked = 0;
+    for _ in 0..60 {
+        let find =
+            [Find::LoadFactor, Find::Friction, Find::Thickness][(draw.next() * 3.0) as usize % 3];
+        let pointed = draw.next() < 0.3;
+        let vertical = draw.next() < 0.3;
+        let joints = if draw.next() < 0.3 {
+            Discretisation::Continuum
+        } else {
+            Discretisation::Voussoirs(3 + (draw.next() * 8.0) as u32)
+        };
+        let half = draw.range(35.0, if pointed { 75.0 } else { 90.0 });
+        let load = if draw.next() < 0.5 {
+            Load::Horizontal
+        } else {
+            Load::Point {
+                at_deg: draw.range(-0.8 * half, 0.8 * half),
+            }
+        };
+        let lambda = if find == Find::LoadFactor {
+            0.0
+        } else {
+            draw.range(0.0, 0.1)
+        };
+        let e = draw.range(0.1, 0.5);
+        let Ok(arch) = Arch::new(draw.range(1.15, 1.7), half, WeightModel::Annular, joints) else {
+            continue;
+        };
+        let Some(friction) = Friction::new(draw.range(0.4, 1.3)) else {
+            continue;
+        };
+        let s = scene::solve(&Scene {
+            arch,
+            friction,
+            find,
+            form: form(pointed, vertical, e),
+            load,
+            lambda,
+        });
+        let Some(c) = s.collapse_value else {
+            continue;
+        };
+        assert_checked(&s);
+        let limit = s.load_factor.or(s.k_crit).or(s.mu_crit);
+        match (find, limit) {
+            (Find::LoadFactor, Some(l)) => assert!(c <= l + 1e-7 * (1.0 + l), "{s:#?}"),
+            (Find::LoadFactor, None) => assert!(s.load_factor_unbounded, "{s:#?}"),
+            (_, Some(l)) => assert!(c >= l - 1e-7 * (1.0 + l), "{s:#?}"),
+            (_, None) => panic!("a collapse without a static limit: {s:#?}"),
+        }
+        checked += 1;
+    }
+    assert!(
+        checked >= 20,
+        "only {checked} scenes had a first complete solution"
+    );
+}

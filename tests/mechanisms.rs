@@ -287,7 +287,7 @@ proptest! {
         let Some(scene) = d.scene() else {
             return Ok(());
         };
-        let s = scene::solve(&scene);
+        let s = scene::solve_static(&scene);
         if let Some(r) = residual(&s) {
             prop_assert!(
                 r <= TOL_WORK,
@@ -319,7 +319,7 @@ fn keystones_and_span_positions_have_their_share() {
     for _ in 0..400 {
         let d = strategy.new_tree(&mut runner).unwrap().current();
         let Some(scene) = d.scene() else { continue };
-        let s = scene::solve(&scene);
+        let s = scene::solve_static(&scene);
         if s.outcome != Some(Outcome::Found) || s.mechanism.is_none() {
             continue;
         }

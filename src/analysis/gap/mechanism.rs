@@ -98,7 +98,8 @@ struct JointReport {
     total: f64,
     /// T δr^t.
     tangential: f64,
-    /// Largest breach of a flow rule, relative to `force_scale`.
+    /// Largest breach of a flow rule: openings at the unit corner speed, works relative to
+    /// the joint's own.
     flow: f64,
     /// The face that stays closed while the joint turns about it.
     hinge: Option<Face>,
@@ -131,10 +132,14 @@ fn joint_report<G: ArchGeometry + ?Sized>(
     let open_e = ve[0] * nu[0] + ve[1] * nu[1];
     let along = vi[0] * tau[0] + vi[1] * tau[1];
     let tangential = shear * along;
+    // The size of the joint's own works: its force against its relative velocity, term by
+    // term (a thin joint turns fast under a small moment), never below the largest joint
+    // force at the unit corner speed.
+    let size = (f[0].hypot(f[1]) * rel[0].hypot(rel[1]) + (moment * rel[2]).abs()).max(force_scale);
     // No face presses into its neighbour; the normal force does no work (normality).
     let mut flow = (-open_i)
         .max(-open_e)
-        .max((total - tangential).abs() / force_scale);
+        .max((total - tangential).abs() / size);
     let slipping = along.abs() > TOL_MOTION;
     if slipping {
         // Maximum dissipation: T δr^t = −μ N |δr^t|.
@@ -144,8 +149,8 @@ fn joint_report<G: ArchGeometry + ?Sized>(
             0.0
         };
         flow = flow
-            .max((tangential + dissipation).abs() / force_scale)
-            .max(tangential / force_scale);
+            .max((tangential + dissipation).abs() / size)
+            .max(tangential / size);
     }
     let (oi, oe) = (open_i > TOL_MOTION, open_e > TOL_MOTION);
     let lifted = oi && oe;

@@ -206,42 +206,38 @@ impl<G: ArchGeometry> Walker<'_, G> {
         ))
     }
 
+    /// The complete solution at vertex `v` (key `k`) of slice `s`, if it is one.
+    fn found_at(&self, geom: &G, s: &Slice, k: &[(usize, u8)], v: &Vertex) -> Option<Found> {
+        let joints = joints_at(geom, self.thetas)?;
+        let (moves, support) = complete_moves(geom, &s.rows, v, self.settings)?;
+        Some(Found {
+            p: s.p,
+            y: v.y,
+            moves,
+            tight: k
+                .iter()
+                .map(|(j, c)| (joints[*j], condition_of(*c)))
+                .collect(),
+            support: names(&s.rows, &joints, &support),
+        })
+    }
+
     /// The first complete vertex of a slice.
     fn complete_in(&self, geom: &G, s: &Slice) -> Option<Found> {
-        let joints = joints_at(geom, self.thetas)?;
-        s.vertices.iter().find_map(|(k, v)| {
-            complete_moves(geom, &s.rows, v, self.settings).map(|(moves, support)| Found {
-                p: s.p,
-                y: v.y,
-                moves,
-                tight: k
-                    .iter()
-                    .map(|(j, c)| (joints[*j], condition_of(*c)))
-                    .collect(),
-                support: names(&s.rows, &joints, &support),
-            })
-        })
+        s.vertices
+            .iter()
+            .find_map(|(k, v)| self.found_at(geom, s, k, v))
     }
 
     /// The complete vertex at p nearest to `near`.
     fn complete_at(&self, p: f64, near: &[f64; 4]) -> Option<Found> {
         let (geom, s) = self.slice(p)?;
-        let joints = joints_at(&geom, self.thetas)?;
         let dist = |v: &Vertex| (0..3).map(|c| (v.y[c] - near[c]).abs()).fold(0.0, f64::max);
         let mut vs: Vec<(&Vec<(usize, u8)>, &Vertex)> = s.vertices.iter().collect();
         vs.sort_by(|a, b| dist(a.1).total_cmp(&dist(b.1)));
-        vs.into_iter().take(4).find_map(|(k, v)| {
-            complete_moves(&geom, &s.rows, v, self.settings).map(|(moves, support)| Found {
-                p,
-                y: v.y,
-                moves,
-                tight: k
-                    .iter()
-                    .map(|(j, c)| (joints[*j], condition_of(*c)))
-                    .collect(),
-                support: names(&s.rows, &joints, &support),
-            })
-        })
+        vs.into_iter()
+            .take(4)
+            .find_map(|(k, v)| self.found_at(&geom, &s, k, v))
     }
 
     /// The first complete event between two slices: a vertex of `prev` cut off before `cur`
