@@ -16,7 +16,6 @@ fn twelve_voussoirs_under_horizontal_load_collapse_below_the_static_limit() {
         Load::Horizontal,
     );
     let s = first_complete_load_factor(&m, 1.0396_f64.atan(), &Settings::DEFAULT);
-    eprintln!("{s:#?}");
     assert_eq!(s.status, GapStatus::Gap);
     let c = s.first.unwrap();
     assert!((c.state.y[3] - 7.383083).abs() < 5e-7, "{}", c.state.y[3]);

@@ -296,19 +296,11 @@ impl Rows {
             .max_by(|a, b| relative(a.1).total_cmp(&relative(b.1)))
         {
             let limit = widest.load_factor.or(widest.k_crit).or(widest.mu_crit);
-            let at = [
-                widest.k.map(|k| format!("K = {}", given(k))),
-                widest.mu.map(|m| format!("μ = {}", given(m))),
-            ]
-            .into_iter()
-            .flatten()
-            .collect::<Vec<_>>()
-            .join(", ");
+            let at = where_(widest);
             self.out.push(KeyResult {
                 quantity: format!(
-                    "finds in which the arch can start to move before its static limit (a gap: {} of {critical}); the widest{}: collapse (first complete solution) against static limit",
+                    "finds in which the arch can start to move before its static limit (a gap: {} of {critical}); the widest at {at}: collapse (first complete solution) against static limit",
                     gaps.len(),
-                    if at.is_empty() { String::new() } else { format!(" at {at}") }
                 ),
                 value: format!(
                     "{} against {}",
@@ -321,11 +313,12 @@ impl Rows {
             });
         }
         let none = with("no_complete_solution");
-        if let Some(&(i, _)) = none.first() {
+        if let Some(&(i, first)) = none.first() {
             self.out.push(KeyResult {
                 quantity: format!(
-                    "finds with no complete solution up to the static limit ({} of {critical}): no mechanism obeying the flow rules can start before it",
-                    none.len()
+                    "finds with no complete solution up to the static limit ({} of {critical}): no mechanism obeying the flow rules can start before it; the first at {}",
+                    none.len(),
+                    where_(first)
                 ),
                 value: "—".into(),
                 paper: "—".into(),
@@ -477,4 +470,14 @@ fn continuum_cells(r: &ResultRow) -> Vec<Cell> {
             "load_factor",
         )]
     }
+}
+
+/// Where a case of a critical find lies: its given K and μ; the one a find searches for is
+/// named as found.
+fn where_(r: &ResultRow) -> String {
+    let k =
+        r.k.map_or("K found".into(), |k| format!("K = {}", given(k)));
+    let mu =
+        r.mu.map_or("μ found".into(), |m| format!("μ = {}", given(m)));
+    format!("{k}, {mu}")
 }
