@@ -158,6 +158,25 @@ fn median(v: &mut [f64]) -> f64 {
     v[v.len() / 2]
 }
 
+/// One table of tallies, a row per group.
+fn print_tallies<'a>(head: &str, rows: impl Iterator<Item = (String, &'a mut Tally)>) {
+    println!(
+        "| {head} | finds | with a gap | no complete solution | median µs today | median µs added |"
+    );
+    println!("|---|---|---|---|---|---|");
+    for (name, t) in rows {
+        println!(
+            "| {name} | {} | {} ({:.0} %) | {} | {:.0} | {:.0} |",
+            t.finds,
+            t.gaps,
+            100.0 * t.gaps as f64 / t.finds as f64,
+            t.none,
+            median(&mut t.static_us),
+            median(&mut t.gap_us)
+        );
+    }
+}
+
 fn main() {
     let mut args = std::env::args().skip(1);
     let n: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(1000);
@@ -216,36 +235,12 @@ fn main() {
         }
     }
     println!("{n} scenes drawn with seed {seed}; {with_limit} have a static limit.\n");
-    println!(
-        "| find | finds | with a gap | no complete solution | median µs today | median µs added |"
+    print_tallies("find", by_find.iter_mut().map(|(k, t)| (k.to_string(), t)));
+    println!();
+    print_tallies(
+        "form and load",
+        by_class.iter_mut().map(|(k, t)| (k.clone(), t)),
     );
-    println!("|---|---|---|---|---|---|");
-    for (name, t) in &mut by_find {
-        println!(
-            "| {name} | {} | {} ({:.0} %) | {} | {:.0} | {:.0} |",
-            t.finds,
-            t.gaps,
-            100.0 * t.gaps as f64 / t.finds as f64,
-            t.none,
-            median(&mut t.static_us),
-            median(&mut t.gap_us)
-        );
-    }
-    println!(
-        "\n| form and load | finds | with a gap | no complete solution | median µs today | median µs added |"
-    );
-    println!("|---|---|---|---|---|---|");
-    for (name, t) in &mut by_class {
-        println!(
-            "| {name} | {} | {} ({:.0} %) | {} | {:.0} | {:.0} |",
-            t.finds,
-            t.gaps,
-            100.0 * t.gaps as f64 / t.finds as f64,
-            t.none,
-            median(&mut t.static_us),
-            median(&mut t.gap_us)
-        );
-    }
     widest.sort_by(|a, b| b.0.total_cmp(&a.0));
     println!("\nThe widest gaps (relative to the static limit):\n");
     println!("| find | form and load | scene | voussoirs | static limit | collapse | mechanism |");
