@@ -348,13 +348,18 @@ struct Case {
 }
 
 fn solve(c: Case) -> Solution {
+    solve_at(c, 0.0)
+}
+
+/// [`solve`] with the live load at λ (thickness and friction finds).
+fn solve_at(c: Case, lambda: f64) -> Solution {
     scene::solve(&Scene {
         arch: Arch::new(c.k, c.half, WeightModel::Annular, c.joints).expect("an arch"),
         friction: Friction::new(c.mu).expect("μ ≥ 0"),
         find: c.find,
         form: c.form,
         load: c.load,
-        lambda: 0.0,
+        lambda,
     })
 }
 
@@ -623,4 +628,81 @@ fn every_reported_collapse_mechanism_obeys_the_flow_rules() {
         checked >= 20,
         "only {checked} scenes had a first complete solution"
     );
+}
+
+/// The twelve-voussoir arch of the example with one find.
+fn twelve(find: Find, k: f64, mu: f64) -> Case {
+    Case {
+        find,
+        k,
+        half: 50.367,
+        joints: Discretisation::Voussoirs(12),
+        form: ArchForm::default(),
+        mu,
+        load: Load::Horizontal,
+    }
+}
+
+#[test]
+fn the_thickness_and_friction_paths_meet_the_load_factor_path_at_its_collapse() {
+    // Along decreasing K at λ = 7.5 the first complete solution is met at K_col; the
+    // load-factor find at K_col must then start to move at λ = 7.5 itself: the two searches
+    // walk different polytopes (3-D slices at fixed λ against the 4-D one) to one state.
+    let lambda = 7.5;
+    let t = solve_at(twelve(Find::Thickness, 1.5, 1.0396), lambda);
+    assert_eq!(t.gap, Some(GapStatus::Gap));
+    assert_checked(&t);
+    assert_eq!(t.collapse_on_loading, None);
+    let k_col = t.collapse_value.unwrap();
+    assert!(
+        k_col > t.k_crit.unwrap() + 0.01,
+        "{k_col} against {:?}",
+        t.k_crit
+    );
+    let l = solve(twelve(Find::LoadFactor, k_col, 1.0396));
+    assert_eq!(l.gap, Some(GapStatus::Gap));
+    assert!((l.collapse_value.unwrap() - lambda).abs() < 1e-6, "{l:#?}");
+    // The same along decreasing μ at K = 1.5278.
+    let f = solve_at(twelve(Find::Friction, 1.5278, 0.0), lambda);
+    assert_eq!(f.gap, Some(GapStatus::Gap));
+    assert_checked(&f);
+    let mu_col = f.collapse_value.unwrap();
+    let l = solve(twelve(Find::LoadFactor, 1.5278, mu_col));
+    assert!((l.collapse_value.unwrap() - lambda).abs() < 1e-6, "{l:#?}");
+    // And the λ = 7.383083 at μ = 1.0396 is met again along μ.
+    let f = solve_at(twelve(Find::Friction, 1.5278, 0.0), 7.383083);
+    assert!((f.collapse_value.unwrap() - 1.0396).abs() < 1e-6, "{f:#?}");
+}
+
+#[test]
+fn a_friction_find_under_a_live_load_says_when_the_arch_drops_on_the_way_up() {
+    // Three voussoirs with vertical joints: at λ = 0.2 of a horizontal load the first complete
+    // μ is 0.717, but the crown part already drops under self-weight alone below μ = 0.983
+    // (its own friction find at λ = 0), so as the load rises from zero the arch at μ = 0.717
+    // has moved before λ = 0.2 is reached.
+    let case = |load| Case {
+        find: Find::Friction,
+        k: 1.4,
+        half: 60.0,
+        joints: Discretisation::Voussoirs(3),
+        form: ArchForm {
+            shape: Shape::Circular,
+            joints: JointOrientation::Vertical,
+            keystone: false,
+        },
+        mu: 0.0,
+        load,
+    };
+    let at = solve_at(case(Load::Horizontal), 0.2);
+    let alone = solve(case(Load::SelfWeight));
+    let (mu_at, mu_alone) = (at.collapse_value.unwrap(), alone.collapse_value.unwrap());
+    assert!((mu_at - 0.717352436930).abs() < 1e-8, "{mu_at}");
+    assert!((mu_alone - 0.983009474170).abs() < 1e-8, "{mu_alone}");
+    assert!(mu_alone > mu_at);
+    assert_eq!(at.collapse_on_loading, Some(0.0));
+    assert_eq!(alone.collapse_on_loading, None);
+    // Where the arch carries the load up to λ, nothing is said: the twelve-voussoir arch
+    // above its collapse K.
+    let t = solve_at(twelve(Find::Thickness, 1.5, 1.0396), 7.0);
+    assert_eq!(t.collapse_on_loading, None);
 }

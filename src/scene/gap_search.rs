@@ -6,6 +6,8 @@ use super::{Find, Outcome, Scene, Solution};
 use crate::analysis::forms::ArchModel;
 use crate::analysis::gap::{self, Settings};
 use crate::analysis::windows::WindowSettings;
+use crate::model::{Friction, Load};
+use std::f64::consts::FRAC_PI_2;
 
 /// Searches for the first complete solution of a critical find whose static limit was found
 /// (or, for the load factor, is unbounded) and records it in `out`.
@@ -31,6 +33,10 @@ pub(super) fn record(scene: &Scene, out: &mut Solution) {
             };
             let search = gap::first_complete_friction(&m, scene.lambda, mu_c, &settings);
             out.set_gap(&search, Some(mu_c), -1.0);
+            if let Some(mu) = out.collapse_value {
+                let phi = Friction::new(mu).map_or(FRAC_PI_2, Friction::angle);
+                out.collapse_on_loading = on_loading(scene, &m, phi, &settings);
+            }
         }
         Find::Thickness => {
             let Some(k_c) = out.k_crit else {
@@ -51,7 +57,26 @@ pub(super) fn record(scene: &Scene, out: &mut Solution) {
                 &settings,
             );
             out.set_gap(&search, Some(k_c), -1.0);
+            if let Some(m) = out.collapse_value.and_then(model) {
+                out.collapse_on_loading = on_loading(scene, &m, scene.friction.angle(), &settings);
+            }
         }
         _ => {}
     }
+}
+
+/// The first complete λ of the arch `m` at friction angle `phi` (the collapse value of a
+/// fixed-λ find) when it lies below the find's λ: as the live load rose from zero to λ, that
+/// arch would already have started to move there, so the find's collapse at λ is never
+/// reached on that loading path. `None` without a live load, or when the arch carries the
+/// load up to λ (within `tol_gap`·(1 + λ)).
+fn on_loading(scene: &Scene, m: &ArchModel, phi: f64, settings: &Settings) -> Option<f64> {
+    if scene.lambda <= 0.0 || scene.load == Load::SelfWeight {
+        return None;
+    }
+    let search = gap::first_complete_load_factor(m, phi, settings);
+    // A value within the tolerance of zero is zero: the arch moves under its weight alone.
+    let first = search.first?.value;
+    let first = if first < settings.tol_gap { 0.0 } else { first };
+    (first < scene.lambda - settings.tol_gap * (1.0 + scene.lambda)).then_some(first)
 }

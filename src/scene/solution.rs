@@ -232,6 +232,11 @@ pub struct Solution {
     /// interpenetration, maximum dissipation), relative to the joint force: zero when every
     /// moving joint obeys them.
     pub collapse_flow_violation: Option<f64>,
+    /// Fixed-λ thickness and friction finds with a live load: the first complete λ of the arch
+    /// at the find's collapse value, when it lies below the scene's λ. The load rising from
+    /// zero would have set that arch moving there, before λ was reached, so the find's
+    /// collapse at λ lies beyond a collapse on the way up. Null otherwise.
+    pub collapse_on_loading: Option<f64>,
     /// A point load at the apex of a pointed arch with radial joints sits on the crown joint
     /// between the halves, and its split between them is statically indeterminate: the
     /// critical value of the find (μ_c, K_c or λ_max) when the split is free (the most
@@ -369,6 +374,7 @@ impl Solution {
             collapse_work_friction: None,
             collapse_work_residual: None,
             collapse_flow_violation: None,
+            collapse_on_loading: None,
             k_c_rotational: None,
             mu_rotational_mixed: None,
             mu_min: None,

@@ -353,6 +353,19 @@ fn gap_lines(o: &mut String, s: &Solution) {
              largest breach of a flow rule {v:.1e}"
         );
     }
+    if let Some(l) = s.collapse_on_loading {
+        let at = if l == 0.0 {
+            "under its own weight alone (λ = 0)".to_string()
+        } else {
+            format!("at λ = {l:.6}")
+        };
+        let _ = writeln!(
+            o,
+            "on the way up: with the live load rising from zero, the arch at the collapse value \
+             would already start to move {at}, below this scene's λ = {}",
+            s.lambda.unwrap_or(f64::NAN)
+        );
+    }
 }
 
 /// The minimum and maximum thrust states.

@@ -132,7 +132,7 @@ fn same(column: &str, stored: Option<&String>, planned: &'static str) -> Result<
 }
 
 /// The answer columns of results.parquet that hold one float, each with its field.
-const ANSWER_F64: [&str; 35] = [
+const ANSWER_F64: [&str; 36] = [
     "collapse_value",
     "gap_width",
     "gap_searched_to",
@@ -143,6 +143,7 @@ const ANSWER_F64: [&str; 35] = [
     "collapse_work_friction",
     "collapse_work_residual",
     "collapse_flow_violation",
+    "collapse_on_loading",
     "k_windows_scanned_to",
     "k_windows_resolution",
     "thrust_r_min",
@@ -208,6 +209,7 @@ fn answer_f64<'s>(s: &'s mut Solution, column: &str) -> Option<&'s mut Option<f6
         "collapse_work_friction" => &mut s.collapse_work_friction,
         "collapse_work_residual" => &mut s.collapse_work_residual,
         "collapse_flow_violation" => &mut s.collapse_flow_violation,
+        "collapse_on_loading" => &mut s.collapse_on_loading,
         _ => return None,
     })
 }

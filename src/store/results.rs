@@ -203,6 +203,7 @@ pub fn filled_by(column: &str) -> Option<&'static [Find]> {
         | "collapse_work_friction"
         | "collapse_work_residual"
         | "collapse_flow_violation" => &[Thickness, Friction, LoadFactor],
+        "collapse_on_loading" => &[Thickness, Friction],
         "k_c_rotational" | "mu_rotational_mixed" | "mu_min" | "k_mixed_sliding" => &[Thresholds],
         "thrust_min"
         | "thrust_max"
@@ -353,6 +354,7 @@ fn answer_columns<'a>() -> Vec<Spec<'a>> {
         opt_f64("collapse_flow_violation", move |r| {
             s(r).collapse_flow_violation
         }),
+        opt_f64("collapse_on_loading", move |r| s(r).collapse_on_loading),
         opt_f64("k_c_rotational", move |r| s(r).k_c_rotational),
         opt_f64("mu_rotational_mixed", move |r| s(r).mu_rotational_mixed),
         opt_f64("mu_min", move |r| s(r).mu_min),

@@ -307,6 +307,11 @@ const COLUMN_DOCS: &[(&str, &str, &str)] = &[
         "largest breach of a flow rule by that mechanism (normality, no interpenetration, maximum dissipation), relative to the joint force",
     ),
     (
+        "collapse_on_loading",
+        "",
+        "fixed-λ finds: the first complete λ of the arch at the collapse value when below the scene's λ (it would start to move there as the load rises)",
+    ),
+    (
         "k_windows_from",
         "R/r",
         "lower end of each interval of K on which the arch stands (the first is k_crit)",
