@@ -416,3 +416,48 @@ fn voussoir_study_overlays_the_collapse_curve_of_every_count() {
     );
     assert!(ends[..4].iter().all(|&k| k < ends[4]), "{ends:?}");
 }
+
+#[test]
+fn a_friction_study_with_a_gap_draws_the_collapse_beside_the_critical_curve() {
+    let manifest = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/studies/vertical-joints-drop.yaml"
+    ))
+    .unwrap();
+    let run = run_study(&scratch("gap-critical"), "drop.yaml", &manifest);
+    let data = data::load(&RunLayout::at(&run)).expect("the run loads");
+    let figure = charts::build(&data)
+        .into_iter()
+        .find(|f| f.stem == "critical-curves")
+        .expect("the critical curves");
+    let charts::Chart::Critical(c) = &figure.chart else {
+        panic!("not a critical chart");
+    };
+    let p = &c.panels[0];
+    // At K = 1.3 the crown part drops from μ = 2.0553 down (W_c / 2 H_min, tests/gap.rs),
+    // far above μ_c = 0.8828.
+    let at = |curve: &[(f64, f64)]| {
+        curve
+            .iter()
+            .find(|q| (q.0 - 1.3).abs() < 1e-9)
+            .expect("K = 1.3")
+            .1
+    };
+    assert!((at(&p.collapse) - 2.0553).abs() < 1e-4, "{:?}", p.collapse);
+    assert!((at(&p.curve) - 0.8828).abs() < 1e-4, "{:?}", p.curve);
+    assert!(p.collapse.iter().zip(&p.curve).all(|(c, s)| c.0 == s.0));
+    assert!(
+        figure.caption.contains("Dashed: the collapse"),
+        "{}",
+        figure.caption
+    );
+    // A study without a gap draws none.
+    let run = run_study(&scratch("gap-none"), "state.yaml", STATE_MAP);
+    let data = data::load(&RunLayout::at(&run)).expect("the run loads");
+    for f in charts::build(&data) {
+        if let charts::Chart::Critical(c) = &f.chart {
+            assert!(c.panels.iter().all(|p| p.collapse.is_empty()));
+            assert!(!f.caption.contains("Dashed: the collapse"));
+        }
+    }
+}

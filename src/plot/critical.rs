@@ -40,6 +40,10 @@ pub struct CriticalPanel {
     /// windows of K of a thickness find (`to` infinite for a window open at the end of the
     /// scan). Empty when the panel has none.
     pub windows: Vec<(f64, f64, f64)>,
+    /// The collapse along the same path, the first complete solution (NaN breaks it), drawn
+    /// dashed where it parts from the curve: the non-associative gap. Empty when the study
+    /// has no gap.
+    pub collapse: Vec<(f64, f64)>,
 }
 
 /// The shaded columns of the windows: each x spans half-way to its neighbours.
@@ -114,6 +118,7 @@ fn panel_ranges(p: &CriticalPanel) -> Option<((f64, f64), (f64, f64))> {
     let ys = p
         .curve
         .iter()
+        .chain(&p.collapse)
         .map(|q| q.1)
         .chain(marks().map(|m| m.y))
         .chain(ends);
@@ -176,6 +181,14 @@ fn draw_panel<DB: DrawingBackend>(
         chart.draw_series(LineSeries::new(
             piece,
             palette::INK.stroke_width(ctx.upx(2.2)),
+        ))?;
+    }
+    for piece in clip_polyline(&p.collapse, (x0, x1), (y0, y1)) {
+        chart.draw_series(DashedLineSeries::new(
+            piece,
+            ctx.upx(7.0),
+            ctx.upx(4.0),
+            palette::RED.stroke_width(ctx.upx(2.0)),
         ))?;
     }
     draw_marks(root, &chart, ctx, p)
@@ -286,6 +299,16 @@ impl CriticalChart {
                 dashed: false,
             },
         )];
+        if self.panels.iter().any(|p| !p.collapse.is_empty()) {
+            items.push(LegendItem::new(
+                "collapse: first complete solution",
+                Mark::Line {
+                    color: palette::RED,
+                    width: 2.0,
+                    dashed: true,
+                },
+            ));
+        }
         if self.panels.iter().any(|p| !p.windows.is_empty()) {
             items.push(LegendItem::new(
                 "K at which the arch stands",
@@ -333,6 +356,7 @@ mod tests {
             paper: Vec::new(),
             y_max,
             windows: Vec::new(),
+            collapse: Vec::new(),
         }
     }
 

@@ -21,6 +21,10 @@ pub fn figure(data: &RunData, lc: &LoadCaseFigure) -> Option<FigureSpec> {
         caption.push(' ');
         caption.push_str(WINDOWS_CAPTION);
     }
+    if let Some(note) = gap_note(data, lc.name) {
+        caption.push(' ');
+        caption.push_str(&note);
+    }
     if let Some(note) = c.panels.first().and_then(off_the_top) {
         caption.push(' ');
         caption.push_str(&note);
@@ -66,6 +70,7 @@ fn critical(data: &RunData, lc: &str, on: &str) -> Option<CriticalChart> {
         let mut panel = marks.panel(Axes::COLLAPSE_THICKNESS, a);
         if data.manifest.find_of(lc) == "thickness" {
             panel.windows = windows(data, lc);
+            panel.collapse = collapse(data, lc);
         }
         // A state study covers a range of K: K_c(μ) above it is off the map too.
         if data.manifest.find_of(lc) == "state" {
@@ -74,7 +79,11 @@ fn critical(data: &RunData, lc: &str, on: &str) -> Option<CriticalChart> {
         panels.push(panel);
     }
     if let Some(b) = b {
-        panels.push(marks.panel(Axes::CRITICAL_FRICTION, b));
+        let mut panel = marks.panel(Axes::CRITICAL_FRICTION, b);
+        if data.manifest.find_of(lc) == "friction" {
+            panel.collapse = collapse(data, lc);
+        }
+        panels.push(panel);
     }
     if panels.is_empty() {
         return None;
@@ -126,6 +135,60 @@ fn curves(data: &RunData, lc: &str) -> (Option<Curve>, Option<Curve>) {
         }
         _ => (None, None),
     }
+}
+
+/// The collapse of a thickness or friction study over one model, (μ, K_col) or (K, μ_col):
+/// the first complete solution along the find's path, NaN where none was found. Empty when no
+/// case has a gap (the curve is then the critical curve itself).
+fn collapse(data: &RunData, lc: &str) -> Curve {
+    let rows = || data.results.iter().filter(|r| &*r.load_case == lc);
+    if !single_model(data) || !rows().any(|r| r.gap.as_deref() == Some("gap")) {
+        return Vec::new();
+    }
+    let thickness = data.manifest.find_of(lc) == "thickness";
+    let mut pts: Curve = rows()
+        .filter_map(|r| {
+            let x = if thickness { r.mu } else { r.k };
+            Some((
+                x.filter(|v| v.is_finite())?,
+                r.collapse_value.unwrap_or(f64::NAN),
+            ))
+        })
+        .collect();
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    pts
+}
+
+/// The gap of a thickness or friction study in words: how many cases have one and the
+/// widest, or `None` when none has.
+fn gap_note(data: &RunData, lc: &str) -> Option<String> {
+    let find = data.manifest.find_of(lc);
+    let (name, path, at) = match find {
+        "thickness" => ("K", "decreasing K", "μ"),
+        "friction" => ("μ", "decreasing μ", "K"),
+        _ => return None,
+    };
+    let rows: Vec<_> = (data.results.iter())
+        .filter(|r| &*r.load_case == lc && r.gap.as_deref() == Some("gap"))
+        .collect();
+    let widest = rows
+        .iter()
+        .filter_map(|r| Some((r.gap_width?, r)))
+        .max_by(|a, b| a.0.total_cmp(&b.0))?;
+    let x = if find == "thickness" {
+        widest.1.mu
+    } else {
+        widest.1.k
+    };
+    Some(format!(
+        "Dashed: the collapse, the first complete solution along {path}, from which a mechanism \
+         obeying the flow rules can start. In {} case(s) it comes before the static limit: the \
+         non-associative gap, in which the outcome depends on contact stiffness and initial \
+         stress; the widest is {:.4} in {name} at {at} = {}.",
+        rows.len(),
+        widest.0,
+        x.map_or("?".into(), |v| format!("{v:.4}"))
+    ))
 }
 
 /// The windows of K of a thickness study over one model, (μ, from, to), shaded on panel (a).
@@ -218,6 +281,7 @@ impl Marks {
             },
             y_max: None,
             windows: Vec::new(),
+            collapse: Vec::new(),
         }
     }
 }
