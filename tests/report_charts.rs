@@ -461,3 +461,50 @@ fn a_friction_study_with_a_gap_draws_the_collapse_beside_the_critical_curve() {
         }
     }
 }
+
+#[test]
+fn load_factor_lines_bar_the_gap_from_the_collapse_up_to_the_static_limit() {
+    let manifest = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/studies/vertical-joints-horizontal.yaml"
+    ))
+    .unwrap();
+    let run = run_study(&scratch("gap-lines"), "vj.yaml", &manifest);
+    let data = data::load(&RunLayout::at(&run)).expect("the run loads");
+    let figure = charts::build(&data)
+        .into_iter()
+        .find(|f| f.stem == "load-factor")
+        .expect("the load-factor figure");
+    let charts::Chart::Lines(c) = &figure.chart else {
+        panic!("not a lines chart");
+    };
+    // Panel (b), λ against μ, one line per K (every case of finite μ): every barred point is
+    // a stored case whose collapse comes before λ_max by its gap width.
+    let rows = store::read_results(&RunLayout::at(&run).results()).unwrap();
+    let mut barred = 0;
+    for (line, k) in c.panels[1].lines.iter().zip([1.15, 1.3, 1.45]) {
+        for q in line.points.iter().filter(|q| q.collapse.is_finite()) {
+            let r = rows
+                .iter()
+                .find(|r| r.k == Some(k) && r.mu == Some(q.x))
+                .expect("the case");
+            assert_eq!(r.gap.as_deref(), Some("gap"));
+            assert!((q.y - q.collapse - r.gap_width.unwrap()).abs() < 1e-12);
+            assert!(q.collapse < q.y);
+            barred += 1;
+        }
+    }
+    let gaps = rows
+        .iter()
+        .filter(|r| r.gap.as_deref() == Some("gap"))
+        .count();
+    assert_eq!(barred, gaps);
+    assert!(gaps >= 5, "{gaps}");
+    assert!(
+        figure
+            .caption
+            .contains(&format!("in {gaps} of the 15 cases")),
+        "{}",
+        figure.caption
+    );
+}

@@ -456,6 +456,7 @@ mod tests {
             at_x: None,
             load_factor: Some(lambda),
             mechanism: Some(mech.into()),
+            collapse_below: None,
         }
     }
 

@@ -133,6 +133,7 @@ mod tests {
             at_x: None,
             load_factor: lambda,
             mechanism: Some(mech.into()),
+            collapse_below: None,
         }
     }
 

@@ -188,7 +188,7 @@ fn draw_panel<DB: DrawingBackend>(
             piece,
             ctx.upx(7.0),
             ctx.upx(4.0),
-            palette::RED.stroke_width(ctx.upx(2.0)),
+            palette::GAP.stroke_width(ctx.upx(2.0)),
         ))?;
     }
     draw_marks(root, &chart, ctx, p)
@@ -303,7 +303,7 @@ impl CriticalChart {
             items.push(LegendItem::new(
                 "collapse: first complete solution",
                 Mark::Line {
-                    color: palette::RED,
+                    color: palette::GAP,
                     width: 2.0,
                     dashed: true,
                 },

@@ -17,6 +17,9 @@ pub struct LinePoint {
     pub y: f64,
     /// `rotational`, `mixed`, `sliding`, or empty.
     pub mechanism: String,
+    /// The collapse when it comes before y (the non-associative gap), drawn as a red bar
+    /// from it up to y; NaN where there is no gap.
+    pub collapse: f64,
 }
 
 /// One line, labelled at its right end.
@@ -96,7 +99,7 @@ fn range(vals: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
 fn panel_window(p: &LinePanel) -> Option<((f64, f64), (f64, f64))> {
     let pts = || p.lines.iter().flat_map(|l| l.points.iter());
     let (x0, x1) = range(pts().filter(|q| q.y.is_finite()).map(|q| q.x))?;
-    let (y0, y1) = range(pts().map(|q| p.y_of(q.y)))?;
+    let (y0, y1) = range(pts().flat_map(|q| [p.y_of(q.y), p.y_of(q.collapse)]))?;
     let y0 = if !p.log_y && y0 > 0.0 && y0 < 0.3 * y1 {
         0.0
     } else {
@@ -186,6 +189,7 @@ fn draw_points<DB: DrawingBackend>(
 ) -> DrawResult<(), DB> {
     let count: usize = p.lines.iter().map(|l| l.points.len()).sum();
     let r = if count > 400 { 1.8 } else { 3.2 };
+    draw_gaps(root, chart, ctx, p, r)?;
     for l in &p.lines {
         for q in l.points.iter().filter(|q| p.y_of(q.y).is_finite()) {
             let c = chart.backend_coord(&(q.x, p.y_of(q.y)));
@@ -239,6 +243,53 @@ fn draw_points<DB: DrawingBackend>(
     Ok(())
 }
 
+/// The gap of every point that has one: a bar from the collapse (a short crossbar) up to the
+/// point's value, in a colour no mechanism uses; the bars of the lines at one x are set a
+/// little apart.
+fn draw_gaps<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    chart: &XyChart<DB>,
+    ctx: &PlotContext,
+    p: &LinePanel,
+    r: f64,
+) -> DrawResult<(), DB> {
+    let style = palette::GAP.stroke_width(ctx.upx(1.4));
+    let n = p.lines.len() as f64;
+    for (i, l) in p.lines.iter().enumerate() {
+        let dx = ctx.px((i as f64 - 0.5 * (n - 1.0)) * 3.0);
+        for q in &l.points {
+            draw_gap(root, chart, ctx, (p, q), (r, dx), style)?;
+        }
+    }
+    Ok(())
+}
+
+/// The gap bar of one point, `dx` pixels to the side.
+fn draw_gap<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    chart: &XyChart<DB>,
+    ctx: &PlotContext,
+    (p, q): (&LinePanel, &LinePoint),
+    (r, dx): (f64, i32),
+    style: ShapeStyle,
+) -> DrawResult<(), DB> {
+    let (top, bottom) = (p.y_of(q.y), p.y_of(q.collapse));
+    if !top.is_finite() || !bottom.is_finite() {
+        return Ok(());
+    }
+    let shift = |c: (i32, i32)| (c.0 + dx, c.1);
+    let (a, b) = (
+        shift(chart.backend_coord(&(q.x, top))),
+        shift(chart.backend_coord(&(q.x, bottom))),
+    );
+    let w = ctx.px(r + 1.5);
+    root.draw(&PathElement::new(vec![a, b], style))?;
+    root.draw(&PathElement::new(
+        vec![(b.0 - w, b.1), (b.0 + w, b.1)],
+        style,
+    ))
+}
+
 impl Figure for LinesChart {
     fn size(&self) -> (u32, u32) {
         if self.panels.len() > 1 {
@@ -289,6 +340,20 @@ impl LinesChart {
             .filter(|m| present(m))
             .map(|m| LegendItem::new(format!("{m} collapse"), Mark::Dot(palette::mechanism(m))))
             .collect();
+        if (self.panels.iter())
+            .flat_map(|p| &p.lines)
+            .flat_map(|l| &l.points)
+            .any(|q| q.collapse.is_finite() && q.y.is_finite())
+        {
+            items.push(LegendItem::new(
+                "gap: from the collapse (first complete solution) up to the static limit",
+                Mark::Line {
+                    color: palette::GAP,
+                    width: 1.4,
+                    dashed: false,
+                },
+            ));
+        }
         // Each line's shade of grey, when every panel draws the same lines (an influence line
         // against angle and x/L); otherwise each line is named at its end.
         if let Some(p) = self.panels.first().filter(|_| self.shared_lines()) {

@@ -80,6 +80,9 @@ pub mod palette {
     pub const BLUE: RGBColor = RGBColor(0, 114, 178);
     /// Sky blue (Okabe–Ito).
     pub const SKY: RGBColor = RGBColor(86, 180, 233);
+    /// The non-associative gap and the collapse that opens it: a colour no mechanism and no
+    /// regime uses.
+    pub const GAP: RGBColor = RGBColor(0, 158, 115);
     /// Arch fill.
     pub const STONE: RGBColor = RGBColor(238, 230, 214);
 

@@ -580,10 +580,13 @@ pub struct LoadFactorCase {
     pub load_factor: Option<f64>,
     /// Collapse mechanism at λ_max.
     pub mechanism: Option<String>,
+    /// The collapse, the first complete solution, when it comes before λ_max (a gap);
+    /// `None` without a gap or in runs written before it was stored.
+    pub collapse_below: Option<f64>,
 }
 
 /// The columns of results.parquet read into [`LoadFactorCase`].
-const LOAD_FACTOR_COLUMNS: [&str; 10] = [
+const LOAD_FACTOR_COLUMNS: [&str; 12] = [
     "load_case",
     "find",
     "k",
@@ -594,6 +597,8 @@ const LOAD_FACTOR_COLUMNS: [&str; 10] = [
     "at_x",
     "load_factor",
     "mechanism",
+    "collapse_value",
+    "gap_width",
 ];
 
 /// Reads the load_factor cases of results.parquet (rows of other finds are skipped).
@@ -628,6 +633,10 @@ fn load_factor_cases_of_frame(
     let (k, mu, half) = (f("k")?, f("mu")?, f("half_angle_deg")?);
     let (nv, at, lf) = (f("voussoirs")?, f("at_deg")?, f("load_factor")?);
     let at_x = f64_or_null(df, "at_x");
+    let (collapse, width) = (
+        f64_or_null(df, "collapse_value"),
+        f64_or_null(df, "gap_width"),
+    );
     Ok((0..lc.len())
         .filter(|&i| find[i].as_deref() == Some("load_factor"))
         .map(|i| LoadFactorCase {
@@ -641,6 +650,7 @@ fn load_factor_cases_of_frame(
             at_x: at_x[i],
             load_factor: lf[i],
             mechanism: mech[i].clone(),
+            collapse_below: collapse[i].filter(|_| width[i].is_some_and(|w| w > 0.0)),
         })
         .collect())
 }

@@ -133,6 +133,7 @@ fn collapse_overlay(
                         x: mu,
                         y: k,
                         mechanism: seg.mechanism.clone(),
+                        collapse: f64::NAN,
                     });
                 }
             }
@@ -214,6 +215,7 @@ fn bifurcations_against_axis(
                             x,
                             y: value(b.mu, b.k),
                             mechanism: below.to_string(),
+                            collapse: f64::NAN,
                         })
                     })
                     .collect(),

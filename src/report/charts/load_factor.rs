@@ -60,6 +60,7 @@ fn point(x: f64, c: &LoadFactorCase) -> LinePoint {
         x,
         y: c.load_factor.unwrap_or(f64::NAN),
         mechanism: c.mechanism.clone().unwrap_or_default(),
+        collapse: c.collapse_below.unwrap_or(f64::NAN),
     }
 }
 
@@ -225,7 +226,7 @@ fn lambda_curves(
         stem: format!("load-factor{stem}"),
         title: format!("Collapse load factor λ{}{on}{at}", lc.title_suffix),
         caption: format!(
-            "The largest load factor λ of the live load at which the arch still stands (λ_max, from results.parquet), {}. Each point is one case, coloured by its collapse mechanism at λ_max; a break in a line is a case where λ is unbounded or the arch does not stand under its own weight. λ_max is the static limit; where a complete solution comes first (key results), the arch can start to move below it.",
+            "The largest load factor λ of the live load at which the arch still stands (λ_max, from results.parquet), {}. Each point is one case, coloured by its collapse mechanism at λ_max; a break in a line is a case where λ is unbounded or the arch does not stand under its own weight. λ_max is the static limit; where a complete solution comes first (key results), the arch can start to move below it.{}",
             match (ks.len() > 1, finite_mus.len() > 1) {
                 (true, true) => format!(
                     "against the thickness K for up to {MAX_LINES} values of μ (left) and against the friction coefficient for up to {MAX_LINES} values of K (right; μ = ∞ is the left panel's line of that name)"
@@ -236,13 +237,43 @@ fn lambda_curves(
                 _ => format!(
                     "against the friction coefficient for up to {MAX_LINES} values of K (the study has λ at a single K, so no panel against K)"
                 ),
-            }
+            },
+            gap_sentence(own)
         ),
         chart: Chart::Lines(LinesChart {
             title: format!("Collapse load factor λ{on}{at}"),
             panels,
         }),
     })
+}
+
+/// The red bars of the cases with a non-associative gap in words (empty when none has one).
+fn gap_sentence(own: &[&LoadFactorCase]) -> String {
+    let gaps: Vec<(&LoadFactorCase, f64)> = (own.iter())
+        .filter_map(|c| Some((*c, c.collapse_below?)))
+        .collect();
+    let widest = gaps
+        .iter()
+        .filter_map(|(c, v)| Some((*c, c.load_factor? - v)))
+        .max_by(|a, b| a.1.total_cmp(&b.1));
+    let Some((c, w)) = widest else {
+        return String::new();
+    };
+    let at = c
+        .at_deg
+        .map_or(String::new(), |a| format!(", load at {}°", position_deg(a)));
+    format!(
+        " Green bars: the non-associative gap, from the collapse (the first complete solution, \
+         from which a mechanism obeying the flow rules can start) up to λ_max, in {} of the \
+         {} cases; the widest is {w:.4} (λ = {:.4} against λ_max = {:.4}) at K = {}, μ = {}{at}. \
+         Inside the gap the outcome depends on contact stiffness and initial stress.",
+        gaps.len(),
+        own.len(),
+        c.load_factor.unwrap_or(f64::NAN) - w,
+        c.load_factor.unwrap_or(f64::NAN),
+        compact(c.k),
+        compact(c.mu),
+    )
 }
 
 /// The influence line: λ against the position of the point load, for a few (K, μ).
@@ -305,7 +336,10 @@ fn influence_line(
     Some(FigureSpec {
         stem: format!("influence-line{stem}"),
         title: format!("Influence line of the point load{}{on}", lc.title_suffix),
-        caption: "The collapse load factor λ_max of a point load λ·W_total on the extrados (results.parquet) against its position: left, the angle θ of its joint from the crown (negative to the left); right, the horizontal position x/L of the load's point from the left springing of the extrados over the distance between the extrados springings. One line per (K, μ), for up to four of the study's; each point coloured by the collapse mechanism at λ_max; a gap is a position where λ is unbounded or no state stands.".into(),
+        caption: format!(
+            "The collapse load factor λ_max of a point load λ·W_total on the extrados (results.parquet) against its position: left, the angle θ of its joint from the crown (negative to the left); right, the horizontal position x/L of the load's point from the left springing of the extrados over the distance between the extrados springings. One line per (K, μ), for up to four of the study's; each point coloured by the collapse mechanism at λ_max; a break in a line is a position where λ is unbounded or no state stands.{}",
+            gap_sentence(own)
+        ),
         chart: Chart::Lines(LinesChart {
             title: format!("Influence line of the point load{on}"),
             panels: vec![panel(false), panel(true)],
