@@ -253,6 +253,23 @@ fn lambda_map_draws_the_stored_load_factors_and_the_located_mechanism_changes() 
         (last - expect_last).abs() < 1e-9,
         "{last} against {expect_last}"
     );
+    // Every grid point of finite μ whose collapse comes before λ_max is ringed, and no other.
+    let rows = store::read_results(&layout.results()).expect("results.parquet");
+    let mut gapped: Vec<(f64, f64)> = rows
+        .iter()
+        .filter(|r| r.gap.as_deref() == Some("gap") && r.mu.is_some_and(f64::is_finite))
+        .map(|r| (r.mu.unwrap(), r.k.unwrap()))
+        .collect();
+    let mut ringed = map.gaps.clone();
+    gapped.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    ringed.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    assert_eq!(ringed, gapped);
+    // K = 1.6, μ = 1: the collapse turns about two extrados hinges a sliver apart and slides
+    // at the right springing just below the rotational limit.
+    assert!(ringed.contains(&(1.0, 1.6)), "{ringed:?}");
+    for r in rows.iter().filter(|r| r.gap.as_deref() == Some("gap")) {
+        assert!(r.collapse_value.unwrap() < r.load_factor.unwrap());
+    }
 }
 
 #[test]

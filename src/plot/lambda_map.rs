@@ -44,6 +44,9 @@ pub struct LambdaMap {
     pub log: bool,
     /// The grid's μ = ∞ column.
     pub infinite: Option<LambdaStrip>,
+    /// The grid points of finite μ where the collapse (the first complete solution) comes
+    /// before λ_max, (μ, K), ringed: the non-associative gap. Empty when none has one.
+    pub gaps: Vec<(f64, f64)>,
 }
 
 /// Colour stops of the scale (viridis), from the smallest λ to the largest.
@@ -168,6 +171,12 @@ impl LambdaMap {
         if self.lambda.iter().chain(strip).any(|l| !l.is_finite()) {
             items.push(LegendItem::new("no finite λ", Mark::Swatch(NO_VALUE)));
         }
+        if !self.gaps.is_empty() {
+            items.push(LegendItem::new(
+                "collapse before λ_max (a gap)",
+                Mark::Dot(palette::GAP),
+            ));
+        }
         items
     }
 }
@@ -214,6 +223,19 @@ impl Figure for LambdaMap {
                     palette::INK.stroke_width(ctx.upx(1.0).max(1)),
                 ))?;
             }
+        }
+        for &(mu, k) in &self.gaps {
+            let c = chart.backend_coord(&(mu, k));
+            root.draw(&Circle::new(
+                c,
+                ctx.upx(4.5),
+                WHITE.stroke_width(ctx.upx(3.2)),
+            ))?;
+            root.draw(&Circle::new(
+                c,
+                ctx.upx(4.5),
+                palette::GAP.stroke_width(ctx.upx(1.8)),
+            ))?;
         }
         let (xr, yr) = chart.plotting_area().get_pixel_range();
         let mut x = xr.end;
@@ -419,6 +441,7 @@ mod tests {
             lambda_range: range,
             log,
             infinite: None,
+            gaps: Vec::new(),
         }
     }
 

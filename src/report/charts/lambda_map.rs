@@ -7,7 +7,7 @@
 //! blended across the change), so a grid of a million cases draws from a few tens of
 //! thousands of values.
 
-use super::load_factor::{Cases, distinct, group_stem, group_text};
+use super::load_factor::{Cases, distinct, gap_sentence, group_stem, group_text};
 use super::regime_map::{ArchKey, bifurcations_of_arch};
 use super::{Chart, FigureSpec, LoadCaseFigure};
 use crate::plan;
@@ -24,6 +24,10 @@ pub const MIN_VALUES: usize = 4;
 
 /// Raster cells of the map along μ and along K (about 2.5 design pixels each).
 pub const RASTER: (usize, usize) = (240, 200);
+
+/// At most this many grid points are ringed where a gap opens; a denser grid's gaps are
+/// counted in the caption only.
+const MAX_RINGS: usize = 2500;
 
 /// Above this ratio of the largest to the smallest λ, the colour scale is logarithmic.
 const LOG_RATIO: f64 = 30.0;
@@ -220,6 +224,14 @@ pub fn figures(data: &RunData, lc: &LoadCaseFigure) -> Vec<FigureSpec> {
                 " Grey: no finite λ (unbounded, or the arch does not stand under its own weight).",
             );
         }
+        let marks = if own.len() > MAX_RINGS {
+            "Not ringed (too many grid points to draw)"
+        } else if map.infinite.is_some() {
+            "Green rings, at grid points of finite μ"
+        } else {
+            "Green rings"
+        };
+        caption.push_str(&gap_sentence(&own, marks));
         out.push(FigureSpec {
             stem: format!("lambda-map{}{}", lc.stem_suffix, group_stem(g, several)),
             title: format!("{}{}", map.title, lc.title_suffix),
@@ -361,7 +373,20 @@ pub fn lambda_map(
         lambda_range: (lo, hi),
         log,
         infinite,
+        gaps: rings(own),
     })
+}
+
+/// The grid points of finite μ ringed for a gap, (μ, K): none when the grid has more than
+/// [`MAX_RINGS`] points.
+fn rings(own: &[&LoadFactorCase]) -> Vec<(f64, f64)> {
+    if own.len() > MAX_RINGS {
+        return Vec::new();
+    }
+    (own.iter())
+        .filter(|c| c.mu.is_finite() && c.collapse_below.is_some())
+        .map(|c| (c.mu, c.k))
+        .collect()
 }
 
 /// The two mechanisms of a change, the one at the lower end of its edge (`below`) first.

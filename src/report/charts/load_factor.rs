@@ -8,6 +8,9 @@ use crate::report::data::{ArchView, RunData};
 use crate::report::format::{given, position_deg};
 use crate::store::LoadFactorCase;
 
+/// How the line figures mark the gap.
+const BARS: &str = "Green bars, from the collapse up to λ_max";
+
 /// At most this many lines per panel.
 const MAX_LINES: usize = 4;
 
@@ -238,7 +241,7 @@ fn lambda_curves(
                     "against the friction coefficient for up to {MAX_LINES} values of K (the study has λ at a single K, so no panel against K)"
                 ),
             },
-            gap_sentence(own)
+            gap_sentence(own, BARS)
         ),
         chart: Chart::Lines(LinesChart {
             title: format!("Collapse load factor λ{on}{at}"),
@@ -247,8 +250,9 @@ fn lambda_curves(
     })
 }
 
-/// The red bars of the cases with a non-associative gap in words (empty when none has one).
-fn gap_sentence(own: &[&LoadFactorCase]) -> String {
+/// The cases with a non-associative gap in words, after `marks` (how the figure shows them);
+/// empty when none has one.
+pub(super) fn gap_sentence(own: &[&LoadFactorCase], marks: &str) -> String {
     let gaps: Vec<(&LoadFactorCase, f64)> = (own.iter())
         .filter_map(|c| Some((*c, c.collapse_below?)))
         .collect();
@@ -263,9 +267,9 @@ fn gap_sentence(own: &[&LoadFactorCase]) -> String {
         .at_deg
         .map_or(String::new(), |a| format!(", load at {}°", position_deg(a)));
     format!(
-        " Green bars: the non-associative gap, from the collapse (the first complete solution, \
-         from which a mechanism obeying the flow rules can start) up to λ_max, in {} of the \
-         {} cases; the widest is {w:.4} (λ = {:.4} against λ_max = {:.4}) at K = {}, μ = {}{at}. \
+        " {marks}: the non-associative gap, where the collapse (the first complete solution, \
+         from which a mechanism obeying the flow rules can start) comes before λ_max, in {} of \
+         the {} cases; the widest is {w:.4} (λ = {:.4} against λ_max = {:.4}) at K = {}, μ = {}{at}. \
          Inside the gap the outcome depends on contact stiffness and initial stress.",
         gaps.len(),
         own.len(),
@@ -338,7 +342,7 @@ fn influence_line(
         title: format!("Influence line of the point load{}{on}", lc.title_suffix),
         caption: format!(
             "The collapse load factor λ_max of a point load λ·W_total on the extrados (results.parquet) against its position: left, the angle θ of its joint from the crown (negative to the left); right, the horizontal position x/L of the load's point from the left springing of the extrados over the distance between the extrados springings. One line per (K, μ), for up to four of the study's; each point coloured by the collapse mechanism at λ_max; a break in a line is a position where λ is unbounded or no state stands.{}",
-            gap_sentence(own)
+            gap_sentence(own, BARS)
         ),
         chart: Chart::Lines(LinesChart {
             title: format!("Influence line of the point load{on}"),
