@@ -145,7 +145,7 @@ impl Refiner<'_> {
 
     fn eval(&self, k: f64, mu: f64) -> Option<(Label, Solution)> {
         self.counter.tick();
-        let s = scene::solve(&self.scene(k, mu));
+        let s = scene::solve_static(&self.scene(k, mu));
         Some((label(self.grid.scene.find, &s)?, s))
     }
 
@@ -362,7 +362,7 @@ pub(crate) fn locate(
             EdgeAxis::K => (x, fixed),
             EdgeAxis::Mu => (fixed, x),
         };
-        (x, (l, scene::solve(&r.scene(k, mu))))
+        (x, (l, scene::solve_static(&r.scene(k, mu))))
     };
     use rayon::prelude::*;
     let found: Vec<(Vec<BoundaryPoint>, Vec<Bifurcation>)> = edges
