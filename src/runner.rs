@@ -17,6 +17,18 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
+/// The signal that interrupted the process (0 while none has): set before the partial output
+/// is removed, so that work failing because its files vanished exits as interrupted.
+static INTERRUPTED: std::sync::atomic::AtomicI32 = std::sync::atomic::AtomicI32::new(0);
+
+/// The signal that interrupted the process, once the interrupt handler has taken one.
+pub fn interrupted_by() -> Option<i32> {
+    match INTERRUPTED.load(std::sync::atomic::Ordering::SeqCst) {
+        0 => None,
+        sig => Some(sig),
+    }
+}
+
 /// Installs the handler of Ctrl-C (SIGINT) and SIGTERM: the staging directory and every
 /// temporary file this process is writing are removed, then the process exits with status
 /// 128 + the signal (130 for Ctrl-C, 143 for SIGTERM). Called once by the command line;
@@ -34,6 +46,7 @@ pub fn remove_partial_output_on_interrupt() -> Result<()> {
         .name("interrupt".into())
         .spawn(move || {
             if let Some(sig) = signals.forever().next() {
+                INTERRUPTED.store(sig, std::sync::atomic::Ordering::SeqCst);
                 crate::output::remove_pending();
                 std::process::exit(128 + sig);
             }
