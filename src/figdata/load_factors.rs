@@ -133,6 +133,7 @@ mod tests {
             at_x: None,
             load_factor: lambda,
             mechanism: Some(mech.into()),
+            sliding_at_load: 0,
         }
     }
 

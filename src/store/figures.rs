@@ -580,10 +580,18 @@ pub struct LoadFactorCase {
     pub load_factor: Option<f64>,
     /// Collapse mechanism at λ_max.
     pub mechanism: Option<String>,
+    /// How many sliding joints of the mechanism at λ_max lie at the point load's joint
+    /// (within [`AT_LOAD_TOL_DEG`]): two on the continuum are both sides of the load, a
+    /// sliver of zero width punched through the arch.
+    pub sliding_at_load: u8,
 }
 
+/// Joint angles within this of a point load's angle, degrees, are joints at the load: both
+/// sides of a load on the continuum are joints whose angles differ in the last bits.
+pub const AT_LOAD_TOL_DEG: f64 = 1e-9;
+
 /// The columns of results.parquet read into [`LoadFactorCase`].
-const LOAD_FACTOR_COLUMNS: [&str; 10] = [
+const LOAD_FACTOR_COLUMNS: [&str; 11] = [
     "load_case",
     "find",
     "k",
@@ -594,6 +602,7 @@ const LOAD_FACTOR_COLUMNS: [&str; 10] = [
     "at_x",
     "load_factor",
     "mechanism",
+    "sliding_angles_deg",
 ];
 
 /// Reads the load_factor cases of results.parquet (rows of other finds are skipped).
@@ -628,6 +637,15 @@ fn load_factor_cases_of_frame(
     let (k, mu, half) = (f("k")?, f("mu")?, f("half_angle_deg")?);
     let (nv, at, lf) = (f("voussoirs")?, f("at_deg")?, f("load_factor")?);
     let at_x = f64_or_null(df, "at_x");
+    let slides = super::list_f64_column(df, "sliding_angles_deg").with_context(cx)?;
+    let at_load = |i: usize| -> u8 {
+        let Some(a) = at[i] else { return 0 };
+        let n = slides[i]
+            .iter()
+            .filter(|s| (*s - a).abs() <= AT_LOAD_TOL_DEG)
+            .count();
+        u8::try_from(n).unwrap_or(u8::MAX)
+    };
     Ok((0..lc.len())
         .filter(|&i| find[i].as_deref() == Some("load_factor"))
         .map(|i| LoadFactorCase {
@@ -641,6 +659,7 @@ fn load_factor_cases_of_frame(
             at_x: at_x[i],
             load_factor: lf[i],
             mechanism: mech[i].clone(),
+            sliding_at_load: at_load(i),
         })
         .collect())
 }

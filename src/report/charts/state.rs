@@ -80,9 +80,11 @@ pub fn arch_text(s: &StateRow) -> String {
         parts.push(format!("{} weight", s.weight));
     }
     if s.load != "self_weight" {
-        let at = s
-            .at_deg
-            .map_or(String::new(), |a| format!(" at {}°", given(a)));
+        let at = match (s.at_x, s.at_deg) {
+            (Some(x), _) => format!(" at x/L = {}", given(x)),
+            (None, Some(a)) => format!(" at {}°", position_deg(a)),
+            (None, None) => String::new(),
+        };
         let lambda = s
             .load_factor
             .map_or(String::new(), |l| format!(", λ = {}", short(l)));
@@ -152,7 +154,7 @@ impl StateTexts {
             ],
             note: None,
             caption: format!(
-                "The scene stands ({values}); drawn is its admissible state farthest from every limit condition (the largest common margin of the no-tension and friction conditions of all joints), so its line of thrust lies inside the masonry and no joint is at a limit."
+                "The scene stands ({values}); drawn is its admissible state farthest from every limit condition (the largest common margin of the no-tension and friction conditions of all joints), so its line of thrust lies inside the masonry and no joint is at a limit. This is another kind of state than the minimum-thrust state drawn for a circular arch with radial joints under its own weight: compare forms by their collapse states, not by these scenes."
             ),
         }
     }
