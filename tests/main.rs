@@ -17,6 +17,7 @@ mod keystone;
 mod loads;
 mod mechanisms;
 mod paper;
+mod reading_notes;
 mod report;
 mod report_arches;
 mod report_charts;
