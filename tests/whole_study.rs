@@ -86,3 +86,47 @@ fn a_sweep_over_mu_at_one_k_reports_the_mu_c_it_located() {
     assert_relative_eq!(v, 0.3232251, max_relative = 1e-6);
     assert!(q.contains("mixed collapse"), "{q}");
 }
+
+/// A thickness study over μ (a range that also holds ∞) for 6 voussoirs and the continuum.
+const VOUSSOIRS_THICKNESS_STUDY: &str = "\
+name: voussoirs-thickness
+find: thickness
+grid:
+  voussoirs: {values: [6, continuum]}
+  mu: {from: 0.4, to: 0.6, steps: 3, also: [inf]}
+";
+
+#[test]
+fn a_thickness_study_with_a_voussoir_axis_draws_k_c_of_every_arch() {
+    use archstudy::plot::lines::LinePoint;
+    use archstudy::report::charts::{self, Chart};
+    let dir = scratch("whole-voussoirs-thickness");
+    let run = run_study(&dir, "v.yaml", VOUSSOIRS_THICKNESS_STUDY);
+    assert!(run.join("plots/critical-arches.png").is_file());
+    let data = archstudy::report::data::load(&RunLayout::at(&run)).expect("run data");
+    let figs = charts::build(&data);
+    let fig = figs
+        .iter()
+        .find(|f| f.stem == "critical-arches")
+        .expect("the per-arch figure");
+    let Chart::Lines(chart) = &fig.chart else {
+        panic!("not a lines chart");
+    };
+    let lines = &chart.panels[0].lines;
+    let labels: Vec<&str> = lines.iter().map(|l| l.label.as_str()).collect();
+    assert_eq!(labels, ["N = 6", "continuum"]);
+    // The lines hold the finite μ of the range; at μ = 0.6 the continuum's K_c is the
+    // rotational K_c of the semicircle (the rotational/mixed bifurcation is at μ = 0.395).
+    let at = |pts: &[LinePoint], x: f64| pts.iter().find(|p| p.x == x).map(|p| p.y);
+    let continuum = at(&lines[1].points, 0.6).expect("μ = 0.6");
+    assert_relative_eq!(
+        continuum,
+        crate::common::reference::K_C,
+        max_relative = 1e-9
+    );
+    // Six voussoirs stand thinner than the continuum (K_c(N) ≤ K_c of the continuum).
+    let six = at(&lines[0].points, 0.6).expect("μ = 0.6");
+    assert!(six < continuum, "{six} {continuum}");
+    let mus: Vec<f64> = lines[1].points.iter().map(|p| p.x).collect();
+    assert_eq!(mus, [0.4, 0.5, 0.6]);
+}
