@@ -214,6 +214,11 @@ impl Arch {
         Arch { k, ..self }
     }
 
+    /// The same arch with another weight model.
+    pub fn with_weight(self, weight: WeightModel) -> Self {
+        Arch { weight, ..self }
+    }
+
     /// Thickness over centreline radius, t/R_c = 2(K − 1)/(K + 1).
     pub fn t_over_r(&self) -> f64 {
         t_over_r_from_k(self.k)
