@@ -155,7 +155,8 @@ pub fn analyse(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
 /// Key of the geometry shared by the cases whose domains can be reused.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 struct GeomKey {
-    half_angle_bits: u64,
+    /// α in degrees as given.
+    half_angle_deg_bits: u64,
     joints: Discretisation,
     k_bits: u64,
 }
@@ -178,7 +179,7 @@ impl SeparableKeys {
         for c in &plan.cases {
             let a = &c.scene.arch;
             let rk = GeomKey {
-                half_angle_bits: a.half_angle.to_bits(),
+                half_angle_deg_bits: a.half_angle_deg().to_bits(),
                 joints: a.joints,
                 k_bits: a.k.to_bits(),
             };
@@ -226,11 +227,8 @@ fn separable_domains(
 ) -> (Vec<Timed<RotationalDomain>>, Vec<Timed<SlidingDomain>>) {
     let weight = plan.manifest.arch.weight;
     let sample = plan.cases.first().map(|c| c.scene.arch);
-    let arch_for = |g: &GeomKey, k: f64| crate::model::Arch {
-        k,
-        half_angle: f64::from_bits(g.half_angle_bits),
-        weight,
-        joints: g.joints,
+    let arch_for = |g: &GeomKey, k: f64| {
+        crate::model::Arch::from_valid(k, f64::from_bits(g.half_angle_deg_bits), weight, g.joints)
     };
     let rot = keys
         .rot

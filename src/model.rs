@@ -158,6 +158,9 @@ pub struct Arch {
     pub k: f64,
     /// Half-embrace angle α in radians, in (0, π).
     pub half_angle: f64,
+    /// α in degrees as given: kept beside the radians so that 60° reads back as 60, not as
+    /// the 59.99999999999999 of a round trip through radians.
+    half_angle_given_deg: f64,
     /// How the self-weight is distributed.
     pub weight: WeightModel,
     /// Continuum or N voussoirs.
@@ -181,12 +184,24 @@ impl Arch {
         if let Discretisation::Voussoirs(0) = joints {
             return Err(ModelError::Voussoirs(0));
         }
-        Ok(Arch {
+        Ok(Arch::from_valid(k, half_angle_deg, weight, joints))
+    }
+
+    /// An arch from values already validated (K > 1, α in (0°, 180°), N ≥ 1); `half_angle_deg`
+    /// in degrees, kept as given.
+    pub fn from_valid(
+        k: f64,
+        half_angle_deg: f64,
+        weight: WeightModel,
+        joints: Discretisation,
+    ) -> Self {
+        Arch {
             k,
             half_angle: half_angle_deg.to_radians(),
+            half_angle_given_deg: half_angle_deg,
             weight,
             joints,
-        })
+        }
     }
 
     /// The semicircular arch of the paper: α = 90°, annular weight, continuum.
@@ -199,14 +214,19 @@ impl Arch {
         Arch { k, ..self }
     }
 
+    /// The same arch with another weight model.
+    pub fn with_weight(self, weight: WeightModel) -> Self {
+        Arch { weight, ..self }
+    }
+
     /// Thickness over centreline radius, t/R_c = 2(K − 1)/(K + 1).
     pub fn t_over_r(&self) -> f64 {
         t_over_r_from_k(self.k)
     }
 
-    /// Half-embrace angle in degrees.
+    /// Half-embrace angle in degrees, as given.
     pub fn half_angle_deg(&self) -> f64 {
-        self.half_angle.to_degrees()
+        self.half_angle_given_deg
     }
 
     /// Radius (over r) at which the weight of a radial slice acts: ρ_s with

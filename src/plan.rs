@@ -174,12 +174,7 @@ fn scene_at(m: &Manifest, lc: usize, idx: &[usize]) -> Scene {
         }
     }
     // Every value was validated with the manifest, so the constructors cannot fail.
-    let arch = Arch {
-        k,
-        half_angle: half.to_radians(),
-        weight: m.arch.weight,
-        joints,
-    };
+    let arch = Arch::from_valid(k, half, m.arch.weight, joints);
     let friction = Friction::new(mu).unwrap_or(Friction::INFINITE);
     Scene {
         arch,

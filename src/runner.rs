@@ -28,6 +28,13 @@ pub fn interrupted_by() -> Option<i32> {
         sig => Some(sig),
     }
 }
+mod memory;
+use memory::gib;
+pub use memory::{
+    BYTES_PER_CASE, LATTICE_BYTES_PER_CASE, LATTICE_CASES, LOAD_FACTOR_BYTES_PER_CASE,
+    PROGRAM_BYTES, VERIFY_BYTES_PER_CASE, available_memory, base_bytes, bytes_per_case,
+    check_memory, check_memory_at, needed_bytes, needed_bytes_at,
+};
 
 /// Installs the handler of Ctrl-C (SIGINT) and SIGTERM: the staging directory and every
 /// temporary file this process is writing are removed, then the process exits with status
@@ -139,10 +146,10 @@ pub fn unsharded_refusal(m: &Manifest, available: Option<u64>) -> Option<String>
         let e = plan::PlanTooLarge { requested };
         return Some(format!(
             "{e} (its run would need about {} of memory at {} bytes a case)",
-            gib(u64::try_from(e.requested)
-                .unwrap_or(u64::MAX)
-                .saturating_mul(bytes_per_case(m))
-                .saturating_add(BASE_BYTES)),
+            gib(needed_bytes_at(
+                u64::try_from(e.requested).unwrap_or(u64::MAX),
+                bytes_per_case(m)
+            )),
             bytes_per_case(m)
         ));
     }
@@ -154,112 +161,6 @@ pub fn load_plan(path: &Path) -> Result<(Plan, Vec<u8>)> {
     let (m, bytes) = load_runnable(path)?;
     let total = u64::try_from(plan::case_count(&m)).unwrap_or(u64::MAX);
     Ok((plan::build_slice(m, 0..total), bytes))
-}
-
-/// Memory of a run per case, in bytes: the case's cell code, its cell in the boundaries'
-/// grid and its solve time in the report's totals (the rows themselves are stored and
-/// dropped chunk by chunk). Measured (release build): a 1001² state map peaks at 583 MB and a
-/// 4001² one at 790 MB, 14 bytes more a case; 64 leaves a margin.
-pub const BYTES_PER_CASE: u64 = 64;
-
-/// Memory of a run besides its cases, in bytes: the program and its thread stacks, one chunk
-/// of [`CHUNK_CASES`] engine rows with its table, and the rows of the figure lattice (at most
-/// 1001² of a map). Measured: a 1001² state map peaks at 583 MB, a 1001² load-factor map
-/// (whose figure lattice holds every case) at 1.00 GB.
-pub const BASE_BYTES: u64 = 768 << 20;
-
-/// The memory this process may use, in bytes: the smaller of the available memory
-/// (/proc/meminfo MemAvailable) and the address-space limit (`ulimit -v`), when known.
-pub fn available_memory() -> Option<u64> {
-    let field = |text: &str, key: &str| -> Option<u64> {
-        let line = text.lines().find(|l| l.starts_with(key))?;
-        line[key.len()..]
-            .split_whitespace()
-            .next()?
-            .parse::<u64>()
-            .ok()
-    };
-    let avail = std::fs::read_to_string("/proc/meminfo")
-        .ok()
-        .and_then(|t| field(&t, "MemAvailable:"))
-        .map(|kb| kb.saturating_mul(1024));
-    let limit = std::fs::read_to_string("/proc/self/limits")
-        .ok()
-        .and_then(|t| field(&t, "Max address space"));
-    match (avail, limit) {
-        (Some(a), Some(l)) => Some(a.min(l)),
-        (a, l) => a.or(l),
-    }
-}
-
-fn gib(bytes: u64) -> String {
-    format!("{:.1} GiB", bytes as f64 / f64::from(1u32 << 30))
-}
-
-/// The memory estimate of a run of `cases` cases, in bytes.
-pub fn needed_bytes(cases: u64) -> u64 {
-    cases
-        .saturating_mul(BYTES_PER_CASE)
-        .saturating_add(BASE_BYTES)
-}
-
-/// Memory of a run per case when a load case finds a load factor, in bytes: the figure data
-/// and the report keep the load factor, position and mechanism of the cases of the figure
-/// lattice (every case up to 1001 values an axis, so at most 1001² of them) and a few cases
-/// singled out over all. Measured (release build): a 1001² load-factor map peaks at 1.00 GB
-/// (1.28 GB when every case was read whole), a 2001² one at 1.05 GB, 18 bytes a case more;
-/// 256 covers the lattice of a 1001² map with a margin.
-pub const LOAD_FACTOR_BYTES_PER_CASE: u64 = 256;
-
-/// Memory of `archstudy verify` per case, in bytes: it re-runs the study and compares the
-/// stored tables with the new ones a block of rows at a time, so it needs what the re-run
-/// needs (at most [`LOAD_FACTOR_BYTES_PER_CASE`]). Measured: verify of a 1001² state map
-/// peaks at 545 MB (2.14 GB when it compared whole tables).
-pub const VERIFY_BYTES_PER_CASE: u64 = LOAD_FACTOR_BYTES_PER_CASE;
-
-/// The memory per case of a manifest's run ([`BYTES_PER_CASE`], or
-/// [`LOAD_FACTOR_BYTES_PER_CASE`] for a study that finds load factors).
-pub fn bytes_per_case(m: &Manifest) -> u64 {
-    if m.load_cases
-        .iter()
-        .any(|l| l.find == crate::scene::Find::LoadFactor)
-    {
-        LOAD_FACTOR_BYTES_PER_CASE
-    } else {
-        BYTES_PER_CASE
-    }
-}
-
-/// Refuses a plan of `cases` cases whose run would need more memory than `available`
-/// (see [`BYTES_PER_CASE`]), naming both, before anything is allocated.
-pub fn check_memory(cases: u128, available: Option<u64>) -> Result<(), String> {
-    check_memory_at(cases, BYTES_PER_CASE, available)
-}
-
-/// [`check_memory`] at `per_case` bytes a case.
-pub fn check_memory_at(cases: u128, per_case: u64, available: Option<u64>) -> Result<(), String> {
-    let Some(available) = available else {
-        return Ok(());
-    };
-    let cases = u64::try_from(cases).unwrap_or(u64::MAX);
-    let needed = cases.saturating_mul(per_case).saturating_add(BASE_BYTES);
-    if needed <= available {
-        return Ok(());
-    }
-    let fits = (available.saturating_sub(BASE_BYTES) / per_case.max(1)).max(1);
-    let shards = cases.div_ceil(fits);
-    Err(format!(
-        "the study has {cases} cases, whose run needs about {} of memory ({} bytes per case and {} \
-         besides), but {} is available (the smaller of the free memory and `ulimit -v`): run \
-         it in shards of at most {fits} cases, `archstudy run STUDY --shard I/N` with N ≥ \
-         {shards} (one process or cluster task per shard, then `archstudy merge` on a machine \
-         with that memory; `archstudy slurm STUDY --shards N` writes the job array), or \
-         reduce the steps of the grid axes",
-        gib(needed),
-        per_case,
-        gib(BASE_BYTES),
-        gib(available)
-    ))
 }
 
 /// What `archstudy check` shows of a manifest.
@@ -285,11 +186,9 @@ pub fn check(study: &Path) -> Result<CheckSummary> {
     match &refusal {
         None => plan.push_str(&format!(
             "memory: about {} for a run ({} bytes a case and {} besides)\n",
-            gib(cases
-                .saturating_mul(bytes_per_case(&m))
-                .saturating_add(BASE_BYTES)),
+            gib(needed_bytes_at(cases, bytes_per_case(&m))),
             bytes_per_case(&m),
-            gib(BASE_BYTES)
+            gib(base_bytes(cases))
         )),
         Some(why) => plan.push_str(&format!(
             "runs in shards only: an unsharded run is refused: {why}\n"
@@ -651,56 +550,4 @@ pub(crate) fn finish_run(
         info,
         wall_s: t0.elapsed().as_secs_f64(),
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_plan_too_large_for_the_memory_is_refused_naming_shards_and_the_memory() {
-        let gib4 = 4u64 << 30;
-        assert!(check_memory(16_008_001, Some(gib4)).is_ok());
-        assert!(check_memory(100_000_000, None).is_ok());
-        let e = check_memory(100_000_000, Some(gib4)).unwrap_err();
-        // 10⁸ cases at 64 bytes and 0.75 GiB besides need 6.71 GiB; 4 GiB less 768 MiB holds
-        // 54,525,952 cases, so 2 shards.
-        for part in [
-            "100000000 cases",
-            "6.7 GiB",
-            "64 bytes per case",
-            "4.0 GiB is available",
-            "shards of at most 54525952 cases",
-            "--shard I/N` with N ≥ 2",
-            "archstudy merge",
-        ] {
-            assert!(e.contains(part), "{part}: {e}");
-        }
-    }
-
-    #[test]
-    fn a_load_factor_map_is_estimated_at_its_own_cost_per_case() {
-        let gib4 = 4u64 << 30;
-        let m = |find: &str, kind: &str| {
-            crate::manifest::parse(
-                &format!("name: a\nfind: {find}\nload_cases:\n  - {{name: h, kind: {kind}}}\ngrid:\n  k: {{from: 1.1, to: 1.6, steps: 3}}\n  mu: {{values: [0.4]}}\n"),
-                Path::new("a.yaml"),
-            )
-            .unwrap()
-        };
-        assert_eq!(
-            bytes_per_case(&m("load_factor", "horizontal")),
-            LOAD_FACTOR_BYTES_PER_CASE
-        );
-        assert_eq!(bytes_per_case(&m("state", "self_weight")), BYTES_PER_CASE);
-        // 1.5 × 10⁷ load factors at 256 bytes need 4.3 GiB: refused at 4 GiB, in 2 shards of
-        // at most (4 GiB − 768 MiB)/256 = 13,631,488 cases; the same count of states fits.
-        let e = check_memory_at(15_000_000, LOAD_FACTOR_BYTES_PER_CASE, Some(gib4)).unwrap_err();
-        assert!(
-            e.contains("256 bytes per case") && e.contains("at most 13631488 cases"),
-            "{e}"
-        );
-        assert!(e.contains("4.3 GiB") && e.contains("N ≥ 2"), "{e}");
-        assert!(check_memory_at(15_000_000, BYTES_PER_CASE, Some(gib4)).is_ok());
-    }
 }

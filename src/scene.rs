@@ -181,6 +181,7 @@ fn solve_with(scene: &Scene, gap: bool) -> Solution {
         gap_search::record(scene, &mut out);
     }
     confirm::confirm(scene, &mut out, &confirm::ConfirmSettings::DEFAULT);
+    out.name_springings_as_given();
     out.solve_time_us = start.elapsed().as_secs_f64() * 1e6;
     out
 }

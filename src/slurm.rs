@@ -76,9 +76,7 @@ fn mem_for(cases: u64) -> String {
 /// The memory estimate of the merge of a manifest's `cases` cases, at its own cost per case,
 /// as a Slurm `--mem` value in megabytes.
 fn merge_mem_for(m: &crate::manifest::Manifest, cases: u64) -> String {
-    let bytes = cases
-        .saturating_mul(runner::bytes_per_case(m))
-        .saturating_add(runner::BASE_BYTES);
+    let bytes = runner::needed_bytes_at(cases, runner::bytes_per_case(m));
     format!("{}M", bytes.div_ceil(1 << 20))
 }
 
@@ -230,11 +228,11 @@ mod tests {
 
     #[test]
     fn the_memory_estimate_is_the_runners() {
-        assert_eq!(mem_for(0), "768M");
-        // 64 bytes a case and 768 MiB besides.
+        assert_eq!(mem_for(0), "128M");
+        // 64 bytes a case, 670 bytes a case of the figure lattice and 128 MiB besides.
         assert_eq!(
             mem_for(1_000_000),
-            format!("{}M", (64_000_000u64 + (768 << 20)).div_ceil(1 << 20))
+            format!("{}M", (734_000_000u64 + (128 << 20)).div_ceil(1 << 20))
         );
     }
 }

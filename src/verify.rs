@@ -79,10 +79,10 @@ pub fn verify(opts: &VerifyOptions, out: &mut dyn Write) -> Result<bool> {
         return Ok(false);
     };
     // Re-running needs the memory of a run (the tables are compared a block at a time).
-    let needed = u64::try_from(cases)
-        .unwrap_or(u64::MAX)
-        .saturating_mul(runner::VERIFY_BYTES_PER_CASE)
-        .saturating_add(runner::BASE_BYTES);
+    let needed = runner::needed_bytes_at(
+        u64::try_from(cases).unwrap_or(u64::MAX),
+        runner::VERIFY_BYTES_PER_CASE,
+    );
     let available = runner::available_memory();
     let too_big = runner::check_memory_at(cases, runner::VERIFY_BYTES_PER_CASE, available).is_err();
     if too_big && opts.rerun {

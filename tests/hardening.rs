@@ -466,6 +466,47 @@ fn an_out_directory_that_is_a_link_is_followed_but_a_linked_run_directory_is_not
 }
 
 #[test]
+fn an_unknown_key_in_a_flow_mapping_is_named() {
+    let dir = scratch("flow-key");
+    let m = manifest(
+        &dir,
+        "flow.yaml",
+        "name: t\ngrid:\n  k: {values: [1.1, 1.2]}\n  mu: {values: [0.4, 0.5]}\nscenes: [{k: 1.2, mu: 0.4, note: x}]\n",
+    );
+    let o = archstudy(&["check", m.to_str().unwrap()]);
+    assert_usage_error(&o, &["key `note`", "unknown field `note`"]);
+    assert!(!stderr(&o).contains("key `mu`"), "{}", stderr(&o));
+}
+
+#[test]
+fn a_small_study_runs_under_a_tight_address_space_limit() {
+    // 37 load-factor cases need 128 MiB and 37 × 926 bytes: far below 600,000 KiB, which the
+    // estimate of a 1001² map (0.75 GiB besides its cases) refused with advice to run 37
+    // shards that were refused in turn.
+    let dir = scratch("ulimit-small");
+    let m = manifest(
+        &dir,
+        "small.yaml",
+        "name: small\nfind: load_factor\nload_cases:\n  - {name: h, kind: horizontal}\ngrid:\n  k: {from: 1.1, to: 1.46, steps: 37}\n  mu: {values: [0.6]}\n",
+    );
+    let out = dir.join("out");
+    let o = limited(
+        "ulimit -v 600000",
+        &[
+            "run",
+            m.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+            "--jobs",
+            "2",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(out.join("small/results.parquet").is_file());
+}
+
+#[test]
 fn verify_of_a_run_too_large_to_redo_here_checks_integrity_within_the_memory_limit() {
     use polars::prelude::{DataFrame, IntoColumn, NamedFrom, ParquetWriter, Series};
     let dir = scratch("verify-large");

@@ -958,9 +958,15 @@ find: thresholds
     );
     assert!(md.contains(&row), "{row} not in the report");
     assert!(md.contains("load case wind: load_factor"), "{md}");
-    // Key results: the continuum's values, each named by its stored cell and its axes.
+    // Key results: the extremes of λ_max over every voussoir count, each named by its
+    // stored cell and its axes (the continuum is the weakest, 8 voussoirs the strongest).
     let key = format!(
-        "| λ_max (wind) (K = 1.1622, μ = 0.4, continuum, mixed collapse) | {lc:.10} | — | — | `results.parquet row 7 load_factor` |"
+        "| smallest λ_max of the study (wind) (K = 1.1622, μ = 0.4, continuum, mixed collapse) | {lc:.10} | — | — | `results.parquet row 7 load_factor` |"
+    );
+    assert!(md.contains(&key), "{key} not in the report");
+    let key = format!(
+        "| largest λ_max of the study (wind) (K = 1.1622, μ = 0.4, N = 8, mixed collapse) | {:.10} | — | — | `results.parquet row 4 load_factor` |",
+        lambda(Some(8))
     );
     assert!(md.contains(&key), "{key} not in the report");
     assert!(

@@ -233,10 +233,7 @@ fn weight_models_agree_as_the_arch_gets_thin() {
     let mut compared = 0;
     for k in [1.2, 1.1, 1.05, 1.02, 1.01] {
         let a = arch(k, 30.0, None);
-        let c = Arch {
-            weight: WeightModel::Centreline,
-            ..a
-        };
+        let c = a.with_weight(WeightModel::Centreline);
         let (la, ha) = thrust(&a, Friction::INFINITE).map_or((f64::NAN, f64::NAN), |(l, h)| {
             (l.thrust_over_half_weight, h.thrust_over_half_weight)
         });
@@ -258,10 +255,7 @@ fn weight_models_agree_as_the_arch_gets_thin() {
         .unwrap()
         .k;
     let kc_c = thickness(
-        &Arch {
-            weight: WeightModel::Centreline,
-            ..arch(1.5, 90.0, None)
-        },
+        &arch(1.5, 90.0, None).with_weight(WeightModel::Centreline),
         Friction::INFINITE,
     )
     .found()
@@ -295,10 +289,7 @@ fn critical_friction_exactly_at_the_collapse_thickness() {
     // must not chase rounding noise on that plateau (64 voussoirs used to give 0.418).
     let cases = [
         arch(1.5, 90.0, Some(64)),
-        Arch {
-            weight: WeightModel::Centreline,
-            ..arch(1.5, 90.0, Some(16))
-        },
+        arch(1.5, 90.0, Some(16)).with_weight(WeightModel::Centreline),
         arch(1.5, 90.0, Some(16)),
         arch(1.5, 90.0, None),
         arch(1.5, 60.0, None),

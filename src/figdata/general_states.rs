@@ -217,12 +217,10 @@ impl LoadCaseStates<'_> {
         let position = if self.lc.at_deg.is_some() || self.lc.at_x.is_some() {
             (self.lc.at_deg, self.lc.at_x)
         } else {
-            // results.parquet stores α as the arch holds it, in radians and back (60° is
-            // stored as 59.99999999999999°).
+            // results.parquet stores α as given.
             let alpha = at.group.half_angle_deg;
             let own = self.cases.iter().filter(|c| {
-                (c.half_angle_deg == alpha || c.half_angle_deg == alpha.to_radians().to_degrees())
-                    && c.voussoirs == at.group.voussoirs.voussoirs()
+                c.half_angle_deg == alpha && c.voussoirs == at.group.voussoirs.voussoirs()
             });
             weakest(own.copied()).map_or((None, None), |c| self.position_of(c))
         };
@@ -457,6 +455,7 @@ mod tests {
             load_factor: Some(lambda),
             mechanism: Some(mech.into()),
             collapse_below: None,
+            sliding_at_load: 0,
         }
     }
 

@@ -134,6 +134,7 @@ mod tests {
             load_factor: lambda,
             mechanism: Some(mech.into()),
             collapse_below: None,
+            sliding_at_load: 0,
         }
     }
 

@@ -51,13 +51,26 @@ pub(super) fn friendly(message: &str) -> String {
         .replace("expected f64", "expected a number")
 }
 
-/// The key written on the manifest's line `line` before column `column` (1-based), e.g.
-/// `steps` for `  k: {from: 1.1, to: 1.2, steps: 5.5}` at the column of 5.5; else the
-/// first key on that line, or on the nearest line above that has one.
+/// The key written on the manifest's line `line` at column `column` (1-based) when a key
+/// starts there (an unknown key: `note` in `{k: 1.2, mu: 0.4, note: x}` at the column of
+/// `note`); else the key before that column, e.g. `steps` for
+/// `  k: {from: 1.1, to: 1.2, steps: 5.5}` at the column of 5.5; else the first key on that
+/// line, or on the nearest line above that has one.
 pub(super) fn key_at(text: &str, line: u64, column: u64) -> Option<String> {
     let lines: Vec<&str> = text.lines().collect();
     let index = usize::try_from(line).ok()?.checked_sub(1)?;
     let here = lines.get(index)?;
+    let before = usize::try_from(column)
+        .unwrap_or(usize::MAX)
+        .saturating_sub(1);
+    let from: String = here.chars().skip(before).collect();
+    let word: String = from
+        .chars()
+        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+        .collect();
+    if !word.is_empty() && from[word.len()..].trim_start().starts_with(':') {
+        return Some(word);
+    }
     let upto: String = here
         .chars()
         .take(usize::try_from(column).unwrap_or(usize::MAX))
@@ -103,5 +116,9 @@ mod tests {
         assert_eq!(key_at(t, 1, 7).as_deref(), Some("name"));
         assert_eq!(key_at(t, 5, 7).as_deref(), Some("mu"));
         assert_eq!(key_at(t, 9, 1), None);
+        // An unknown key inside a flow mapping is named, not the key before it.
+        let f = "scenes: [{k: 1.2, mu: 0.4, note: x}]\n";
+        assert_eq!(key_at(f, 1, 28).as_deref(), Some("note"));
+        assert_eq!(key_at(f, 1, 23).as_deref(), Some("mu"));
     }
 }

@@ -97,7 +97,8 @@ pub(super) struct RawArch {
     pub(super) voussoirs: Option<Spanned<RawVoussoirs>>,
 }
 
-/// One grid axis as written: `{from, to, steps}` or `{values: [...]}`.
+/// One grid axis as written: `{from, to, steps}` (with `also: [...]` values added to the
+/// range) or `{values: [...]}`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct RawAxis {
@@ -105,6 +106,8 @@ pub(super) struct RawAxis {
     pub(super) to: Option<Spanned<Number>>,
     pub(super) steps: Option<Spanned<i64>>,
     pub(super) values: Option<Vec<Spanned<Number>>>,
+    /// Values added to a range, e.g. `also: [inf]` beside `{from: 0.2, to: 0.8, steps: 13}`.
+    pub(super) also: Option<Vec<Spanned<Number>>>,
 }
 
 /// The `grid:` block as written.

@@ -346,7 +346,7 @@ impl LinesChart {
             .any(|q| q.collapse.is_finite() && q.y.is_finite())
         {
             items.push(LegendItem::new(
-                "gap: from the collapse (first complete solution) up to the static limit",
+                "gap: from the collapse (first complete solution, crossbar) to the static limit",
                 Mark::Line {
                     color: palette::GAP,
                     width: 1.4,

@@ -55,6 +55,9 @@ pub struct LoadCaseView {
     /// the study's find then).
     #[serde(default)]
     pub find: Option<String>,
+    /// Position of a point load as x/L of the span, when the load case gives it so.
+    #[serde(default)]
+    pub at_x: Option<f64>,
 }
 
 /// A scene of the resolved manifest.
@@ -140,6 +143,24 @@ impl ManifestView {
     pub fn axis(&self, name: &str) -> Option<&AxisView> {
         self.grid.iter().find(|a| a.name == name)
     }
+
+    /// True when the point loads of load case `lc` are placed by x/L (its own `at_x` or an
+    /// `at_x` axis): their position is then the x/L given, while the joint angle found for
+    /// it moves with K (or differs in its last bit from one K to the next).
+    pub fn positions_by_x(&self, lc: &str) -> bool {
+        self.axis("at_x").is_some()
+            || self
+                .load_cases
+                .iter()
+                .any(|l| l.name == lc && l.at_x.is_some())
+    }
+}
+
+/// The position of a point load as the manifest gave it: x/L when placed by x/L
+/// ([`ManifestView::positions_by_x`]), else the joint angle in degrees. Two cases whose
+/// loads compare equal here carry the load at one position.
+pub fn given_position(c: &store::LoadFactorCase, by_x: bool) -> Option<f64> {
+    if by_x { c.at_x } else { c.at_deg }
 }
 
 /// The stored data of a run.

@@ -5,8 +5,8 @@
 use super::charts::FigureSpec;
 use super::data::RunData;
 use super::tables::{
-    accuracy, boundaries, convergence, figures, key_results, mechanisms, provenance, study, timing,
-    values,
+    accuracy, boundaries, convergence, figures, key_results, mechanisms, notes, provenance, study,
+    timing, values,
 };
 use serde::Serialize;
 
@@ -43,6 +43,9 @@ pub struct ReportView {
     pub key_results: Vec<KeyResult>,
     /// Why the key results table is empty, when it is.
     pub key_results_note: String,
+    /// What a reader would otherwise take for a defect: cases where no requested μ stands,
+    /// unbounded load factors.
+    pub reading_notes: Vec<String>,
     /// Figures.
     pub figures: Vec<FigureView>,
     /// True when the run located a boundary (the section is left out otherwise).
@@ -95,6 +98,7 @@ pub fn build(data: &RunData, figs: &[FigureSpec], svgs: &[String]) -> ReportView
         paper_case: m.is_paper_case(),
         key_results,
         key_results_note: note,
+        reading_notes: notes::notes(data),
         figures,
         has_boundaries: !boundaries.groups.is_empty(),
         boundary_groups: boundaries.groups,

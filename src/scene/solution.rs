@@ -273,7 +273,41 @@ pub(super) fn finite(x: f64) -> Option<f64> {
     x.is_finite().then_some(x)
 }
 
+/// Relative distance from ±α within which a joint angle names a springing: a springing
+/// found from α in radians reads 59.99999999999999° for α = 60° and is written as given.
+pub const SPRINGING_NAME_REL: f64 = 1e-12;
+
 impl Solution {
+    /// Writes the joint angles of the springings as the half-angle given (60, not the
+    /// 59.99999999999999 of a round trip through radians), within [`SPRINGING_NAME_REL`].
+    pub fn name_springings_as_given(&mut self) {
+        let alpha = self.half_angle_deg;
+        let snap = |a: &mut f64| {
+            if (a.abs() - alpha).abs() <= SPRINGING_NAME_REL * alpha {
+                *a = alpha.copysign(*a);
+            }
+        };
+        for h in self
+            .hinges
+            .iter_mut()
+            .chain(&mut self.collapse_hinges)
+            .chain(&mut self.hinges_min)
+            .chain(&mut self.hinges_max)
+        {
+            snap(&mut h.angle_deg);
+        }
+        for j in self
+            .sliding_joints
+            .iter_mut()
+            .chain(&mut self.collapse_sliding_joints)
+            .chain(&mut self.sliding_joints_min)
+            .chain(&mut self.sliding_joints_max)
+        {
+            snap(&mut j.angle_deg);
+        }
+        self.collapse_lifted_joints.iter_mut().for_each(snap);
+    }
+
     /// Fills the position of a point load not given in its own terms (the angle of an x/L
     /// position, the x/L of an angle) from the model of the scene at its K.
     pub fn set_point_position(&mut self, model: &ArchModel) {

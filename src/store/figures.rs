@@ -583,10 +583,18 @@ pub struct LoadFactorCase {
     /// The collapse, the first complete solution, when it comes before λ_max (a gap);
     /// `None` without a gap or in runs written before it was stored.
     pub collapse_below: Option<f64>,
+    /// How many sliding joints of the mechanism at λ_max lie at the point load's joint
+    /// (within [`AT_LOAD_TOL_DEG`]): two on the continuum are both sides of the load, a
+    /// sliver of zero width punched through the arch.
+    pub sliding_at_load: u8,
 }
 
+/// Joint angles within this of a point load's angle, degrees, are joints at the load: both
+/// sides of a load on the continuum are joints whose angles differ in the last bits.
+pub const AT_LOAD_TOL_DEG: f64 = 1e-9;
+
 /// The columns of results.parquet read into [`LoadFactorCase`].
-const LOAD_FACTOR_COLUMNS: [&str; 12] = [
+const LOAD_FACTOR_COLUMNS: [&str; 13] = [
     "load_case",
     "find",
     "k",
@@ -599,6 +607,7 @@ const LOAD_FACTOR_COLUMNS: [&str; 12] = [
     "mechanism",
     "collapse_value",
     "gap_width",
+    "sliding_angles_deg",
 ];
 
 /// Reads the load_factor cases of results.parquet (rows of other finds are skipped).
@@ -637,6 +646,15 @@ fn load_factor_cases_of_frame(
         f64_or_null(df, "collapse_value"),
         f64_or_null(df, "gap_width"),
     );
+    let slides = super::list_f64_column(df, "sliding_angles_deg").with_context(cx)?;
+    let at_load = |i: usize| -> u8 {
+        let Some(a) = at[i] else { return 0 };
+        let n = slides[i]
+            .iter()
+            .filter(|s| (*s - a).abs() <= AT_LOAD_TOL_DEG)
+            .count();
+        u8::try_from(n).unwrap_or(u8::MAX)
+    };
     Ok((0..lc.len())
         .filter(|&i| find[i].as_deref() == Some("load_factor"))
         .map(|i| LoadFactorCase {
@@ -651,6 +669,7 @@ fn load_factor_cases_of_frame(
             load_factor: lf[i],
             mechanism: mech[i].clone(),
             collapse_below: collapse[i].filter(|_| width[i].is_some_and(|w| w > 0.0)),
+            sliding_at_load: at_load(i),
         })
         .collect())
 }

@@ -177,16 +177,44 @@ fn axis_values(name: AxisName, ax: &Spanned<RawAxis>, cx: &Ctx) -> Result<Vec<f6
     let key = format!("grid.{}", name.as_str());
     let a = &ax.value;
     match (&a.values, &a.from, &a.to, &a.steps) {
-        (Some(vals), None, None, None) => list_values(name, ax, vals, &key, cx),
+        (Some(vals), None, None, None) if a.also.is_none() => list_values(name, ax, vals, &key, cx),
         (None, Some(from), Some(to), Some(steps)) => {
-            range_values(name, Range { from, to, steps }, &key, cx)
+            let mut vals = range_values(name, Range { from, to, steps }, &key, cx)?;
+            for v in a.also.iter().flatten() {
+                add_value(name, &mut vals, v, &format!("{key}.also"), cx)?;
+            }
+            Ok(vals)
         }
         _ => Err(cx.err(
             Some(ax.referenced),
             &key,
-            "an axis is either {from, to, steps} (all three) or {values: [...]}",
+            "an axis is either {from, to, steps} (all three, with `also: [...]` for values \
+             added to the range such as inf) or {values: [...]}",
         )),
     }
+}
+
+/// Adds a valid value to an axis, refusing one it already holds.
+fn add_value(
+    name: AxisName,
+    out: &mut Vec<f64>,
+    v: &Spanned<Number>,
+    key: &str,
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    check_value(name, v.value.0, v.referenced, key, cx)?;
+    if out.contains(&v.value.0) {
+        return Err(cx.err(
+            Some(v.referenced),
+            key,
+            format!(
+                "value {} is repeated: each value may appear once",
+                fmt_num(v.value.0)
+            ),
+        ));
+    }
+    out.push(v.value.0);
+    Ok(())
 }
 
 /// An axis given as `{values: [...]}`: at least one value, each valid and given once.
@@ -206,18 +234,7 @@ fn list_values(
     }
     let mut out = Vec::with_capacity(vals.len());
     for v in vals {
-        check_value(name, v.value.0, v.referenced, &format!("{key}.values"), cx)?;
-        if out.contains(&v.value.0) {
-            return Err(cx.err(
-                Some(v.referenced),
-                &format!("{key}.values"),
-                format!(
-                    "value {} is repeated: each value may appear once",
-                    fmt_num(v.value.0)
-                ),
-            ));
-        }
-        out.push(v.value.0);
+        add_value(name, &mut out, v, &format!("{key}.values"), cx)?;
     }
     Ok(out)
 }
@@ -380,6 +397,28 @@ pub(crate) fn decimal_range(f: f64, t: f64, n: usize) -> Vec<f64> {
 #[cfg(test)]
 mod range_tests {
     use super::decimal_range;
+    use crate::manifest::types::AxisName;
+
+    fn parse(grid: &str) -> Result<crate::manifest::Manifest, crate::manifest::ManifestError> {
+        crate::manifest::parse(
+            &format!("name: a\ngrid:\n  k: {{values: [1.2]}}\n{grid}"),
+            std::path::Path::new("a.yaml"),
+        )
+    }
+
+    #[test]
+    fn a_range_may_also_hold_infinite_friction() {
+        let m = parse("  mu: {from: 0.2, to: 0.4, steps: 3, also: [inf]}\n").unwrap();
+        let mu = m.grid.iter().find(|a| a.name == AxisName::Mu).unwrap();
+        assert_eq!(mu.values, vec![0.2, 0.3, 0.4, f64::INFINITY]);
+        let e = parse("  mu: {from: 0.2, to: 0.4, steps: 3, also: [0.3]}\n").unwrap_err();
+        assert!(
+            e.to_string().contains("grid.mu.also") && e.to_string().contains("repeated"),
+            "{e}"
+        );
+        let e = parse("  mu: {values: [0.2], also: [inf]}\n").unwrap_err();
+        assert!(e.to_string().contains("also"), "{e}");
+    }
 
     #[test]
     fn decimal_ranges_hold_the_decimals_the_manifest_implies() {

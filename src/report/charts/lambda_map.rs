@@ -7,14 +7,15 @@
 //! blended across the change), so a grid of a million cases draws from a few tens of
 //! thousands of values.
 
-use super::load_factor::{Cases, distinct, gap_sentence, group_stem, group_text};
+use super::load_factor::{
+    Cases, distinct, gap_sentence, group_stem, group_text, load_at_text, positions,
+};
 use super::regime_map::{ArchKey, bifurcations_of_arch};
 use super::{Chart, FigureSpec, LoadCaseFigure};
 use crate::plan;
 use crate::plot::lambda_map::{LambdaMap, LambdaStrip};
 use crate::plot::regime_map::{Crossing, RegimeMap};
 use crate::report::data::RunData;
-use crate::report::format::position_deg;
 use crate::store::LoadFactorCase;
 use std::sync::Arc;
 
@@ -198,10 +199,7 @@ pub fn figures(data: &RunData, lc: &LoadCaseFigure) -> Vec<FigureSpec> {
     for g in groups {
         let own = cases.of_group(g);
         let on = group_text(g, several);
-        let at = own
-            .iter()
-            .find_map(|c| c.at_deg)
-            .map_or(String::new(), |a| format!(", load at {}°", position_deg(a)));
+        let at = load_at_text(&own, data.manifest.positions_by_x(lc.name));
         let title = format!("Collapse load factor over μ and K{on}{at}");
         let Some(map) = lambda_map(data, lc.name, &own, several.then_some(g), title) else {
             continue;
@@ -252,8 +250,8 @@ struct Grid {
     infinite: Option<Vec<f64>>,
 }
 
-fn grid_of(own: &[&LoadFactorCase]) -> Option<Grid> {
-    if distinct(own.iter().filter_map(|c| c.at_deg)).len() > 1 {
+fn grid_of(own: &[&LoadFactorCase], by_x: bool) -> Option<Grid> {
+    if positions(own, by_x).len() > 1 {
         return None;
     }
     let mu: Vec<f64> = distinct(own.iter().map(|c| c.mu).filter(|m| m.is_finite()));
@@ -297,7 +295,7 @@ pub fn lambda_map(
     arch: Option<ArchKey>,
     title: String,
 ) -> Option<LambdaMap> {
-    let g = grid_of(own)?;
+    let g = grid_of(own, data.manifest.positions_by_x(lc))?;
     let finite = || {
         g.lambda
             .iter()

@@ -4,7 +4,7 @@
 
 use super::{Chart, FigureSpec, LoadCaseFigure, mu_text};
 use crate::plot::lines::{Line, LinePanel, LinePoint, LinesChart};
-use crate::report::data::{ArchView, RunData};
+use crate::report::data::{ArchView, RunData, given_position};
 use crate::report::format::{given, position_deg};
 use crate::store::LoadFactorCase;
 
@@ -87,6 +87,25 @@ pub fn x_over_l(arch: &ArchView, k: f64, half_angle_deg: f64, at_deg: f64) -> f6
     0.5 * (1.0 + x / spring)
 }
 
+/// The distinct positions of the point load among `own`, as the manifest gave them (x/L
+/// when `by_x`, else degrees).
+pub(super) fn positions(own: &[&LoadFactorCase], by_x: bool) -> Vec<f64> {
+    distinct(own.iter().filter_map(|c| given_position(c, by_x)))
+}
+
+/// ", load at …" naming the position of the point load of `own` as given (x/L or degrees),
+/// empty for other loads.
+pub(super) fn load_at_text(own: &[&LoadFactorCase], by_x: bool) -> String {
+    let Some(c) = own.iter().find(|c| c.at_deg.is_some() || c.at_x.is_some()) else {
+        return String::new();
+    };
+    match (by_x, c.at_x, c.at_deg) {
+        (true, Some(x), _) => format!(", load at x/L = {}", given(x)),
+        (_, _, Some(a)) => format!(", load at {}°", position_deg(a)),
+        _ => String::new(),
+    }
+}
+
 /// The cases of one load case, and the arch group to draw (the first half-angle and voussoir
 /// count of the study: a study with arch axes gets one figure per group).
 pub(super) struct Cases<'a> {
@@ -150,16 +169,17 @@ pub fn figures(data: &RunData, lc: &LoadCaseFigure) -> Vec<FigureSpec> {
     let cases = Cases::of(data, lc.name);
     let groups = cases.groups();
     let several = groups.len() > 1;
+    let by_x = data.manifest.positions_by_x(lc.name);
     let mut out = Vec::new();
     for g in groups {
         let own = cases.of_group(g);
-        let positions = distinct(own.iter().filter_map(|c| c.at_deg));
         let on = group_text(g, several);
         let stem = format!("{}{}", lc.stem_suffix, group_stem(g, several));
-        if positions.len() > 2 {
+        if positions(&own, by_x).len() > 2 {
             out.extend(influence_line(data, lc, &own, (&on, &stem)));
         } else {
-            out.extend(lambda_curves(lc, &own, (&on, &stem)));
+            let at = load_at_text(&own, by_x);
+            out.extend(lambda_curves(lc, &own, (&on, &stem), &at));
         }
     }
     out
@@ -170,6 +190,7 @@ fn lambda_curves(
     lc: &LoadCaseFigure,
     own: &[&LoadFactorCase],
     (on, stem): (&str, &str),
+    at: &str,
 ) -> Option<FigureSpec> {
     // Lines only for values at which some case has a finite λ (an arch that never stands
     // at that μ or K would be an empty line with a label).
@@ -221,10 +242,6 @@ fn lambda_curves(
     if panels.is_empty() {
         return None;
     }
-    let at = own
-        .iter()
-        .find_map(|c| c.at_deg)
-        .map_or(String::new(), |a| format!(", load at {}°", position_deg(a)));
     Some(FigureSpec {
         stem: format!("load-factor{stem}"),
         title: format!("Collapse load factor λ{}{on}{at}", lc.title_suffix),

@@ -5,6 +5,7 @@
 pub mod accuracy;
 pub mod arch_axis;
 pub mod critical;
+pub mod critical_arches;
 pub mod domains;
 pub mod lambda_map;
 pub mod load_factor;
@@ -134,6 +135,7 @@ pub fn build(data: &RunData) -> Vec<FigureSpec> {
         out.extend(regime_map::figure(data, &lc));
         out.extend(arch_axis::figures(data, &lc));
         out.extend(critical::figure(data, &lc));
+        out.extend(critical_arches::figure(data, &lc));
         out.extend(load_factor::figures(data, &lc));
         out.extend(lambda_map::figures(data, &lc));
     }

@@ -21,7 +21,8 @@ pub fn figure(data: &RunData, s: &StateRow) -> FigureSpec {
     } else {
         " Open circles: the line's points on the joints, the only sections where it must stay within the arch."
     };
-    let mut texts = StateTexts::of(s);
+    let moving = data.manifest.axis("at_deg").is_some() || data.manifest.axis("at_x").is_some();
+    let mut texts = StateTexts::of(s, moving);
     let arch = arch_text(s);
     if !arch.is_empty() {
         texts.title = format!("{} ({arch})", texts.title);
@@ -80,9 +81,11 @@ pub fn arch_text(s: &StateRow) -> String {
         parts.push(format!("{} weight", s.weight));
     }
     if s.load != "self_weight" {
-        let at = s
-            .at_deg
-            .map_or(String::new(), |a| format!(" at {}°", given(a)));
+        let at = match (s.at_x, s.at_deg) {
+            (Some(x), _) => format!(" at x/L = {}", given(x)),
+            (None, Some(a)) => format!(" at {}°", position_deg(a)),
+            (None, None) => String::new(),
+        };
         let lambda = s
             .load_factor
             .map_or(String::new(), |l| format!(", λ = {}", short(l)));
@@ -106,7 +109,8 @@ struct StateTexts {
 }
 
 impl StateTexts {
-    fn of(s: &StateRow) -> Self {
+    /// The words of state `s`; `moving` when the study moves its point load over positions.
+    fn of(s: &StateRow, moving: bool) -> Self {
         let mech = s.mechanism.clone().unwrap_or_else(|| "none".into());
         let values = format!(
             "K = {} (t/R_c = {}), μ = {}, H/W_half = {}",
@@ -123,7 +127,7 @@ impl StateTexts {
             "bifurcation" => Self::bifurcation(&mech, values),
             "minimum_thrust" => Self::minimum_thrust(s, &mech, values),
             "largest_margin" => Self::largest_margin(s, values),
-            "weakest" | "weakest_of_mechanism" => Self::weakest_case(s, &mech, values),
+            "weakest" | "weakest_of_mechanism" => Self::weakest_case(s, &mech, values, moving),
             "collapse" if s.load_factor.is_some() && s.load != "self_weight" => {
                 Self::load_factor_collapse(s, &mech, values)
             }
@@ -152,16 +156,16 @@ impl StateTexts {
             ],
             note: None,
             caption: format!(
-                "The scene stands ({values}); drawn is its admissible state farthest from every limit condition (the largest common margin of the no-tension and friction conditions of all joints), so its line of thrust lies inside the masonry and no joint is at a limit."
+                "The scene stands ({values}); drawn is its admissible state farthest from every limit condition (the largest common margin of the no-tension and friction conditions of all joints), so its line of thrust lies inside the masonry and no joint is at a limit. This is another kind of state than the minimum-thrust state drawn for a circular arch with radial joints under its own weight: compare forms by their collapse states, not by these scenes."
             ),
         }
     }
 
     /// The collapse state at λ_max of a stored load_factor case.
-    fn weakest_case(s: &StateRow, mech: &str, values: String) -> Self {
+    fn weakest_case(s: &StateRow, mech: &str, values: String, moving: bool) -> Self {
         let lambda = s.load_factor.map_or("—".into(), short);
         let which = if s.state == "weakest" {
-            if s.load == "point" {
+            if s.load == "point" && moving {
                 "the weakest load position of the study".to_string()
             } else {
                 "the weakest case of the study".to_string()

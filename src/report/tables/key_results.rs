@@ -25,6 +25,10 @@ pub struct KeyResult {
     pub source: String,
 }
 
+/// At most this many points of a collapse curve listed when it has no rotational K_c or
+/// sliding μ_min to list.
+const COLLAPSE_POINTS: usize = 6;
+
 fn compare(v: f64, p: Option<Printed>) -> (String, String) {
     match p {
         Some(p) => (p.text.to_string(), diff(v - p.value)),
@@ -62,8 +66,12 @@ pub fn key_results(data: &RunData) -> (Vec<KeyResult>, String) {
         // The collapse-curve rows do not say which arch they belong to: with a half-angle or
         // voussoir axis only the bifurcations, which name their arch, are listed.
         if crate::report::charts::single_model_of(data) {
+            let before = rows.out.len();
             rows.rotational_collapse(&curve, &on);
             rows.sliding_collapse(&curve, &on);
+            if rows.out.len() == before {
+                rows.collapse_points(&curve, &on);
+            }
         }
         rows.bifurcations(data, &lc.name, &on);
     }
@@ -131,6 +139,26 @@ impl Rows {
                 None,
                 src("thrust_over_half_weight"),
             );
+        }
+    }
+
+    /// The located points of the collapse curve, up to [`COLLAPSE_POINTS`] spread along it,
+    /// when neither a rotational K_c nor a sliding μ_min was listed: a sweep over μ at one K
+    /// (or over K at one μ) reports the μ_c (or K_c) it located and its mechanism.
+    fn collapse_points(&mut self, curve: &[(usize, &BoundaryRow)], on: &str) {
+        let idx: Vec<f64> = (0..curve.len()).map(|i| i as f64).collect();
+        for j in crate::report::charts::load_factor::spread(&idx, COLLAPSE_POINTS) {
+            let (i, b) = curve[j as usize];
+            let mech = b
+                .mechanism
+                .as_deref()
+                .map_or(String::new(), |m| format!(", {m} collapse"));
+            let (q, v, col) = if b.axis == "mu" {
+                (format!("μ_c at K = {}{mech}{on}", given(b.k)), b.mu, "mu")
+            } else {
+                (format!("K_c at μ = {}{mech}{on}", given(b.mu)), b.k, "k")
+            };
+            self.push(q, v, None, format!("boundaries.parquet row {i} {col}"));
         }
     }
 
@@ -410,8 +438,10 @@ fn group_text(data: &RunData, g: &crate::store::BifurcationGroup) -> String {
             None => "continuum".into(),
         });
     }
-    if let Some(a) = g.at_deg {
-        parts.push(format!("load at {}°", position_deg(a)));
+    match (g.at_x, g.at_deg) {
+        (Some(x), _) => parts.push(format!("load at x/L = {}", given(x))),
+        (None, Some(a)) => parts.push(format!("load at {}°", position_deg(a))),
+        (None, None) => {}
     }
     if parts.is_empty() {
         String::new()

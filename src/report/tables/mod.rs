@@ -8,6 +8,7 @@ pub mod export;
 pub mod figures;
 pub mod key_results;
 pub mod mechanisms;
+pub mod notes;
 pub mod provenance;
 pub mod study;
 pub mod timing;

@@ -5,7 +5,7 @@
 
 use super::{Rows, group_text};
 use crate::report::charts::load_factor::{compact, spread, x_over_l};
-use crate::report::data::RunData;
+use crate::report::data::{RunData, given_position};
 use crate::report::format::{given, position_deg, short};
 use crate::store::LoadFactorCase;
 
@@ -22,8 +22,17 @@ fn case_text(data: &RunData, c: &LoadFactorCase) -> String {
         format!("K = {}", compact(c.k)),
         format!("μ = {}", compact(c.mu)),
     ];
-    if let Some(a) = c.at_deg {
-        let xl = x_over_l(&data.manifest.arch, c.k, c.half_angle_deg, a);
+    if data.manifest.positions_by_x(&c.load_case)
+        && let Some(x) = c.at_x
+    {
+        let angle = c
+            .at_deg
+            .map_or(String::new(), |a| format!(" ({}°)", position_deg(a)));
+        parts.push(format!("load at x/L = {}{angle}", given(x)));
+    } else if let Some(a) = c.at_deg {
+        let xl = c
+            .at_x
+            .unwrap_or_else(|| x_over_l(&data.manifest.arch, c.k, c.half_angle_deg, a));
         parts.push(format!(
             "load at {}° (x/L = {})",
             position_deg(a),
@@ -52,11 +61,10 @@ fn distinct(vals: impl Iterator<Item = f64>) -> Vec<f64> {
     v
 }
 
-/// The bounded cases of a load case summarised: one arch's (the continuum's when the study
-/// has it, else the first half-angle and voussoir count's). Those of the figure lattice, and
-/// with `singled` the cases singled out over every case too (in row order, each once), among
-/// which are the least and largest λ_max of all cases.
-fn summary_cases<'a>(data: &'a RunData, lc: &str, singled: bool) -> Vec<&'a LoadFactorCase> {
+/// Every bounded case of a load case, of every arch: those of the figure lattice and the
+/// cases singled out over every case (in row order, each once), among which are the least
+/// and largest λ_max of all cases.
+fn study_cases<'a>(data: &'a RunData, lc: &str) -> Vec<&'a LoadFactorCase> {
     let mut bounded: Vec<&LoadFactorCase> = data
         .load_factors
         .iter()
@@ -65,6 +73,14 @@ fn summary_cases<'a>(data: &'a RunData, lc: &str, singled: bool) -> Vec<&'a Load
         .collect();
     bounded.sort_by_key(|c| c.row);
     bounded.dedup_by_key(|c| c.row);
+    bounded
+}
+
+/// The bounded cases of a load case summarised: one arch's (the continuum's when the study
+/// has it, else the first half-angle and voussoir count's). Those of the figure lattice, and
+/// with `singled` the cases singled out over every case too.
+fn summary_cases<'a>(data: &'a RunData, lc: &str, singled: bool) -> Vec<&'a LoadFactorCase> {
+    let bounded = study_cases(data, lc);
     let group = |c: &LoadFactorCase| (c.half_angle_deg.to_bits(), c.voussoirs);
     let chosen = bounded
         .iter()
@@ -93,12 +109,13 @@ impl Rows {
         );
     }
 
-    /// The weakest and strongest case, and λ_max at up to 3 × 3 (K, μ) of the grid: at the
-    /// weakest position when a point load moves. With a half-angle or voussoir axis, of the
+    /// The weakest and strongest case of the whole study (every arch of its half-angle and
+    /// voussoir axes), and λ_max at up to 3 × 3 (K, μ) of the grid: at the weakest position
+    /// when a point load moves. With a half-angle or voussoir axis the table is of the
     /// continuum when the study has it (the convergence table gives every count), else of
     /// the first arch. Each case is listed once.
     pub(super) fn load_factor_summary(&mut self, data: &RunData, lc: &str, on: &str) {
-        let all = summary_cases(data, lc, true);
+        let all = study_cases(data, lc);
         let lambda = |c: &&LoadFactorCase| c.load_factor.unwrap_or(f64::NAN);
         let (Some(lo), Some(hi)) = (
             all.iter().min_by(|a, b| lambda(a).total_cmp(&lambda(b))),
@@ -114,7 +131,8 @@ impl Rows {
             self.load_factor_row(data, format!("largest λ_max of the study{on}"), hi);
             listed.extend([lo.row, hi.row]);
         }
-        let moving = distinct(cases.iter().filter_map(|c| c.at_deg)).len() > 1;
+        let by_x = data.manifest.positions_by_x(lc);
+        let moving = distinct(cases.iter().filter_map(|c| given_position(c, by_x))).len() > 1;
         let ks = spread(&distinct(cases.iter().map(|c| c.k)), TABLE_SIDE);
         let mus = spread(&distinct(cases.iter().map(|c| c.mu)), TABLE_SIDE);
         for &k in &ks {

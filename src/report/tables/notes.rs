@@ -1,0 +1,188 @@
+//! Notes in words on what a reader would otherwise take for a defect of the run: cases where
+//! no requested μ lets the arch stand under its own weight, and load positions at which λ
+//! is unbounded. Each note names the counts and the values behind it, from the stored data.
+
+use crate::report::charts::load_factor::compact;
+use crate::report::data::{RunData, given_position};
+use crate::report::format::{given, position_deg};
+use crate::store::ResultRow;
+
+/// At most this many values listed in a note.
+const LISTED: usize = 8;
+
+/// `values` as a list of at most [`LISTED`] of them, with how many more there are.
+fn listed(values: &[String]) -> String {
+    let mut s = values
+        .iter()
+        .take(LISTED)
+        .cloned()
+        .collect::<Vec<_>>()
+        .join(", ");
+    if values.len() > LISTED {
+        s.push_str(&format!(" and {} more", values.len() - LISTED));
+    }
+    s
+}
+
+/// Sorted distinct values.
+fn distinct(mut v: Vec<f64>) -> Vec<f64> {
+    v.retain(|x| !x.is_nan());
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    v
+}
+
+/// The notes of a run, each a sentence or two.
+pub fn notes(data: &RunData) -> Vec<String> {
+    let mut out = Vec::new();
+    out.extend(never_stands(data));
+    out.extend(unbounded(data));
+    out.extend(slivers(data));
+    out
+}
+
+/// Point loads on the continuum whose mechanism slides on both sides of the load's joint:
+/// a sliver of zero width punched through the arch, whose λ_max the friction on those two
+/// joints alone sets.
+fn slivers(data: &RunData) -> Option<String> {
+    let mut punched: Vec<&crate::store::LoadFactorCase> = data
+        .load_factors
+        .iter()
+        .chain(&data.load_factor_singled)
+        .filter(|c| c.voussoirs.is_none() && c.sliding_at_load >= 2 && c.load_factor.is_some())
+        .collect();
+    punched.sort_by_key(|c| c.row);
+    punched.dedup_by_key(|c| c.row);
+    let first = punched.first()?;
+    let by_x = data.manifest.positions_by_x(&first.load_case);
+    let at = match (by_x, first.at_x, first.at_deg) {
+        (true, Some(x), _) => format!("x/L = {}", given(x)),
+        (_, _, Some(a)) => format!("{}°", position_deg(a)),
+        _ => String::new(),
+    };
+    let lambda = first
+        .load_factor
+        .map_or(String::new(), |l| format!("{l:.4}"));
+    Some(format!(
+        "A point load on the continuum punches a sliver of zero width through the arch in {} \
+         of the cases drawn (results.parquet row {} first: K = {}, μ = {}, load at {at}, \
+         λ_max = {lambda}): the mechanism slides on both sides of the load's joint, so λ_max \
+         is what the friction of those two joints alone carries, and it does not change with \
+         the thickness. A load spread over a length of the extrados, or an arch of voussoirs \
+         (`voussoirs`), has no such sliver.",
+        punched.len(),
+        first.row,
+        compact(first.k),
+        compact(first.mu),
+    ))
+}
+
+/// Cases where the arch does not stand under its own weight at the μ of the case, and the K
+/// (with the arch of a voussoir axis) at which not one requested μ stands.
+fn never_stands(data: &RunData) -> Option<String> {
+    let count = data
+        .totals
+        .by_outcome
+        .get("never stands")
+        .copied()
+        .unwrap_or(0);
+    if count == 0 {
+        return None;
+    }
+    let total = data.totals.rows;
+    let mut text = format!(
+        "No requested μ stands in {count} of {total} cases: there the arch does not stand under \
+         its own weight at the μ of the case (outcome never_stands in results.parquet), so it \
+         has no load factor or critical value; the figures leave those cases out."
+    );
+    let rows = |r: &&ResultRow| r.find.as_ref() != "state";
+    let lines = |stands: bool| -> Vec<(u64, Option<u32>)> {
+        let mut v: Vec<(u64, Option<u32>)> = data
+            .results
+            .iter()
+            .filter(rows)
+            .filter(|r| (r.outcome.as_deref() != Some("never_stands")) == stands)
+            .filter_map(|r| Some((r.k?.to_bits(), r.voussoirs)))
+            .collect();
+        v.sort_unstable();
+        v.dedup();
+        v
+    };
+    let standing = lines(true);
+    let none: Vec<f64> = distinct(
+        lines(false)
+            .into_iter()
+            .filter(|l| standing.binary_search(l).is_err())
+            .map(|(k, _)| f64::from_bits(k))
+            .collect(),
+    );
+    let mus = distinct(
+        data.results
+            .iter()
+            .filter(rows)
+            .filter_map(|r| r.mu)
+            .collect(),
+    );
+    if let (false, Some(&top)) = (none.is_empty(), mus.last()) {
+        let ks: Vec<String> = none.iter().map(|&k| compact(k)).collect();
+        text.push_str(&format!(
+            " At K = {} not one of the requested μ (up to {}) stands: the arch needs more \
+             friction there than the study asks for; `archstudy solve --find friction --k K` \
+             (with the study's arch) gives the least μ at which it stands.",
+            listed(&ks),
+            given(top)
+        ));
+    }
+    Some(text)
+}
+
+/// Cases whose λ is unbounded, with the load positions (as given) where it is.
+fn unbounded(data: &RunData) -> Option<String> {
+    let count = data
+        .totals
+        .by_outcome
+        .get("unbounded")
+        .copied()
+        .unwrap_or(0);
+    if count == 0 {
+        return None;
+    }
+    let mut text = format!(
+        "λ is unbounded in {count} cases (outcome unbounded, load_factor null in \
+         results.parquet): the arch stands under every multiple of the live load there (a point \
+         load over a springing, or on a part that carries it straight to a support); the \
+         figures leave a gap at those cases."
+    );
+    let unbounded_rows: Vec<u64> = data
+        .results
+        .iter()
+        .filter(|r| r.outcome.as_deref() == Some("unbounded"))
+        .map(|r| r.case_id)
+        .collect();
+    let mut positions: Vec<String> = Vec::new();
+    for lc in &data.manifest.load_cases {
+        let by_x = data.manifest.positions_by_x(&lc.name);
+        let at = distinct(
+            data.load_factors
+                .iter()
+                .filter(|c| c.load_case == lc.name)
+                .filter(|c| unbounded_rows.binary_search(&(c.row as u64)).is_ok())
+                .filter_map(|c| given_position(c, by_x))
+                .collect(),
+        );
+        positions.extend(at.into_iter().map(|p| {
+            if by_x {
+                format!("x/L = {}", given(p))
+            } else {
+                format!("{}°", position_deg(p))
+            }
+        }));
+    }
+    if !positions.is_empty() {
+        text.push_str(&format!(
+            " Point load positions with an unbounded λ: {}.",
+            listed(&positions)
+        ));
+    }
+    Some(text)
+}

@@ -1,0 +1,68 @@
+//! The report says in words what a reader would otherwise take for a defect: cases where no
+//! requested μ lets the arch stand, load positions with an unbounded λ, and the sliver a
+//! point load punches through the continuum.
+
+use crate::common::{run_study, scratch};
+use std::path::Path;
+
+fn report(run: &Path) -> String {
+    std::fs::read_to_string(run.join("report.md")).expect("report.md")
+}
+
+#[test]
+fn cases_where_no_requested_mu_stands_are_named() {
+    let dir = scratch("notes-never-stands");
+    let run = run_study(
+        &dir,
+        "vj.yaml",
+        "name: vj\narch:\n  joints: vertical\n  voussoirs: 7\nfind: load_factor\nload_cases:\n  - {name: h, kind: horizontal}\ngrid:\n  k: {from: 1.1, to: 1.5, steps: 5}\n  mu: {values: [0.3, 0.5, 0.7, 0.9]}\n",
+    );
+    let md = report(&run);
+    // Vertical joints need far more friction: at K = 1.4 and 1.5 only μ = 0.9 stands.
+    assert!(
+        md.contains("No requested μ stands in 18 of 20 cases"),
+        "{md}"
+    );
+    assert!(
+        md.contains("At K = 1.1, 1.2, 1.3 not one of the requested μ (up to 0.9) stands"),
+        "{md}"
+    );
+}
+
+#[test]
+fn positions_with_an_unbounded_lambda_are_named() {
+    let dir = scratch("notes-unbounded");
+    let run = run_study(
+        &dir,
+        "unb.yaml",
+        "name: unb\nfind: load_factor\nload_cases:\n  - {name: p, kind: point}\ngrid:\n  at_deg: {values: [-90, -60, -30]}\n  k: {values: [1.2, 1.3]}\n  mu: {values: [0.5, inf]}\n",
+    );
+    let md = report(&run);
+    // Over the springing at every K and μ, and at −60° without sliding (μ = ∞).
+    assert!(md.contains("λ is unbounded in 6 cases"), "{md}");
+    assert!(
+        md.contains("Point load positions with an unbounded λ: -90°, -60°."),
+        "{md}"
+    );
+}
+
+#[test]
+fn a_sliver_punched_by_a_point_load_on_the_continuum_is_named() {
+    let dir = scratch("notes-sliver");
+    let run = run_study(
+        &dir,
+        "sliver.yaml",
+        "name: sliver\narch:\n  half_angle_deg: 60\nfind: load_factor\nload_cases:\n  - {name: p, kind: point, at_x: 0.25}\ngrid:\n  k: {values: [1.1, 1.2, 1.3]}\n  mu: {values: [0.3, 0.5, inf]}\n",
+    );
+    let md = report(&run);
+    // K = 1.2 and 1.3 at μ = 0.3, and K = 1.3 at μ = 0.5, slide on both sides of the load;
+    // λ_max = 0.4894 at μ = 0.3 whatever K.
+    assert!(
+        md.contains(
+            "punches a sliver of zero width through the arch in 3 of the cases drawn \
+             (results.parquet row 3 first: K = 1.2, μ = 0.3, load at x/L = 0.25, \
+             λ_max = 0.4894)"
+        ),
+        "{md}"
+    );
+}
