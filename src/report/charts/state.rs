@@ -3,7 +3,7 @@
 
 use super::{Chart, FigureSpec, mu_text, safe};
 use crate::figdata;
-use crate::plot::state::StateDrawing;
+use crate::plot::state::{StateDrawing, Xy};
 use crate::report::data::RunData;
 use crate::report::format::{given, position_deg, short};
 use crate::store::StateRow;
@@ -16,6 +16,12 @@ pub fn figure(data: &RunData, s: &StateRow) -> FigureSpec {
     let fig = figdata::line_of_thrust_figure(&s.state_id);
     let line = data.curve(&fig, figdata::LINE_OF_THRUST);
     let on_joints = data.curve(&fig, figdata::LINE_ON_JOINTS);
+    figure_with_lines(s, line, on_joints)
+}
+
+/// The drawing of a state from its line of thrust and the line's points on the voussoir
+/// joints (empty for the continuum).
+pub fn figure_with_lines(s: &StateRow, line: Vec<Xy>, on_joints: Vec<Xy>) -> FigureSpec {
     let joints_note = if on_joints.is_empty() {
         ""
     } else {
