@@ -188,9 +188,9 @@ pub fn solve_scenes(
         })
         .collect();
     let weight = scenes.first().map(|s| s.arch.weight);
-    let separable = scenes.iter().all(|s| {
-        s.find == Find::State && s.uses_closed_forms() && Some(s.arch.weight) == weight
-    });
+    let separable = scenes
+        .iter()
+        .all(|s| s.find == Find::State && s.uses_closed_forms() && Some(s.arch.weight) == weight);
     progress.begin(Stage::Analyse, Some(cases.len() as u64));
     let rows = match weight {
         Some(w) if separable => run_separable(&cases, w, progress),

@@ -374,7 +374,7 @@ class Table:
 
     def to_pyarrow(self) -> Any:
         """The table as a ``pyarrow.Table`` (needs pyarrow ≥ 14)."""
-        import pyarrow as pa
+        import pyarrow as pa  # type: ignore[import-untyped]
 
         return pa.table(self)
 

@@ -5,6 +5,7 @@ Its functions take their arguments by position, in the order ``archstudy`` passe
 
 from typing import Any, Callable
 
+__all__ = ["solve", "solve_many", "run", "read_table", "__version__"]
 __version__: str
 
 _Table = tuple[int, list[str], Callable[..., Any]]

@@ -2,13 +2,13 @@
 //! solved by [`archstudy::scene::solve`] or, many at once, by
 //! [`archstudy::engine::solve_scenes`] with the GIL released.
 
+use crate::arg;
 use crate::interrupt::run_stoppable;
 use crate::table::Table;
 use archstudy::engine;
 use archstudy::manifest::{LoadCase, LoadKind, SceneOptions};
 use archstudy::model::Load;
 use archstudy::scene::{self, Scene};
-use crate::arg;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyCFunction, PyDict, PyTuple};
 use rayon::prelude::*;

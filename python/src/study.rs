@@ -1,10 +1,10 @@
 //! Studies: `run` a manifest as `archstudy run` does (the same run directory), and read a
 //! stored table of a run directory.
 
+use crate::arg;
 use crate::interrupt::run_stoppable;
 use crate::table::Table;
 use archstudy::runner::{self, RunOptions};
-use crate::arg;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 use std::path::PathBuf;

@@ -146,7 +146,12 @@ pub const BLOCK_ROWS: usize = 1 << 18;
 /// Only the answer columns that the study's finds fill are written ([`filled_by`]): a
 /// `state` study has no `k_crit` column, a `thickness` study no `regime` column.
 pub fn results_frame(plan: &Plan, rows: &[CaseResult]) -> Result<DataFrame> {
-    frame_in_blocks(&plan.manifest.load_cases, rows, BLOCK_ROWS, Columns::OfStudy)
+    frame_in_blocks(
+        &plan.manifest.load_cases,
+        rows,
+        BLOCK_ROWS,
+        Columns::OfStudy,
+    )
 }
 
 /// The results table of rows that belong to no study (scenes solved one by one, or many at
@@ -423,8 +428,15 @@ mod tests {
         .unwrap();
         let plan = crate::plan::build(m).unwrap();
         let rows = engine::run(&plan, &crate::progress::Silent);
-        let whole = frame_in_blocks(&plan.manifest.load_cases, &rows, usize::MAX, Columns::OfStudy).unwrap();
-        let blocks = frame_in_blocks(&plan.manifest.load_cases, &rows, 7, Columns::OfStudy).unwrap();
+        let whole = frame_in_blocks(
+            &plan.manifest.load_cases,
+            &rows,
+            usize::MAX,
+            Columns::OfStudy,
+        )
+        .unwrap();
+        let blocks =
+            frame_in_blocks(&plan.manifest.load_cases, &rows, 7, Columns::OfStudy).unwrap();
         assert_eq!(whole.height(), 143);
         assert_eq!(whole.get_column_names(), blocks.get_column_names());
         // Solve times differ between runs of a case but not between two tables of one run.
@@ -470,7 +482,8 @@ mod tests {
                 crate::manifest::parse(&format!("name: a\n{text}"), Path::new("a.yaml")).unwrap();
             let plan = crate::plan::build(m).unwrap();
             let rows = engine::run(&plan, &crate::progress::Silent);
-            let all = frame_in_blocks(&plan.manifest.load_cases, &rows, BLOCK_ROWS, Columns::All).unwrap();
+            let all = frame_in_blocks(&plan.manifest.load_cases, &rows, BLOCK_ROWS, Columns::All)
+                .unwrap();
             let kept = results_frame(&plan, &rows).unwrap();
             for c in all.columns() {
                 let name = c.name().as_str();

@@ -5,8 +5,8 @@
 //! sliding joints); any other find draws the scene's state of largest margin when it stands,
 //! else the arch alone with a note that no equilibrium exists.
 
-use super::state::figure_with_lines;
 use super::FigureSpec;
+use super::state::figure_with_lines;
 use crate::figdata::{self, general};
 use crate::plot::Format;
 use crate::scene::{Find, Outcome, Solution};
@@ -49,7 +49,10 @@ pub fn state_row(sol: &Solution) -> StateRow {
         thrust_s_max: sol.thrust_s_max,
         ..StateRow::default()
     };
-    let critical = matches!(sol.find, Find::Thickness | Find::Friction | Find::LoadFactor);
+    let critical = matches!(
+        sol.find,
+        Find::Thickness | Find::Friction | Find::LoadFactor
+    );
     if critical && sol.outcome == Some(Outcome::Found) {
         row.state = "collapse".into();
         row.mechanism = sol.mechanism.map(|m| m.as_str().to_string());
