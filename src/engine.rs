@@ -471,3 +471,51 @@ fn run_lines(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
         .map(|(r, c)| r.unwrap_or_else(|| checked(c, || scene::solve(&c.scene))))
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::manifest::SceneOptions;
+    use crate::progress::{Silent, Stopped};
+
+    fn state(k: f64, mu: f64) -> scene::Scene {
+        SceneOptions {
+            k: Some(k),
+            mu,
+            ..SceneOptions::default()
+        }
+        .scene()
+        .unwrap()
+    }
+
+    /// Progress that asks to stop from the start.
+    struct StopNow;
+    impl Progress for StopNow {
+        fn begin(&self, _: Stage, _: Option<u64>) {}
+        fn advance(&self, _: u64) {}
+        fn end(&self, _: Stage) {}
+        fn stopped(&self) -> bool {
+            true
+        }
+    }
+
+    #[test]
+    fn a_batch_of_state_scenes_answers_as_each_scene_alone() {
+        let scenes = [state(1.1, 0.3), state(1.2, 0.5), state(1.35, f64::INFINITY)];
+        let rows = solve_scenes(&scenes, &Silent).unwrap();
+        for (i, (r, s)) in rows.iter().zip(&scenes).enumerate() {
+            let one = scene::solve(s);
+            assert_eq!(r.case_id, i as u64);
+            assert_eq!(r.status, Status::Ok);
+            assert_eq!(r.solution.regime, one.regime, "scene {i}");
+            assert_eq!(r.solution.thrust_r_min, one.thrust_r_min, "scene {i}");
+            assert_eq!(r.solution.thrust_s_max, one.thrust_s_max, "scene {i}");
+        }
+    }
+
+    #[test]
+    fn a_batch_asked_to_stop_returns_stopped() {
+        let scenes = [state(1.2, 0.5), state(1.3, 0.6)];
+        assert_eq!(solve_scenes(&scenes, &StopNow).unwrap_err(), Stopped);
+    }
+}
