@@ -138,18 +138,69 @@ pub fn run(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
 /// case; the caller begins and ends the stage (a shard spans one stage over its chunks).
 pub fn analyse(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
     match GridPath::of(plan) {
-        GridPath::Separable => run_separable(plan, progress),
+        GridPath::Separable => run_separable(&plan.cases, plan.manifest.arch.weight, progress),
         GridPath::KLines => run_lines(plan, progress),
-        GridPath::CaseByCase => plan
-            .cases
-            .par_iter()
-            .map(|c| {
-                let r = checked(c, || scene::solve(&c.scene));
-                progress.advance(1);
-                r
-            })
-            .collect(),
+        GridPath::CaseByCase => case_by_case(&plan.cases, progress),
     }
+}
+
+/// Every case on its own; once `progress` asks to stop, the cases not begun are skipped.
+fn case_by_case(cases: &[Case], progress: &dyn Progress) -> Vec<CaseResult> {
+    cases
+        .par_iter()
+        .map(|c| {
+            if progress.stopped() {
+                return skipped(c);
+            }
+            let r = checked(c, || scene::solve(&c.scene));
+            progress.advance(1);
+            r
+        })
+        .collect()
+}
+
+/// The row of a case skipped because the caller asked to stop.
+fn skipped(c: &Case) -> CaseResult {
+    CaseResult {
+        case_id: c.id,
+        load_case: c.load_case,
+        solution: scene::solve_inputs_only(&c.scene),
+        status: Status::Error,
+        message: Some(crate::progress::Stopped.to_string()),
+    }
+}
+
+/// Analyses scenes that belong to no study (one row each, ids 0, 1, ... in their order, load
+/// case 0): self-weight `state` scenes of circular arches with radial joints and one weight
+/// model by the separable path, any other batch scene by scene, in parallel on the current
+/// rayon pool. [`Stopped`](crate::progress::Stopped) when `progress` asked to stop.
+pub fn solve_scenes(
+    scenes: &[scene::Scene],
+    progress: &dyn Progress,
+) -> Result<Vec<CaseResult>, crate::progress::Stopped> {
+    let cases: Vec<Case> = scenes
+        .iter()
+        .enumerate()
+        .map(|(i, s)| Case {
+            id: i as u64,
+            load_case: 0,
+            scene: *s,
+        })
+        .collect();
+    let weight = scenes.first().map(|s| s.arch.weight);
+    let separable = scenes
+        .iter()
+        .all(|s| s.find == Find::State && s.uses_closed_forms() && Some(s.arch.weight) == weight);
+    progress.begin(Stage::Analyse, Some(cases.len() as u64));
+    let rows = match weight {
+        Some(w) if separable => run_separable(&cases, w, progress),
+        _ => case_by_case(&cases, progress),
+    };
+    progress.end(Stage::Analyse);
+    if progress.stopped() {
+        return Err(crate::progress::Stopped);
+    }
+    Ok(rows)
 }
 
 /// Key of the geometry shared by the cases whose domains can be reused.
@@ -170,13 +221,13 @@ struct SeparableKeys {
 }
 
 impl SeparableKeys {
-    fn of(plan: &Plan) -> Self {
+    fn of(cases: &[Case]) -> Self {
         let mut rot: Vec<GeomKey> = Vec::new();
         let mut rot_index: HashMap<GeomKey, usize> = HashMap::new();
         let mut sld: Vec<(GeomKey, u64)> = Vec::new();
         let mut sld_index: HashMap<(GeomKey, u64), usize> = HashMap::new();
-        let mut cases = Vec::with_capacity(plan.cases.len());
-        for c in &plan.cases {
+        let mut keyed = Vec::with_capacity(cases.len());
+        for c in cases {
             let a = &c.scene.arch;
             let rk = GeomKey {
                 half_angle_deg_bits: a.half_angle_deg().to_bits(),
@@ -192,9 +243,13 @@ impl SeparableKeys {
                 sld.push(sk);
                 sld.len() - 1
             });
-            cases.push((ri, si));
+            keyed.push((ri, si));
         }
-        SeparableKeys { rot, sld, cases }
+        SeparableKeys {
+            rot,
+            sld,
+            cases: keyed,
+        }
     }
 
     /// How many cases share each rotational and each sliding domain, to split its cost.
@@ -222,11 +277,11 @@ fn timed<D>(solve: impl FnOnce() -> D) -> Timed<D> {
 
 /// Every rotational and sliding domain of a separable grid, solved in parallel.
 fn separable_domains(
-    plan: &Plan,
+    cases: &[Case],
+    weight: crate::model::WeightModel,
     keys: &SeparableKeys,
 ) -> (Vec<Timed<RotationalDomain>>, Vec<Timed<SlidingDomain>>) {
-    let weight = plan.manifest.arch.weight;
-    let sample = plan.cases.first().map(|c| c.scene.arch);
+    let sample = cases.first().map(|c| c.scene.arch);
     let arch_for = |g: &GeomKey, k: f64| {
         crate::model::Arch::from_valid(k, f64::from_bits(g.half_angle_deg_bits), weight, g.joints)
     };
@@ -256,15 +311,21 @@ fn separable_domains(
 /// A symmetric self-weight `state` grid: each domain solved once (timed; a panic there marks
 /// the cases that use it as failed), then a comparison per case. A case's solve time is its
 /// own comparison plus its share of both domain solves.
-fn run_separable(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
-    let keys = SeparableKeys::of(plan);
-    let (rot, sld) = separable_domains(plan, &keys);
+fn run_separable(
+    cases: &[Case],
+    weight: crate::model::WeightModel,
+    progress: &dyn Progress,
+) -> Vec<CaseResult> {
+    let keys = SeparableKeys::of(cases);
+    let (rot, sld) = separable_domains(cases, weight, &keys);
     let (rot_uses, sld_uses) = keys.uses();
-    let results: Vec<CaseResult> = plan
-        .cases
+    let results: Vec<CaseResult> = cases
         .par_iter()
         .zip(keys.cases.par_iter())
         .map(|(c, &(ri, si))| {
+            if progress.stopped() {
+                return skipped(c);
+            }
             let r = match (&rot[ri], &sld[si]) {
                 (Ok((rd, rt)), Ok((sd, st))) => {
                     let start = Instant::now();
@@ -407,4 +468,52 @@ fn run_lines(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
         .zip(&plan.cases)
         .map(|(r, c)| r.unwrap_or_else(|| checked(c, || scene::solve(&c.scene))))
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::manifest::SceneOptions;
+    use crate::progress::{Silent, Stopped};
+
+    fn state(k: f64, mu: f64) -> scene::Scene {
+        SceneOptions {
+            k: Some(k),
+            mu,
+            ..SceneOptions::default()
+        }
+        .scene()
+        .unwrap()
+    }
+
+    /// Progress that asks to stop from the start.
+    struct StopNow;
+    impl Progress for StopNow {
+        fn begin(&self, _: Stage, _: Option<u64>) {}
+        fn advance(&self, _: u64) {}
+        fn end(&self, _: Stage) {}
+        fn stopped(&self) -> bool {
+            true
+        }
+    }
+
+    #[test]
+    fn a_batch_of_state_scenes_answers_as_each_scene_alone() {
+        let scenes = [state(1.1, 0.3), state(1.2, 0.5), state(1.35, f64::INFINITY)];
+        let rows = solve_scenes(&scenes, &Silent).unwrap();
+        for (i, (r, s)) in rows.iter().zip(&scenes).enumerate() {
+            let one = scene::solve(s);
+            assert_eq!(r.case_id, i as u64);
+            assert_eq!(r.status, Status::Ok);
+            assert_eq!(r.solution.regime, one.regime, "scene {i}");
+            assert_eq!(r.solution.thrust_r_min, one.thrust_r_min, "scene {i}");
+            assert_eq!(r.solution.thrust_s_max, one.thrust_s_max, "scene {i}");
+        }
+    }
+
+    #[test]
+    fn a_batch_asked_to_stop_returns_stopped() {
+        let scenes = [state(1.2, 0.5), state(1.3, 0.6)];
+        assert_eq!(solve_scenes(&scenes, &StopNow).unwrap_err(), Stopped);
+    }
 }

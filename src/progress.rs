@@ -48,7 +48,18 @@ pub trait Progress: Send + Sync {
     fn advance(&self, n: u64);
     /// The current stage has ended.
     fn end(&self, stage: Stage);
+    /// True when whoever drives the run asks it to stop (a Python caller's Ctrl-C): the
+    /// engine skips the cases it has not begun and the run returns [`Stopped`] at its next
+    /// check, its staging directory removed. Never true by default.
+    fn stopped(&self) -> bool {
+        false
+    }
 }
+
+/// A run or a batch of scenes stopped at its caller's request ([`Progress::stopped`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[error("stopped at the caller's request before it finished")]
+pub struct Stopped;
 
 /// Progress that goes nowhere.
 #[derive(Debug, Clone, Copy, Default)]

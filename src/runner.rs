@@ -273,9 +273,15 @@ pub(crate) fn stage<T>(
     work: impl FnOnce() -> Result<T>,
 ) -> Result<(T, f64)> {
     let t = Instant::now();
+    if progress.stopped() {
+        return Err(crate::progress::Stopped.into());
+    }
     progress.begin(stage, None);
     let out = work();
     progress.end(stage);
+    if progress.stopped() {
+        return Err(crate::progress::Stopped.into());
+    }
     Ok((out?, ms(t)))
 }
 
@@ -307,7 +313,7 @@ fn publish(
 }
 
 /// The worker pool of a run: `jobs` threads, or one per core.
-pub(crate) fn worker_pool(jobs: Option<usize>) -> Result<(rayon::ThreadPool, usize)> {
+pub fn worker_pool(jobs: Option<usize>) -> Result<(rayon::ThreadPool, usize)> {
     let threads = match jobs {
         Some(0) => anyhow::bail!("a run needs at least one worker thread"),
         Some(n) => n,
@@ -414,6 +420,9 @@ pub(crate) fn analyse_in_chunks(
         let plan = plan::build_slice(m.clone(), start..(start + chunk).min(ids.end));
         let t = Instant::now();
         let rows: Vec<CaseResult> = pool.install(|| engine::analyse(&plan, progress));
+        if progress.stopped() {
+            return Err(crate::progress::Stopped.into());
+        }
         out.engine_ms += ms(t);
         let t = Instant::now();
         out.written.push(&plan, &rows, pool)?;

@@ -1,13 +1,9 @@
 //! The command line as typed (clap), turned into the library's domain values at the edge.
 
-use crate::analysis::forms::FormError;
 use crate::error::UsageError;
-use crate::manifest::{MAX_GENERAL_VOUSSOIRS, MAX_K};
-use crate::model::{
-    Arch, ArchForm, Discretisation, Friction, JointOrientation, Load, ModelError, Shape,
-    WeightModel, k_from_t_over_r,
-};
-use crate::scene::{Find, Scene};
+use crate::manifest::SceneOptions;
+use crate::model::Friction;
+use crate::scene::Scene;
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -235,253 +231,53 @@ pub fn parse_mu(s: &str) -> Option<Friction> {
 }
 
 impl SolveArgs {
-    /// The validated scene.
+    /// The validated scene: the options as [`SceneOptions`], checked there, an error naming
+    /// the option as typed (`--t-over-r`).
     pub fn scene(&self) -> Result<Scene, UsageError> {
-        let find = Find::parse(&self.find).ok_or_else(|| {
-            usage(
-                "--find",
-                &self.find,
-                "one of state, thickness, friction, thrust, thresholds, load-factor",
-            )
-        })?;
-        let k = self.k()?;
-        let friction = parse_mu(&self.mu)
+        let mu = parse_mu(&self.mu)
             .ok_or_else(|| usage("--mu", &self.mu, "μ must be a number ≥ 0 or inf"))?;
-        let weight = WeightModel::parse(&self.weight)
-            .ok_or_else(|| usage("--weight", &self.weight, "annular or centreline"))?;
-        let joints = match self.voussoirs {
-            None => Discretisation::Continuum,
-            Some(n) if n >= 1 && n <= i64::from(u32::MAX) => Discretisation::Voussoirs(n as u32),
-            Some(n) => return Err(usage("--voussoirs", n, "N must be an integer ≥ 1")),
-        };
-        let arch = Arch::new(k, self.half_angle, weight, joints).map_err(|e| match e {
-            ModelError::HalfAngle(a) => usage(
-                "--half-angle",
-                a,
-                "α must lie strictly between 0 and 180 degrees",
-            ),
-            other if self.t_over_r.is_some() => usage(
-                "--t-over-r",
-                self.t_over_r.unwrap_or_default(),
-                other.to_string(),
-            ),
-            other => usage("--k", k, other.to_string()),
-        })?;
-        let form = self.form()?;
-        let load = self.load()?;
-        if matches!(find, Find::Thrust | Find::Thresholds)
-            && !(load == Load::SelfWeight && form.is_circular_radial())
-        {
-            return Err(usage(
-                "--find",
-                &self.find,
-                format!(
-                    "{find} is defined for self-weight on a circular arch with radial joints only"
-                ),
-            ));
-        }
-        let lambda = self.lambda(find, load)?;
-        if find == Find::LoadFactor && load == Load::SelfWeight {
-            return Err(usage(
-                "--find",
-                &self.find,
-                "load-factor needs a live load: give --load horizontal or --load point --at DEG",
-            ));
-        }
-        Self::check_general_voussoirs(joints, load, &form)?;
-        let scene = Scene {
-            arch,
-            friction,
-            find,
-            form,
-            load,
-            lambda,
-        };
-        scene.check().map_err(|e| match e {
-            FormError::Eccentricity(v) => usage("--eccentricity", v, e.to_string()),
-            FormError::PointedTooThick { k, .. } => usage("--k", k, e.to_string()),
-            FormError::VerticalBeyondQuadrant(a) => usage("--half-angle", a, e.to_string()),
-            FormError::LoadOutside { at_deg, .. }
-            | FormError::LoadInsideKeystone { at_deg, .. }
-            | FormError::LoadOffExtrados { at_deg, .. } => usage("--at", at_deg, e.to_string()),
-            FormError::NoKeystone(_) => usage("--keystone", "on", e.to_string()),
-            FormError::LoadOffSpan { at_x, .. } | FormError::XInsideKeystone { at_x, .. } => {
-                usage("--at-x", at_x, e.to_string())
-            }
-        })?;
-        Ok(scene)
-    }
-
-    /// K from --k or --t-over-r, within (1, MAX_K].
-    fn k(&self) -> Result<f64, UsageError> {
-        Ok(match (self.k, self.t_over_r) {
-            (Some(_), Some(_)) => {
-                return Err(usage(
-                    "--t-over-r",
-                    self.t_over_r.unwrap_or_default(),
-                    "give either --k or --t-over-r, not both",
-                ));
-            }
-            (Some(k), None) => {
-                if !(k > 1.0 && k <= MAX_K) {
-                    return Err(usage(
-                        "--k",
-                        crate::manifest::short_number(k),
-                        format!(
-                            "K = R/r must be a number greater than 1 and at most {MAX_K}: beyond \
-                             it the solver's answers are not reliable and no masonry arch is \
-                             that thick (README, Limits)"
-                        ),
-                    ));
-                }
-                k
-            }
-            (None, Some(x)) => {
-                let x_max = 2.0 * (MAX_K - 1.0) / (MAX_K + 1.0);
-                if !(x > 0.0 && x <= x_max && k_from_t_over_r(x) > 1.0) {
-                    return Err(usage(
-                        "--t-over-r",
-                        crate::manifest::short_number(x),
-                        format!(
-                            "t/R_c must be a number in (0, {x_max:.4}] (K = R/r in (1, {MAX_K}]), \
-                             large enough that K differs from 1 (t/R_c ≥ 1e-15)"
-                        ),
-                    ));
-                }
-                k_from_t_over_r(x)
-            }
-            (None, None) => 1.35,
-        })
-    }
-
-    /// The general solver's voussoir limit (live loads, pointed arches, vertical joints).
-    fn check_general_voussoirs(
-        joints: Discretisation,
-        load: Load,
-        form: &ArchForm,
-    ) -> Result<(), UsageError> {
-        if let Discretisation::Voussoirs(n) = joints
-            && n > MAX_GENERAL_VOUSSOIRS
-            && (load.is_live() || !form.is_circular_radial())
-        {
-            Err(usage(
-                "--voussoirs",
-                n,
-                format!(
-                    "a live load, a pointed outline or vertical joints are analysed by the \
-                     general solver, which answers promptly up to {MAX_GENERAL_VOUSSOIRS} \
-                     voussoirs: use at most {MAX_GENERAL_VOUSSOIRS}, or omit --voussoirs for \
-                     the continuum"
-                ),
-            ))
-        } else {
-            Ok(())
-        }
-    }
-
-    fn form(&self) -> Result<ArchForm, UsageError> {
-        let joints = JointOrientation::parse(&self.joints)
-            .ok_or_else(|| usage("--joints", &self.joints, "radial or vertical"))?;
-        let shape = match (self.shape.as_str(), self.eccentricity) {
-            ("circular", None) => Shape::Circular,
-            ("circular", Some(e)) => {
-                return Err(usage(
-                    "--eccentricity",
-                    e,
-                    "only a pointed arch has an eccentricity: add --shape pointed",
-                ));
-            }
-            ("pointed", Some(e)) if (0.0..1.0).contains(&e) => Shape::Pointed { eccentricity: e },
-            ("pointed", Some(e)) => {
-                return Err(usage("--eccentricity", e, "e must lie in [0, 1)"));
-            }
-            ("pointed", None) => {
-                return Err(usage(
-                    "--shape",
-                    "pointed",
-                    "a pointed arch needs --eccentricity E (0 ≤ E < 1; 0.5 is the equilateral arch)",
-                ));
-            }
-            (other, _) => return Err(usage("--shape", other, "circular or pointed")),
-        };
-        Ok(ArchForm {
-            shape,
-            joints,
+        let options = SceneOptions {
+            k: self.k,
+            t_over_r: self.t_over_r,
+            mu: mu.mu(),
+            half_angle_deg: self.half_angle,
+            weight: self.weight.clone(),
+            voussoirs: self.voussoirs,
+            find: self.find.clone(),
+            shape: self.shape.clone(),
+            eccentricity: self.eccentricity,
+            joints: self.joints.clone(),
             keystone: self.keystone,
-        })
-    }
-
-    fn load(&self) -> Result<Load, UsageError> {
-        if let Some(x) = self.at_x {
-            return match (self.load.as_str(), self.at) {
-                (_, Some(a)) => Err(usage(
-                    "--at",
-                    a,
-                    "give the position once: --at DEG or --at-x X/L, not both",
-                )),
-                ("point", None) if (0.0..=1.0).contains(&x) => Ok(Load::PointX { at_x: x }),
-                ("point", None) => Err(usage(
-                    "--at-x",
-                    x,
-                    "x/L must lie in [0, 1] (0 and 1 the extrados springings, 0.5 the crown)",
-                )),
-                (_, None) => Err(usage(
-                    "--at-x",
-                    x,
-                    "--at-x is the position of a point load: add --load point",
-                )),
-            };
-        }
-        let load = match (self.load.as_str(), self.at) {
-            ("self-weight" | "self_weight", None) => Load::SelfWeight,
-            ("horizontal", None) => Load::Horizontal,
-            ("point", Some(a)) if a.is_finite() => Load::Point { at_deg: a },
-            ("point", Some(a)) => return Err(usage("--at", a, "a finite angle in degrees")),
-            ("point", None) => {
-                return Err(usage(
-                    "--load",
-                    "point",
-                    "a point load needs its position: add --at DEG (degrees from the crown) or --at-x X/L",
-                ));
-            }
-            (_, Some(a)) => {
-                return Err(usage(
-                    "--at",
-                    a,
-                    "--at is the position of a point load: add --load point",
-                ));
-            }
-            (other, None) => {
-                return Err(usage("--load", other, "self-weight, horizontal or point"));
-            }
+            load: self.load.clone(),
+            at_deg: self.at,
+            at_x: self.at_x,
+            lambda: self.lambda,
         };
-        Ok(load)
+        options
+            .scene()
+            .map_err(|e| usage(flag(e.option), e.value, e.allowed))
     }
+}
 
-    fn lambda(&self, find: Find, load: Load) -> Result<f64, UsageError> {
-        match (self.lambda, load.is_live(), find) {
-            (None, false, _) | (None, true, Find::LoadFactor) => Ok(0.0),
-            (Some(l), _, Find::LoadFactor) => Err(usage(
-                "--lambda",
-                l,
-                "load-factor finds λ itself: remove --lambda",
-            )),
-            (Some(l), false, _) => Err(usage(
-                "--lambda",
-                l,
-                "self-weight has no live part to scale: add --load horizontal or --load point",
-            )),
-            (Some(l), true, _) if l >= 0.0 && l.is_finite() => Ok(l),
-            (Some(l), true, _) => Err(usage("--lambda", l, "λ must be a finite number ≥ 0")),
-            (None, true, _) => Err(usage(
-                "--load",
-                &self.load,
-                format!(
-                    "a live load needs its load factor for --find {}: add --lambda L (or use --find load-factor)",
-                    find
-                ),
-            )),
-        }
+/// The command-line flag of a scene option's keyword.
+fn flag(option: &'static str) -> &'static str {
+    match option {
+        "k" => "--k",
+        "t_over_r" => "--t-over-r",
+        "mu" => "--mu",
+        "half_angle" => "--half-angle",
+        "weight" => "--weight",
+        "voussoirs" => "--voussoirs",
+        "find" => "--find",
+        "shape" => "--shape",
+        "eccentricity" => "--eccentricity",
+        "joints" => "--joints",
+        "keystone" => "--keystone",
+        "load" => "--load",
+        "at" => "--at",
+        "at_x" => "--at-x",
+        "lambda" => "--lambda",
+        other => other,
     }
 }
 

@@ -80,26 +80,35 @@ impl Collector {
     /// The line of thrust of a filled state row and its points on the voussoir joints, on
     /// the row's own arch under its own load (nothing when the row has no crown state).
     fn push_line(&mut self, row: &StateRow) -> Result<()> {
-        let Some(c) = general::CrownForce::of_row(row) else {
+        let Some((line, on_joints)) = lines_of_state(row)? else {
             return Ok(());
         };
-        let model = general::model_of_state(row)?;
         let fig = line_of_thrust_figure(&row.state_id);
-        let j = &row.joints;
-        let angles: Vec<f64> = j
-            .hinge_angles_deg
-            .iter()
-            .chain(&j.sliding_angles_deg)
-            .copied()
-            .collect();
-        self.push(
-            &fig,
-            LINE_OF_THRUST,
-            &general::line_of_thrust(&model, &c, &angles),
-        );
-        self.push(&fig, LINE_ON_JOINTS, &general::line_on_joints(&model, &c));
+        self.push(&fig, LINE_OF_THRUST, &line);
+        self.push(&fig, LINE_ON_JOINTS, &on_joints);
         Ok(())
     }
+}
+
+/// The line of thrust of a filled state row (through its hinges and sliding joints) and its
+/// points on the voussoir joints, on the row's own arch under its own load; `None` when the
+/// row has no crown state.
+pub fn lines_of_state(row: &StateRow) -> Result<Option<(Samples, Samples)>> {
+    let Some(c) = general::CrownForce::of_row(row) else {
+        return Ok(None);
+    };
+    let model = general::model_of_state(row)?;
+    let j = &row.joints;
+    let angles: Vec<f64> = j
+        .hinge_angles_deg
+        .iter()
+        .chain(&j.sliding_angles_deg)
+        .copied()
+        .collect();
+    Ok(Some((
+        general::line_of_thrust(&model, &c, &angles),
+        general::line_on_joints(&model, &c),
+    )))
 }
 
 fn suffix(manifest: &Manifest, load_case: &str) -> String {

@@ -8,12 +8,14 @@
 mod error;
 mod parse_errors;
 mod raw;
+mod scene_options;
 mod types;
 mod validate;
 
 pub use error::ManifestError;
 pub use parse_errors::MAX_NODES;
 pub use raw::{Number, RawVoussoirs};
+pub use scene_options::{SceneOptionError, SceneOptions};
 pub use types::{
     ArchOptions, Author, AxisName, DEFAULT_BOUNDARY_TOLERANCE, FigureWidth, GridAxis, LoadCase,
     LoadKind, Manifest, SceneSpec,

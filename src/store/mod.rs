@@ -17,7 +17,7 @@ pub use figures::{
     read_load_factor_cases_in_blocks, read_mechanisms, read_reference, read_row_arches,
     read_states, reference_frame, states_frame,
 };
-pub use results::{BLOCK_ROWS, filled_by, results_frame};
+pub use results::{BLOCK_ROWS, filled_by, results_frame, scenes_frame};
 pub use rows::{
     BifurcationRow, BoundaryRow, JointLists, ResultRow, read_bifurcations, read_boundaries,
     read_results, read_results_in_blocks, read_results_rows,

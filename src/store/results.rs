@@ -3,6 +3,7 @@
 use super::TableBuilder;
 use crate::analysis::{Hinge, SlidingJoint};
 use crate::engine::CaseResult;
+use crate::manifest::LoadCase;
 use crate::plan::Plan;
 use crate::scene::Find;
 use anyhow::Result;
@@ -145,7 +146,19 @@ pub const BLOCK_ROWS: usize = 1 << 18;
 /// Only the answer columns that the study's finds fill are written ([`filled_by`]): a
 /// `state` study has no `k_crit` column, a `thickness` study no `regime` column.
 pub fn results_frame(plan: &Plan, rows: &[CaseResult]) -> Result<DataFrame> {
-    frame_in_blocks(plan, rows, BLOCK_ROWS, Columns::OfStudy)
+    frame_in_blocks(
+        &plan.manifest.load_cases,
+        rows,
+        BLOCK_ROWS,
+        Columns::OfStudy,
+    )
+}
+
+/// The results table of rows that belong to no study (scenes solved one by one, or many at
+/// once from Python): the columns of results.parquet, each row's `load_case` naming one of
+/// `load_cases`, the answer columns those load cases' finds fill.
+pub fn scenes_frame(load_cases: &[LoadCase], rows: &[CaseResult]) -> Result<DataFrame> {
+    frame_in_blocks(load_cases, rows, BLOCK_ROWS, Columns::OfStudy)
 }
 
 /// Which answer columns a results table holds.
@@ -216,25 +229,25 @@ pub fn filled_by(column: &str) -> Option<&'static [Find]> {
 }
 
 /// The finds of a plan's load cases.
-fn study_finds(plan: &Plan) -> Vec<Find> {
-    let mut finds: Vec<Find> = plan.manifest.load_cases.iter().map(|l| l.find).collect();
+fn study_finds(load_cases: &[LoadCase]) -> Vec<Find> {
+    let mut finds: Vec<Find> = load_cases.iter().map(|l| l.find).collect();
     finds.sort_by_key(|f| f.as_str());
     finds.dedup();
     finds
 }
 
 fn frame_in_blocks(
-    plan: &Plan,
+    load_cases: &[LoadCase],
     rows: &[CaseResult],
     block_rows: usize,
     columns: Columns,
 ) -> Result<DataFrame> {
     if rows.len() <= block_rows {
-        return block_frame(plan, rows, columns);
+        return block_frame(load_cases, rows, columns);
     }
     let blocks = rows
         .par_chunks(block_rows)
-        .map(|b| block_frame(plan, b, columns))
+        .map(|b| block_frame(load_cases, b, columns))
         .collect::<Result<Vec<DataFrame>>>()?;
     let mut blocks = blocks.into_iter();
     let mut df = blocks.next().unwrap_or_default();
@@ -245,12 +258,11 @@ fn frame_in_blocks(
 }
 
 /// The columns of results.parquet that echo the case's inputs, in order.
-fn input_columns<'a>(plan: &'a Plan) -> Vec<Spec<'a>> {
-    let m = &plan.manifest;
+fn input_columns<'a>(load_cases: &'a [LoadCase]) -> Vec<Spec<'a>> {
     vec![
         u64_col("case_id", |r| r.case_id),
-        str_col("load_case", |r| m.load_cases[r.load_case].name.as_str()),
-        str_col("load_kind", |r| m.load_cases[r.load_case].kind.as_str()),
+        str_col("load_case", |r| load_cases[r.load_case].name.as_str()),
+        str_col("load_kind", |r| load_cases[r.load_case].kind.as_str()),
         str_col("find", |r| r.solution.find.as_str()),
         opt_f64("k", |r| r.solution.k),
         opt_f64("t_over_r", |r| r.solution.t_over_r),
@@ -376,9 +388,13 @@ fn answer_columns<'a>() -> Vec<Spec<'a>> {
 }
 
 /// One block of the results table, built in one pass over its rows.
-fn block_frame<'a>(plan: &'a Plan, rows: &'a [CaseResult], columns: Columns) -> Result<DataFrame> {
-    let finds = study_finds(plan);
-    let mut specs = input_columns(plan);
+fn block_frame<'a>(
+    load_cases: &'a [LoadCase],
+    rows: &'a [CaseResult],
+    columns: Columns,
+) -> Result<DataFrame> {
+    let finds = study_finds(load_cases);
+    let mut specs = input_columns(load_cases);
     specs.extend(answer_columns().into_iter().filter(|s| {
         columns != Columns::OfStudy
             || filled_by(s.name()).is_none_or(|by| by.iter().any(|f| finds.contains(f)))
@@ -414,8 +430,15 @@ mod tests {
         .unwrap();
         let plan = crate::plan::build(m).unwrap();
         let rows = engine::run(&plan, &crate::progress::Silent);
-        let whole = frame_in_blocks(&plan, &rows, usize::MAX, Columns::OfStudy).unwrap();
-        let blocks = frame_in_blocks(&plan, &rows, 7, Columns::OfStudy).unwrap();
+        let whole = frame_in_blocks(
+            &plan.manifest.load_cases,
+            &rows,
+            usize::MAX,
+            Columns::OfStudy,
+        )
+        .unwrap();
+        let blocks =
+            frame_in_blocks(&plan.manifest.load_cases, &rows, 7, Columns::OfStudy).unwrap();
         assert_eq!(whole.height(), 143);
         assert_eq!(whole.get_column_names(), blocks.get_column_names());
         // Solve times differ between runs of a case but not between two tables of one run.
@@ -461,7 +484,8 @@ mod tests {
                 crate::manifest::parse(&format!("name: a\n{text}"), Path::new("a.yaml")).unwrap();
             let plan = crate::plan::build(m).unwrap();
             let rows = engine::run(&plan, &crate::progress::Silent);
-            let all = frame_in_blocks(&plan, &rows, BLOCK_ROWS, Columns::All).unwrap();
+            let all = frame_in_blocks(&plan.manifest.load_cases, &rows, BLOCK_ROWS, Columns::All)
+                .unwrap();
             let kept = results_frame(&plan, &rows).unwrap();
             for c in all.columns() {
                 let name = c.name().as_str();

@@ -11,6 +11,7 @@ pub mod lambda_map;
 pub mod load_factor;
 pub mod mechanisms;
 pub mod regime_map;
+pub mod solution;
 pub mod state;
 
 pub use accuracy::{AccuracyRow, accuracy_rows, orders, quantity_label, quantity_rank};

@@ -3,7 +3,7 @@
 
 use super::{Chart, FigureSpec, mu_text, safe};
 use crate::figdata;
-use crate::plot::state::StateDrawing;
+use crate::plot::state::{StateDrawing, Xy};
 use crate::report::data::RunData;
 use crate::report::format::{given, position_deg, short};
 use crate::store::StateRow;
@@ -16,12 +16,24 @@ pub fn figure(data: &RunData, s: &StateRow) -> FigureSpec {
     let fig = figdata::line_of_thrust_figure(&s.state_id);
     let line = data.curve(&fig, figdata::LINE_OF_THRUST);
     let on_joints = data.curve(&fig, figdata::LINE_ON_JOINTS);
+    let moving = data.manifest.axis("at_deg").is_some() || data.manifest.axis("at_x").is_some();
+    figure_with_lines(s, line, on_joints, moving)
+}
+
+/// The drawing of a state from its line of thrust and the line's points on the voussoir
+/// joints (empty for the continuum); `moving` when the study moves its point load (the
+/// caption then names the weakest position).
+pub fn figure_with_lines(
+    s: &StateRow,
+    line: Vec<Xy>,
+    on_joints: Vec<Xy>,
+    moving: bool,
+) -> FigureSpec {
     let joints_note = if on_joints.is_empty() {
         ""
     } else {
         " Open circles: the line's points on the joints, the only sections where it must stay within the arch."
     };
-    let moving = data.manifest.axis("at_deg").is_some() || data.manifest.axis("at_x").is_some();
     let mut texts = StateTexts::of(s, moving);
     let arch = arch_text(s);
     if !arch.is_empty() {

@@ -1,0 +1,140 @@
+//! The state drawing of one solved scene (`archstudy.solve` in a notebook): the report's own
+//! drawing of a state ([`super::state`]), on the scene's arch to scale.
+//!
+//! A critical find draws its limit state (the arch at K_c, μ_c or λ_max with its hinges and
+//! sliding joints); any other find draws the scene's state of largest margin when it stands,
+//! else the arch alone with a note that no equilibrium exists.
+
+use super::FigureSpec;
+use super::state::figure_with_lines;
+use crate::figdata::{self, general};
+use crate::plot::Format;
+use crate::scene::{Find, Outcome, Solution};
+use crate::store::{JointLists, StateRow};
+use anyhow::Result;
+
+/// The state row drawn for a solution: its arch, load and, when known, its crown state.
+pub fn state_row(sol: &Solution) -> StateRow {
+    let k = sol.k.or(sol.k_crit).or(sol.k_c_rotational).unwrap_or(1.35);
+    let mu = if sol.mu_infinite {
+        f64::INFINITY
+    } else {
+        sol.mu.or(sol.mu_crit).unwrap_or(f64::INFINITY)
+    };
+    let mut row = StateRow {
+        state_id: "solution".into(),
+        source: "scene".into(),
+        state: "no_equilibrium".into(),
+        load_case: sol.load.into(),
+        scene_k: k,
+        scene_mu: mu,
+        k,
+        t_over_r: crate::model::t_over_r_from_k(k),
+        mu,
+        half_angle_deg: sol.half_angle_deg,
+        weight: sol.weight.as_str().into(),
+        voussoirs: sol.voussoirs,
+        shape: sol.shape.into(),
+        eccentricity: sol.eccentricity.unwrap_or(0.0),
+        joint_orientation: sol.joints.into(),
+        keystone: sol.keystone && sol.voussoirs.is_none(),
+        load: sol.load.into(),
+        at_deg: sol.at_deg,
+        at_x: sol.at_x,
+        load_factor: sol.lambda.or(sol.load_factor),
+        regime: sol.regime.map(|r| r.as_str().to_string()),
+        thrust_r_min: sol.thrust_r_min,
+        thrust_r_max: sol.thrust_r_max,
+        thrust_s_min: sol.thrust_s_min,
+        thrust_s_max: sol.thrust_s_max,
+        ..StateRow::default()
+    };
+    let critical = matches!(
+        sol.find,
+        Find::Thickness | Find::Friction | Find::LoadFactor
+    );
+    if critical && sol.outcome == Some(Outcome::Found) {
+        row.state = "collapse".into();
+        row.mechanism = sol.mechanism.map(|m| m.as_str().to_string());
+        row.thrust_over_half_weight = sol.thrust_over_half_weight;
+        row.crown_moment = sol.crown_moment;
+        row.crown_shear = sol.crown_shear;
+        row.joints = JointLists {
+            hinge_angles_deg: sol.hinges.iter().map(|h| h.angle_deg).collect(),
+            hinge_faces: sol.hinges.iter().map(|h| h.face.as_str().into()).collect(),
+            sliding_angles_deg: sol.sliding_joints.iter().map(|s| s.angle_deg).collect(),
+            sliding_senses: sol
+                .sliding_joints
+                .iter()
+                .map(|s| s.sense.as_str().into())
+                .collect(),
+        };
+    } else if let Ok(model) = general::model_of_state(&row) {
+        let phi = crate::model::Friction::new(mu)
+            .unwrap_or(crate::model::Friction::INFINITE)
+            .angle();
+        let lambda = row.load_factor.unwrap_or(0.0);
+        if let Some(c) = general::largest_margin_state(&model, phi, lambda) {
+            row.state = "largest_margin".into();
+            row.thrust_over_half_weight = finite(c.fx);
+            row.crown_moment = finite(-c.m0);
+            row.crown_shear = finite(c.fy);
+        }
+    }
+    row
+}
+
+fn finite(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+/// The drawing of a solution's state, as the report draws a state.
+pub fn figure(sol: &Solution) -> Result<FigureSpec> {
+    let row = state_row(sol);
+    let (line, on_joints) = figdata::lines_of_state(&row)?.unwrap_or_default();
+    Ok(figure_with_lines(&row, line, on_joints, false))
+}
+
+/// The drawing of a solution's state as the text of an SVG file.
+pub fn svg(sol: &Solution) -> Result<String> {
+    let bytes = figure(sol)?.render(Format::Svg)?;
+    Ok(String::from_utf8(bytes)?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::manifest::SceneOptions;
+
+    #[test]
+    fn a_thickness_find_draws_its_limit_state_at_k_crit_with_its_five_hinges() {
+        let scene = SceneOptions {
+            find: "thickness".into(),
+            mu: 0.35,
+            ..SceneOptions::default()
+        }
+        .scene()
+        .unwrap();
+        let sol = crate::scene::solve_static(&scene);
+        let row = state_row(&sol);
+        assert_eq!(row.state, "collapse");
+        assert_eq!(Some(row.k), sol.k_crit);
+        let svg = svg(&sol).unwrap();
+        assert!(svg.starts_with("<svg"), "{}", &svg[..40]);
+        assert!(svg.contains("K = "), "the title names K");
+    }
+
+    #[test]
+    fn a_state_that_stands_draws_its_state_of_largest_margin() {
+        let scene = SceneOptions {
+            k: Some(1.3),
+            mu: 0.5,
+            ..SceneOptions::default()
+        }
+        .scene()
+        .unwrap();
+        let row = state_row(&crate::scene::solve(&scene));
+        assert_eq!(row.state, "largest_margin");
+        assert!(row.thrust_over_half_weight.is_some_and(|h| h > 0.0));
+    }
+}
