@@ -48,14 +48,6 @@ fn a_merge_refuses_shard_tables_that_are_not_what_the_shard_wrote_or_the_plan_ho
             vec!["not the table the shard wrote"],
         ),
         (
-            "K off the plan, hash recomputed",
-            |s| {
-                store::rewrite_f64_value(&s.join("results.parquet"), "k", 0, Some(7.7)).unwrap();
-                rehash(s);
-            },
-            vec!["column `k`"],
-        ),
-        (
             "rows swapped keeping their ids",
             |s| {
                 let p = s.join("results.parquet");
