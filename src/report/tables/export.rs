@@ -312,7 +312,7 @@ pub fn csv(t: &ExportTable) -> String {
 /// characters that reorder or hide text (bidirectional controls, zero-width characters).
 pub fn plain(s: &str) -> String {
     s.chars()
-        .filter(|&c| !(c.is_control() && !matches!(c, '\t' | '\n' | '\r')) && !is_invisible(c))
+        .filter(|&c| (!c.is_control() || matches!(c, '\t' | '\n' | '\r')) && !is_invisible(c))
         .collect()
 }
 
