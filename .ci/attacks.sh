@@ -37,6 +37,30 @@ for m in tests/corpus/*.yaml; do
   fi
 done
 expect2 "not a regular file" "$bin" check /dev/zero
+refused() { # refused NEEDLE COMMAND...: fails (not by the timeout) naming NEEDLE, no panic
+  local needle="$1"; shift
+  local err rc
+  err="$(timeout 20 "$@" 2>&1)"; rc=$?
+  if [ "$rc" = 0 ] || [ "$rc" = 124 ] || ! grep -qF -- "$needle" <<<"$err" || grep -q panicked <<<"$err"; then
+    echo "REGRESSION: $* -> exit $rc: $err"; fail=1
+  else
+    echo "ok: $*"
+  fi
+}
+# FIFOs and devices are refused before they are opened (opening a FIFO waits for a writer).
+mkfifo "$scratch/fifo.yaml"
+expect2 "not a regular file" timeout 20 "$bin" check "$scratch/fifo.yaml"
+expect2 "not a regular file" timeout 20 "$bin" run "$scratch/fifo.yaml" --out "$scratch/o"
+expect2 "not a regular file" timeout 20 "$bin" slurm "$scratch/fifo.yaml" --shards 2 --out "$scratch/o"
+expect2 "FIFO or device" timeout 20 "$bin" verify "$scratch/fifo.yaml"
+for kind in fifo zero; do
+  d="$scratch/run-$kind"
+  mkdir -p "$d"
+  if [ "$kind" = fifo ]; then mkfifo "$d/run.json"; else ln -s /dev/zero "$d/run.json"; fi
+  refused "not a regular file" "$bin" report "$d"
+  refused "not a regular file" "$bin" merge "$d" --out "$scratch/o"
+  refused "run.json" "$bin" verify "$d" --no-rerun
+done
 expect2 "--t-over-r" "$bin" solve --t-over-r 1e-300
 expect2 "at most 100" "$bin" solve --k 1e300 --mu 0.4
 expect2 "--voussoirs" timeout 20 "$bin" solve --load horizontal --find load-factor --voussoirs 1000000

@@ -149,7 +149,7 @@ pub struct Provenance {
 
 /// Reads the provenance fields of a run.json.
 pub fn read_provenance(run_json: &Path) -> Result<Provenance> {
-    let text = std::fs::read_to_string(run_json)
+    let text = crate::output::read_regular_text(run_json, crate::output::MAX_RUN_JSON_BYTES)
         .with_context(|| format!("cannot read {}", run_json.display()))?;
     let v: serde_json::Value = serde_json::from_str(&text)
         .with_context(|| format!("{} is not valid JSON", run_json.display()))?;

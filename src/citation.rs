@@ -41,15 +41,18 @@ fn author_entity(i: usize, a: &Author) -> Value {
     e
 }
 
-/// The RO-Crate metadata of a run: `files` are the run directory's files (relative path,
+/// The RO-Crate metadata of a run, one entity per `@id` (authors with one ORCID are one
+/// person, named as first listed): `files` are the run directory's files (relative path,
 /// size in bytes), as [`RunLayout::files`] lists them.
 pub fn crate_metadata(manifest: &Manifest, info: &RunInfo, files: &[(String, u64)]) -> Value {
-    let authors: Vec<Value> = manifest
-        .authors
-        .iter()
-        .enumerate()
-        .map(|(i, a)| author_entity(i, a))
-        .collect();
+    // One entity per identifier: an author listed twice under one ORCID is one person.
+    let mut authors: Vec<Value> = Vec::new();
+    for (i, a) in manifest.authors.iter().enumerate() {
+        let e = author_entity(i, a);
+        if !authors.iter().any(|x| x["@id"] == e["@id"]) {
+            authors.push(e);
+        }
+    }
     let file_entities: Vec<Value> = files
         .iter()
         .map(|(rel, size)| {
@@ -162,5 +165,38 @@ mod tests {
         assert_eq!(by_id("#archstudy")["identifier"], "abc");
         assert_eq!(by_id("#archstudy")["license"], SOFTWARE_LICENSE);
         assert_eq!(by_id(CRATE_METADATA)["about"]["@id"], "./");
+    }
+
+    #[test]
+    fn two_authors_with_one_orcid_are_one_entity() {
+        let m = crate::manifest::parse(
+            "name: cite\nauthors:\n  - {name: Ada Lovelace, orcid: 0000-0002-1825-0097}\n  - {name: A. Lovelace, orcid: 0000-0002-1825-0097}\n  - {name: C}\ngrid:\n  k: {values: [1.2]}\n  mu: {values: [0.4]}\n",
+            std::path::Path::new("cite.yaml"),
+        )
+        .unwrap();
+        let info: RunInfo = serde_json::from_value(json!({
+            "name": "cite", "manifest": {}, "manifest_sha256": "ab12", "manifest_path": "cite.yaml",
+            "archstudy_version": "0.1.0", "git_commit": null, "rustc_version": "rustc",
+            "command_line": [], "threads": 1, "started_at": "", "finished_at": "",
+            "cases": {"total": 1, "ok": 1, "error": 0}, "separable": true,
+            "stages": {"plan_ms": 0.0, "engine_ms": 0.0, "store_ms": 0.0,
+            "boundaries_ms": 0.0, "plots_ms": 0.0, "report_ms": 0.0},
+            "boundary_refinement_analyses": 0
+        }))
+        .unwrap();
+        let c = crate_metadata(&m, &info, &[("manifest.yaml".to_string(), 10)]);
+        let graph = c["@graph"].as_array().unwrap();
+        let mut ids: Vec<&str> = graph.iter().map(|e| e["@id"].as_str().unwrap()).collect();
+        let n = ids.len();
+        ids.sort_unstable();
+        ids.dedup();
+        assert_eq!(ids.len(), n, "{graph:?}");
+        let authors = c["@graph"][1]["author"].as_array().unwrap();
+        assert_eq!(authors.len(), 2, "{authors:?}");
+        let ada = graph
+            .iter()
+            .find(|e| e["@id"] == "https://orcid.org/0000-0002-1825-0097")
+            .unwrap();
+        assert_eq!(ada["name"], "Ada Lovelace");
     }
 }

@@ -10,7 +10,7 @@ use crate::error::UsageError;
 use crate::output::StagedRun;
 use crate::plan;
 use crate::progress::Progress;
-use crate::provenance::{StageTimings, now_rfc3339};
+use crate::provenance::{ShardBuild, StageTimings, now_rfc3339};
 use crate::runner::{self, Analysed, RunOptions, RunSummary, ms, worker_pool};
 use crate::shard::{Shard, ShardRunInfo};
 use crate::store;
@@ -38,19 +38,88 @@ fn bad_shard(dir: &Path, why: impl ToString) -> anyhow::Error {
     UsageError::new("SHARD_DIR", dir.display(), why).into()
 }
 
+/// The shard directories that `from` names: when it is a directory, its subdirectories whose
+/// names are those of shard directories (`<name>.shard-I-of-N`), in name order; when it is a
+/// file, one directory a line (blank lines and lines starting with `#` skipped, a relative
+/// path taken from the current directory, like a `SHARD_DIR` argument). For more shards than
+/// a command line holds.
+pub fn shards_from(from: &Path) -> Result<Vec<PathBuf>> {
+    let bad = |why: String| -> anyhow::Error {
+        UsageError::new("--shards-from", from.display(), why).into()
+    };
+    let meta = std::fs::metadata(from).map_err(|e| {
+        bad(format!(
+            "a directory of shard directories or a list file ({e})"
+        ))
+    })?;
+    if meta.is_dir() {
+        let mut dirs = Vec::new();
+        let entries = std::fs::read_dir(from)
+            .map_err(|e| bad(format!("a directory that can be listed ({e})")))?;
+        for entry in entries {
+            let entry = entry.map_err(|e| bad(format!("a directory that can be listed ({e})")))?;
+            let name = entry.file_name();
+            if name.to_str().is_some_and(is_shard_dir_name) && entry.path().is_dir() {
+                dirs.push(entry.path());
+            }
+        }
+        dirs.sort();
+        return Ok(dirs);
+    }
+    if !meta.is_file() {
+        return Err(bad(
+            "a directory or a regular file (a FIFO or device is not read)".into(),
+        ));
+    }
+    if meta.len() > MAX_LIST_BYTES {
+        return Err(bad(format!(
+            "a list file of at most {MAX_LIST_BYTES} bytes; this one has {}",
+            meta.len()
+        )));
+    }
+    let text = std::fs::read_to_string(from).map_err(|e| {
+        bad(format!(
+            "a readable UTF-8 text file, one directory a line ({e})"
+        ))
+    })?;
+    Ok(text
+        .lines()
+        .map(str::trim_end)
+        .filter(|l| !l.is_empty() && !l.starts_with('#'))
+        .map(PathBuf::from)
+        .collect())
+}
+
+/// The largest list file `--shards-from` reads (1 GiB: a million shard paths of 1 KiB).
+pub const MAX_LIST_BYTES: u64 = 1 << 30;
+
+/// Whether a directory name is that of a shard directory, `<name>.shard-I-of-N`.
+fn is_shard_dir_name(name: &str) -> bool {
+    let Some((_, tail)) = name.rsplit_once(".shard-") else {
+        return false;
+    };
+    let Some((i, n)) = tail.split_once("-of-") else {
+        return false;
+    };
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    digits(i) && digits(n)
+}
+
 /// Reads a shard directory's run.json.
 fn read_record(dir: &Path) -> Result<ShardRunInfo> {
     let path = dir.join("run.json");
-    let text = std::fs::read_to_string(&path).map_err(|e| {
-        bad_shard(
-            dir,
-            format!(
-                "not a shard directory: cannot read {} ({e}); give the directories \
+    let text = crate::output::read_regular_text(&path, crate::output::MAX_RUN_JSON_BYTES).map_err(
+        |e| {
+            bad_shard(
+                dir,
+                format!(
+                    "not a shard directory: cannot read {} ({e}); give the directories \
                  `OUT/<name>.shard-I-of-N` that `archstudy run STUDY --shard I/N` wrote",
-                path.display()
-            ),
-        )
-    })?;
+                    path.display()
+                ),
+            )
+        },
+    )?;
     serde_json::from_str(&text).map_err(|e| {
         bad_shard(
             dir,
@@ -180,6 +249,7 @@ fn shard_rows(
             "incomplete shard: results.parquet is missing; re-run the shard",
         ));
     }
+    check_recorded_hash(dir, r, &path)?;
     let unreadable =
         |e: anyhow::Error| bad_shard(dir, format!("unreadable shard: {e:#}; re-run the shard"));
     let got = store::read_case_ids(&path).map_err(unreadable)?;
@@ -202,12 +272,133 @@ fn shard_rows(
         let len = runner::CHUNK_CASES.min(n - offset);
         let first = ids.start + offset;
         let slice = plan::build_slice(m.clone(), first..first + len);
-        let rows = store::read_case_results_rows(&slice, &path, (offset as usize, len as usize))
-            .map_err(unreadable)?;
+        let rows =
+            store::read_foreign_case_results_rows(&slice, &path, (offset as usize, len as usize))
+                .map_err(unreadable)?;
         each(rows)?;
         offset += len;
     }
     Ok(())
+}
+
+/// results.parquet of a shard against the hash its run.json records: a table edited after
+/// the shard wrote it is refused.
+fn check_recorded_hash(dir: &Path, r: &ShardRunInfo, path: &Path) -> Result<()> {
+    let Some(recorded) = r.info.table_sha256.get("results.parquet") else {
+        return Err(bad_shard(
+            dir,
+            "its run.json records no hash of results.parquet (a shard of an older version, or \
+             an edited run.json): re-run the shard",
+        ));
+    };
+    let file = std::fs::File::open(path)
+        .map_err(|e| bad_shard(dir, format!("cannot read {} ({e})", path.display())))?;
+    let actual = crate::provenance::sha256_reader(std::io::BufReader::new(file))
+        .map_err(|e| bad_shard(dir, format!("cannot read {} ({e})", path.display())))?;
+    if !recorded.eq_ignore_ascii_case(&actual) {
+        return Err(bad_shard(
+            dir,
+            "its results.parquet is not the table the shard wrote (its SHA-256 is not the one \
+             its run.json records): re-run the shard",
+        ));
+    }
+    Ok(())
+}
+
+/// Refuses a merge whose run directory `target` (`OUT/<name>`), which the merge replaces,
+/// is or holds one of the shard directories it reads.
+fn refuse_replacing_an_input(target: &Path, records: &[(PathBuf, ShardRunInfo)]) -> Result<()> {
+    let Ok(target) = target.canonicalize() else {
+        return Ok(());
+    };
+    for (d, _) in records {
+        let shard = d.canonicalize().unwrap_or_else(|_| d.clone());
+        if shard.starts_with(&target) {
+            return Err(UsageError::new(
+                "--out",
+                target.display(),
+                format!(
+                    "a directory other than the shard directory {} or one that holds it: \
+                     the merged run replaces OUT/<name>; give another --out, or move the shards",
+                    d.display()
+                ),
+            )
+            .into());
+        }
+    }
+    Ok(())
+}
+
+/// A shard's stage timings, each finite and ≥ 0 (they are summed into the merged run's).
+fn check_timings(dir: &Path, r: &ShardRunInfo) -> Result<()> {
+    let s = &r.info.stages;
+    for (name, v) in [
+        ("plan_ms", s.plan_ms),
+        ("engine_ms", s.engine_ms),
+        ("store_ms", s.store_ms),
+        ("boundaries_ms", s.boundaries_ms),
+        ("plots_ms", s.plots_ms),
+        ("report_ms", s.report_ms),
+    ] {
+        if !(v.is_finite() && (0.0..=MAX_SHARD_MS).contains(&v)) {
+            return Err(bad_shard(
+                dir,
+                format!(
+                    "its run.json records the timing stages.{name} = {v}, not a time in \
+                     milliseconds from 0 to {MAX_SHARD_MS:e}: re-run the shard"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The longest stage time a shard may record, in milliseconds (about 31,700 years): the sum
+/// over a million shards stays finite.
+pub const MAX_SHARD_MS: f64 = 1e15;
+
+/// The builds that analysed the shards (version, commit, rustc), each with the shards it ran,
+/// in the order first seen.
+fn shard_builds(records: &[(PathBuf, ShardRunInfo)]) -> Vec<ShardBuild> {
+    let mut builds: Vec<(ShardBuild, Vec<u64>)> = Vec::new();
+    for (_, r) in records {
+        let b = ShardBuild {
+            archstudy_version: r.info.archstudy_version.clone(),
+            git_commit: r.info.git_commit.clone(),
+            rustc_version: r.info.rustc_version.clone(),
+            shards: String::new(),
+        };
+        match builds.iter_mut().find(|(x, _)| *x == b) {
+            Some((_, list)) => list.push(r.shard.index),
+            None => builds.push((b, vec![r.shard.index])),
+        }
+    }
+    builds
+        .into_iter()
+        .map(|(b, list)| ShardBuild {
+            shards: ranges(&list),
+            ..b
+        })
+        .collect()
+}
+
+/// Sorted shard numbers as ranges: `1-3, 5`.
+fn ranges(sorted: &[u64]) -> String {
+    let mut out: Vec<String> = Vec::new();
+    let mut i = 0;
+    while i < sorted.len() {
+        let mut j = i;
+        while j + 1 < sorted.len() && sorted[j + 1] == sorted[j] + 1 {
+            j += 1;
+        }
+        out.push(if i == j {
+            sorted[i].to_string()
+        } else {
+            format!("{}-{}", sorted[i], sorted[j])
+        });
+        i = j + 1;
+    }
+    out.join(", ")
 }
 
 /// Merges the shards of one manifest into `OUT/<name>/`, the run directory an unsharded run
@@ -219,6 +410,9 @@ pub fn merge(opts: &MergeOptions) -> Result<RunSummary> {
     let t0 = Instant::now();
     let started_at = now_rfc3339();
     let records = check_complete(&opts.shards)?;
+    for (d, r) in &records {
+        check_timings(d, r)?;
+    }
     let (first_dir, first) = &records[0];
     let manifest_file = first_dir.join("manifest.yaml");
     let (m, bytes) = runner::load_runnable(&manifest_file)?;
@@ -229,6 +423,7 @@ pub fn merge(opts: &MergeOptions) -> Result<RunSummary> {
              re-run the shard",
         ));
     }
+    refuse_replacing_an_input(&opts.out.join(&m.name), &records)?;
     let total = u64::try_from(plan::case_count(&m)).unwrap_or(u64::MAX);
     let mut stages = StageTimings {
         plan_ms: ms(t0),
@@ -281,6 +476,7 @@ pub fn merge(opts: &MergeOptions) -> Result<RunSummary> {
         written,
         stages,
         started_at,
+        shard_builds: shard_builds(&records),
     };
     runner::finish_run(analysed, staged, (&pool, threads), &run_opts, t0)
 }

@@ -219,6 +219,24 @@ impl RunLayout {
         self.dir.join(CRATE_METADATA)
     }
 
+    /// Hex SHA-256 of every Parquet table at the top of the run directory, by file name
+    /// (run.json's `table_sha256`).
+    pub fn table_sha256(&self) -> Result<std::collections::BTreeMap<String, String>> {
+        let mut out = std::collections::BTreeMap::new();
+        for (rel, _) in self.files()? {
+            if rel.contains('/') || !rel.ends_with(".parquet") {
+                continue;
+            }
+            let path = self.dir.join(&rel);
+            let file = std::fs::File::open(&path)
+                .with_context(|| format!("cannot read {}", path.display()))?;
+            let hash = crate::provenance::sha256_reader(std::io::BufReader::new(file))
+                .with_context(|| format!("cannot read {}", path.display()))?;
+            out.insert(rel, hash);
+        }
+        Ok(out)
+    }
+
     /// Every regular file of the run directory (recursively, hidden files and the crate
     /// metadata itself left out) as `/`-separated relative paths with their sizes in bytes,
     /// sorted by path. Links are not followed.
@@ -229,6 +247,41 @@ impl RunLayout {
         out.sort();
         Ok(out)
     }
+}
+
+/// The largest run.json read (64 MiB; a run's is a few kilobytes): a larger file is refused
+/// rather than read into memory.
+pub const MAX_RUN_JSON_BYTES: u64 = 64 << 20;
+
+/// Reads a file that must be a regular file of at most `max_bytes` bytes, as text. A FIFO, a
+/// device (/dev/zero) or a directory is refused before it is opened (opening a FIFO waits for
+/// a writer; a device never ends), a larger file before it is read.
+pub fn read_regular_text(path: &Path, max_bytes: u64) -> std::io::Result<String> {
+    use std::io::{Error, ErrorKind, Read};
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(Error::new(
+            ErrorKind::InvalidInput,
+            "not a regular file (devices, pipes and directories are not read)",
+        ));
+    }
+    if meta.len() > max_bytes {
+        return Err(Error::new(
+            ErrorKind::InvalidData,
+            format!("larger than {max_bytes} bytes, the most that is read of it"),
+        ));
+    }
+    let mut text = String::new();
+    std::fs::File::open(path)?
+        .take(max_bytes + 1)
+        .read_to_string(&mut text)?;
+    if text.len() as u64 > max_bytes {
+        return Err(Error::new(
+            ErrorKind::InvalidData,
+            format!("larger than {max_bytes} bytes, the most that is read of it"),
+        ));
+    }
+    Ok(text)
 }
 
 /// The file name of a run's RO-Crate metadata.

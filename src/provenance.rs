@@ -72,6 +72,27 @@ pub struct RunInfo {
     pub stages: StageTimings,
     /// Extra analyses spent locating boundaries and bifurcations.
     pub boundary_refinement_analyses: u64,
+    /// Hex SHA-256 of every Parquet table of the run directory, by file name, as written
+    /// (a shard's: its results.parquet; empty in runs made before it was recorded).
+    #[serde(default)]
+    pub table_sha256: std::collections::BTreeMap<String, String>,
+    /// For a merged run: the builds that analysed its shards, each with the shards it ran
+    /// (empty, and not written, for a run that was not merged).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub shard_builds: Vec<ShardBuild>,
+}
+
+/// A build that analysed shards of a merged run, as the shards' run.json record it.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq, Eq)]
+pub struct ShardBuild {
+    /// archstudy version.
+    pub archstudy_version: String,
+    /// Git commit of the build, when known.
+    pub git_commit: Option<String>,
+    /// rustc that built it.
+    pub rustc_version: String,
+    /// The shards it ran, as ranges of shard numbers (`1-37, 40`).
+    pub shards: String,
 }
 
 /// The version of archstudy.
@@ -93,6 +114,24 @@ pub fn rustc_version() -> &'static str {
 /// The current time, RFC 3339 in UTC with milliseconds, as run.json records it.
 pub fn now_rfc3339() -> String {
     chrono::Utc::now().to_rfc3339_opts(chrono::SecondsFormat::Millis, true)
+}
+
+/// Hex SHA-256 of everything `reader` yields, read a block at a time.
+pub fn sha256_reader(mut reader: impl std::io::Read) -> std::io::Result<String> {
+    let mut hasher = Sha256::new();
+    let mut buf = vec![0u8; 1 << 16];
+    loop {
+        let n = reader.read(&mut buf)?;
+        if n == 0 {
+            break;
+        }
+        hasher.update(&buf[..n]);
+    }
+    Ok(hasher
+        .finalize()
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect())
 }
 
 /// Hex SHA-256 of some bytes.

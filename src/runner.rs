@@ -75,11 +75,9 @@ fn read_manifest(path: &Path) -> Result<Vec<u8>, manifest::ManifestError> {
         key: None,
         message,
     };
-    let file =
-        std::fs::File::open(path).map_err(|e| err(format!("cannot read the manifest: {e}")))?;
-    let meta = file
-        .metadata()
-        .map_err(|e| err(format!("cannot read the manifest: {e}")))?;
+    // Checked before opening: opening a FIFO waits for a writer.
+    let meta =
+        std::fs::metadata(path).map_err(|e| err(format!("cannot read the manifest: {e}")))?;
     if !meta.is_file() {
         return Err(err(
             "not a regular file: a manifest is a YAML file (devices, pipes and directories are not read)".into(),
@@ -94,6 +92,8 @@ fn read_manifest(path: &Path) -> Result<Vec<u8>, manifest::ManifestError> {
     if meta.len() > MAX_MANIFEST_BYTES {
         return Err(too_big());
     }
+    let file =
+        std::fs::File::open(path).map_err(|e| err(format!("cannot read the manifest: {e}")))?;
     let mut bytes = Vec::new();
     file.take(MAX_MANIFEST_BYTES + 1)
         .read_to_end(&mut bytes)
@@ -296,6 +296,8 @@ fn publish(
     write_run_json(layout, info)?;
     let t = Instant::now();
     stage(progress, Stage::FigureData, || figdata::run(m, layout))?;
+    // Every table is written: run.json records their hashes before the reports show it.
+    info.table_sha256 = layout.table_sha256()?;
     let mut data = report::data::load(layout)?;
     let (figs, _) = stage(progress, Stage::Figures, || {
         report::draw_figures(&data, layout)
@@ -450,6 +452,8 @@ pub(crate) struct Analysed {
     pub stages: StageTimings,
     /// When the run started (RFC 3339).
     pub started_at: String,
+    /// The builds that analysed the rows, for a merged run (empty otherwise).
+    pub shard_builds: Vec<crate::provenance::ShardBuild>,
 }
 
 /// Runs a study end to end and moves the complete run directory into place. The plan is
@@ -486,6 +490,7 @@ pub fn run_study(opts: &RunOptions) -> Result<RunSummary> {
         written: done.written,
         stages,
         started_at,
+        shard_builds: Vec::new(),
     };
     finish_run(analysed, staged, (&pool, threads), opts, t0)
 }
@@ -508,6 +513,7 @@ pub(crate) fn finish_run(
         written,
         stages,
         started_at,
+        shard_builds,
     } = a;
     let layout = staged.layout.clone();
     // The plan's description without its cases: they are expanded a chunk at a time.
@@ -550,6 +556,8 @@ pub(crate) fn finish_run(
             ..stages
         },
         boundary_refinement_analyses: located.refinement_analyses,
+        table_sha256: std::collections::BTreeMap::new(),
+        shard_builds,
     };
     // Figure data, figures and reports, from the stored files.
     publish(&m, &layout, &mut info, progress)?;

@@ -188,6 +188,8 @@ pub fn run_shard(opts: &RunOptions, shard: Shard) -> Result<RunSummary> {
         grid_path,
         stages,
         boundary_refinement_analyses: 0,
+        table_sha256: layout.table_sha256()?,
+        shard_builds: Vec::new(),
     };
     let record = ShardRunInfo {
         info: info.clone(),

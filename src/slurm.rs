@@ -53,6 +53,35 @@ fn quote_path(p: &Path) -> String {
     quote(&p.display().to_string())
 }
 
+/// Refuses a path that cannot be written into a script safely: one that is not UTF-8, or
+/// holds a control character (a newline would end a comment or a `#SBATCH` line), a double
+/// quote or a backslash (Slurm reads neither literally in `#SBATCH --output`).
+fn check_path(option: &'static str, p: &Path) -> Result<String, UsageError> {
+    let refuse = || {
+        UsageError::new(
+            option,
+            p.display().to_string().escape_debug(),
+            "a UTF-8 path without control characters (newline, tab, …), `\"` or `\\`, which \
+             cannot be written into a Slurm script safely",
+        )
+    };
+    let text = p.to_str().ok_or_else(refuse)?;
+    if text
+        .chars()
+        .any(|c| c.is_control() || c == '"' || c == '\\')
+    {
+        return Err(refuse());
+    }
+    Ok(text.to_string())
+}
+
+/// A `#SBATCH --output` file pattern for a directory and a file name that may hold Slurm's
+/// replacements (`%a`): double-quoted (a space does not end it), a `%` of the directory
+/// written `%%` (Slurm would expand it). The directory is checked by [`check_path`].
+fn output_pattern(dir: &str, file: &str) -> String {
+    format!("\"{}/{file}\"", dir.replace('%', "%%"))
+}
+
 /// Refuses a Slurm option value that could not be written into a `#SBATCH` line as is.
 fn check_value(option: &'static str, v: &Option<String>, allowed: &str) -> Result<(), UsageError> {
     match v {
@@ -66,6 +95,58 @@ fn check_value(option: &'static str, v: &Option<String>, allowed: &str) -> Resul
         }
         _ => Ok(()),
     }
+}
+
+/// The share of the run's memory estimate below which `--mem` is refused: a task given less
+/// than half of what the run is estimated to need is killed by Slurm, after its time in the
+/// queue.
+pub const MIN_MEM_FRACTION: f64 = 0.5;
+
+/// A Slurm `--mem` value in bytes: a whole number with an optional unit K, M, G or T
+/// (Slurm's default unit is M); None when it is not one.
+fn slurm_mem_bytes(v: &str) -> Option<u64> {
+    let (digits, unit) = match v.char_indices().find(|(_, c)| !c.is_ascii_digit()) {
+        Some((i, _)) => v.split_at(i),
+        None => (v, "M"),
+    };
+    let n: u64 = digits.parse().ok()?;
+    let shift = match unit.to_ascii_uppercase().as_str() {
+        "K" | "KB" => 10,
+        "M" | "MB" => 20,
+        "G" | "GB" => 30,
+        "T" | "TB" => 40,
+        _ => return None,
+    };
+    n.checked_mul(1u64 << shift)
+}
+
+/// Refuses a `--mem` that is not a Slurm memory size, or is far below the memory a shard
+/// task is estimated to need ([`MIN_MEM_FRACTION`]).
+fn check_mem(mem: &str, needed: u64) -> Result<(), UsageError> {
+    let Some(bytes) = slurm_mem_bytes(mem) else {
+        return Err(UsageError::new(
+            "--mem",
+            mem,
+            "a Slurm memory size such as 4G or 800M",
+        ));
+    };
+    if (bytes as f64) < needed as f64 * MIN_MEM_FRACTION {
+        return Err(UsageError::new(
+            "--mem",
+            mem,
+            format!(
+                "at least half of the memory a shard task is estimated to need, {} (about {} \
+                 MiB): a task with less is killed for want of memory; give more, or more shards",
+                mem_for_bytes(needed),
+                needed.div_ceil(1 << 20)
+            ),
+        ));
+    }
+    Ok(())
+}
+
+fn mem_for_bytes(bytes: u64) -> String {
+    format!("{}M", bytes.div_ceil(1 << 20))
 }
 
 /// The memory estimate of a run of `cases` cases, as a Slurm `--mem` value in megabytes.
@@ -118,15 +199,22 @@ pub fn write_scripts(o: &SlurmOptions) -> Result<SlurmScripts> {
         "a Slurm time limit such as 30, 02:00:00 or 1-12:00:00",
     )?;
     check_value("--mem", &o.mem, "a Slurm memory size such as 4G or 800M")?;
+    check_path("STUDY", &o.study)?;
+    check_path("--out", &o.out)?;
     let (m, _) = runner::load_manifest(&o.study)?;
     let total = u64::try_from(crate::plan::case_count(&m)).unwrap_or(u64::MAX);
     let largest = crate::plan::shard_ids(total, 1, o.shards);
-    let shard_mem = o
-        .mem
-        .clone()
-        .unwrap_or_else(|| mem_for((largest.end - largest.start + 1).min(CHUNK_CASES)));
+    let task_cases = (largest.end - largest.start + 1).min(CHUNK_CASES);
+    if let Some(mem) = &o.mem {
+        check_mem(mem, runner::needed_bytes(task_cases))?;
+    }
+    let shard_mem = o.mem.clone().unwrap_or_else(|| mem_for(task_cases));
     let (study, out, binary) = (absolute(&o.study)?, absolute(&o.out)?, absolute(&o.binary)?);
+    check_path("--out", &out)?;
+    check_path("STUDY", &study)?;
+    check_path("the archstudy binary", &binary)?;
     let dir = out.join(format!("{}.slurm", m.name));
+    let logs = check_path("--out", &dir.join("logs"))?;
     std::fs::create_dir_all(dir.join("logs"))
         .with_context(|| format!("cannot create {}", dir.display()))?;
     let n = o.shards;
@@ -136,35 +224,40 @@ pub fn write_scripts(o: &SlurmOptions) -> Result<SlurmScripts> {
          # by Slurm, shards from 1 by archstudy.\n\
          #SBATCH --job-name={name}-shards\n\
          #SBATCH --array=0-{last}\n\
-         #SBATCH --output={logs}/shard-%a.out\n\
+         #SBATCH --output={output}\n\
          {common}\
          set -euo pipefail\n\
          exec {bin} run {study} --shard \"$((SLURM_ARRAY_TASK_ID + 1))/{n}\" --out {out} --quiet\n",
         name = m.name,
         last = n - 1,
-        logs = dir.join("logs").display(),
+        output = output_pattern(&logs, "shard-%a.out"),
         common = common_lines(o, &shard_mem),
         bin = quote_path(&binary),
         study = quote_path(&study),
         out = quote_path(&out),
     );
-    let glob = format!("{}.shard-*-of-{n}", m.name);
+    // The shard directories are listed by the shell's own printf (no argument list to
+    // exceed, whatever their number) and read by `merge --shards-from`.
+    let list = dir.join("shards.list");
     let merge = format!(
         "#!/bin/bash\n\
          # Merges the {n} shards of the study {name} into {run}; submitted with\n\
          # --dependency=afterok on the array, so it runs only when every shard succeeded.\n\
          #SBATCH --job-name={name}-merge\n\
-         #SBATCH --output={logs}/merge.out\n\
+         #SBATCH --output={output}\n\
          {common}\
          set -euo pipefail\n\
+         shopt -s nullglob\n\
          cd {out}\n\
-         exec {bin} merge {glob} --out {out} --quiet\n",
+         printf '%s\\n' ./{name}.shard-*-of-{n} > {list}\n\
+         exec {bin} merge --shards-from {list} --out {out} --quiet\n",
         name = m.name,
         run = out.join(&m.name).display(),
-        logs = dir.join("logs").display(),
+        output = output_pattern(&logs, "merge.out"),
         common = common_lines(o, &merge_mem_for(&m, total)),
         bin = quote_path(&binary),
         out = quote_path(&out),
+        list = quote_path(&list),
     );
     let (array_path, merge_path) = (dir.join("array.sh"), dir.join("merge.sh"));
     crate::output::write_atomic(&array_path, array.as_bytes())?;
@@ -219,6 +312,19 @@ pub fn submit(s: &SlurmScripts) -> Result<(String, String)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_mem_far_below_the_estimate_is_refused() {
+        assert_eq!(slurm_mem_bytes("4G"), Some(4 << 30));
+        assert_eq!(slurm_mem_bytes("800"), Some(800 << 20));
+        assert_eq!(slurm_mem_bytes("1x"), None);
+        let needed = 800u64 << 20;
+        assert!(check_mem("1G", needed).is_ok());
+        assert!(check_mem("400M", needed).is_ok());
+        let e = check_mem("1M", needed).unwrap_err().to_string();
+        assert!(e.contains("--mem") && e.contains("800M"), "{e}");
+        assert!(check_mem("lots", needed).is_err());
+    }
 
     #[test]
     fn quoted_words_survive_the_shell() {

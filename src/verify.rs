@@ -3,10 +3,13 @@
 //! 1. Integrity: every checksum of SHA256SUMS (missing, extra and corrupt members named),
 //!    the required files present, and manifest.yaml the manifest run.json names by hash.
 //! 2. Provenance: says when run.json's archstudy version or commit differ from this build.
-//! 3. Unless `--no-rerun`: re-runs the stored manifest with this build into a temporary
+//! 3. Derived files: run.json's copy of the manifest and its hashes of the tables, the
+//!    reports, figures, tables/ and RO-Crate metadata derived again from the hashed manifest
+//!    and the stored tables and compared byte for byte, whatever run.json says about the
+//!    build (its claims are never the evidence that it is genuine).
+//! 4. Unless `--no-rerun`: re-runs the stored manifest with this build into a temporary
 //!    directory and compares every column of every stored Parquet file with the recomputed
-//!    one ([`compare`]; the rules are stated there and printed). Figures and reports are
-//!    checked by checksum only.
+//!    one ([`compare`]; the rules are stated there and printed).
 //!
 //! The Parquet files are read by the store; comparison works on the store's plain tables,
 //! so this module does not use polars.
@@ -44,6 +47,15 @@ pub fn verify(opts: &VerifyOptions, out: &mut dyn Write) -> Result<bool> {
             "ARCHIVE|RUN_DIR",
             target.display(),
             "an archive made by `archstudy archive`, or a run directory (no such file)",
+        )
+        .into());
+    }
+    if !target.is_dir() && !target.is_file() {
+        return Err(UsageError::new(
+            "ARCHIVE|RUN_DIR",
+            target.display(),
+            "an archive made by `archstudy archive`, or a run directory (a FIFO or device is \
+             not read)",
         )
         .into());
     }
@@ -108,7 +120,7 @@ pub fn verify(opts: &VerifyOptions, out: &mut dyn Write) -> Result<bool> {
         )?;
         true
     } else {
-        redraw::reports_match(&dir, &prov, out)?
+        redraw::derived_match(&dir, &prov, out)?
     };
     if !opts.rerun {
         writeln!(out, "re-run: skipped (--no-rerun)")?;
@@ -117,7 +129,7 @@ pub fn verify(opts: &VerifyOptions, out: &mut dyn Write) -> Result<bool> {
         } else {
             writeln!(
                 out,
-                "verdict: DIFFERENT (the stored reports are not what the stored tables draw)"
+                "verdict: DIFFERENT (derived files are not what the stored tables draw)"
             )?;
         }
         return Ok(reports);
@@ -327,8 +339,8 @@ fn rerun_and_compare(
     if differing == 0 && !reports_agree {
         writeln!(
             out,
-            "verdict: DIFFERENT: all {compared} Parquet files agree with the re-run, but the \
-             stored reports are not what they draw"
+            "verdict: DIFFERENT: all {compared} Parquet files agree with the re-run, but \
+             derived files are not what they draw"
         )?;
         Ok(false)
     } else if differing == 0 {

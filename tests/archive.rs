@@ -297,14 +297,19 @@ fn a_changed_result_value_is_reported_as_its_column_and_row() {
     assert_eq!(o.code, Some(1));
     assert!(o.stdout.contains(&format!("row {row}: stored {changed:?}")));
 
-    // --no-rerun checks integrity only, so it passes.
+    // --no-rerun compares no values, but the table is not the one run.json records.
     let o = archstudy(
         &["verify", "--no-rerun", file.to_str().unwrap()],
         tmp.path(),
     );
-    assert_eq!(o.code, Some(0), "{}", o.stdout);
+    assert_eq!(o.code, Some(1), "{}", o.stdout);
     assert!(o.stdout.contains("re-run: skipped (--no-rerun)"));
-    assert!(!o.stdout.contains("results.parquet:"));
+    assert!(
+        o.stdout
+            .contains("tables: DIFFERENT: results.parquet is not the table run.json records"),
+        "{}",
+        o.stdout
+    );
 }
 
 #[test]
@@ -317,8 +322,11 @@ fn a_difference_within_the_tolerance_is_reported_as_such() {
     // As on another machine: the reports are drawn from the tables as stored.
     let o = archstudy(&["report", run.to_str().unwrap()], tmp.path());
     assert_eq!(o.code, Some(0), "{}", o.stderr);
+    // The comparison finds the difference within the tolerance; the verdict still names
+    // the table as not the one run.json records.
     let o = archstudy(&["verify", run.to_str().unwrap()], tmp.path());
-    assert_eq!(o.code, Some(0), "{}", o.stdout);
+    assert_eq!(o.code, Some(1), "{}", o.stdout);
+    assert!(o.stdout.contains("tables: DIFFERENT: results.parquet"));
     assert!(
         o.stdout.contains("within tolerance (max difference"),
         "{}",
@@ -334,7 +342,7 @@ fn a_difference_within_the_tolerance_is_reported_as_such() {
 }
 
 #[test]
-fn a_different_version_is_noted_and_still_compared() {
+fn a_different_version_is_noted_and_still_compared_but_turns_no_check_off() {
     let tmp = tempfile::tempdir().unwrap();
     let run = tiny_run(tmp.path());
     let path = run.join("run.json");
@@ -344,7 +352,6 @@ fn a_different_version_is_noted_and_still_compared() {
     v["git_commit"] = "0123456789abcdef".into();
     std::fs::write(&path, serde_json::to_string_pretty(&v).unwrap()).unwrap();
     let o = archstudy(&["verify", run.to_str().unwrap()], tmp.path());
-    assert_eq!(o.code, Some(0), "{}", o.stdout);
     assert!(
         o.stdout
             .contains("archstudy 0.0.1 (commit 0123456789abcdef)")
@@ -358,6 +365,18 @@ fn a_different_version_is_noted_and_still_compared() {
             .contains("the commit differs from this build; comparing anyway")
     );
     assert!(o.stdout.contains("results.parquet: agrees"));
+    // The reports and the RO-Crate were drawn from the unedited run.json: the edited claim
+    // is named, not taken as a reason to skip drawing them again.
+    assert_eq!(o.code, Some(1), "{}", o.stdout);
+    assert!(
+        o.stdout.contains(
+            "reports: DIFFERENT: ro-crate-metadata.json is not what this build draws from the \
+             stored tables; run.json names another build (archstudy 0.0.1, commit \
+             0123456789abcdef)"
+        ),
+        "{}",
+        o.stdout
+    );
 }
 
 #[test]

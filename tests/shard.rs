@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Arc;
 
-const STATE: &str = "name: state\ngrid:\n  k: {from: 1.05, to: 1.5, steps: 19}\n  mu: {from: 0.2, to: 0.8, steps: 13}\n";
+pub(crate) const STATE: &str = "name: state\ngrid:\n  k: {from: 1.05, to: 1.5, steps: 19}\n  mu: {from: 0.2, to: 0.8, steps: 13}\n";
 const THICKNESS: &str = "name: thick\nfind: thickness\ngrid:\n  voussoirs: {values: [6, continuum]}\n  mu: {values: [0.3, 0.6, inf]}\n";
 const LOAD_FACTOR: &str = "name: lf\nfind: load_factor\nload_cases:\n  - {name: h, kind: horizontal}\n  - {name: p, kind: point, at_deg: 30}\ngrid:\n  k: {values: [1.2, 1.3, 1.4]}\n  mu: {values: [0.4, 0.7]}\n";
 
@@ -145,7 +145,7 @@ fn a_shard_records_its_slice_and_the_manifest() {
 }
 
 /// Three shards of the state study, run by the binary.
-fn cli_shards(dir: &Path, text: &str, file: &str, count: u64) -> Vec<PathBuf> {
+pub(crate) fn cli_shards(dir: &Path, text: &str, file: &str, count: u64) -> Vec<PathBuf> {
     let study = manifest(dir, file, text);
     let out = dir.join("out");
     (1..=count)
@@ -165,7 +165,7 @@ fn cli_shards(dir: &Path, text: &str, file: &str, count: u64) -> Vec<PathBuf> {
         .collect()
 }
 
-fn merge_cli(dirs: &[&Path], out: &Path) -> std::process::Output {
+pub(crate) fn merge_cli(dirs: &[&Path], out: &Path) -> std::process::Output {
     let mut args = vec!["merge".to_string()];
     args.extend(dirs.iter().map(|d| d.display().to_string()));
     args.extend(["--out".into(), out.display().to_string(), "--quiet".into()]);
@@ -389,7 +389,8 @@ fn slurm_writes_an_array_and_a_merge_that_run_as_the_scheduler_would() {
     }
     let merge_sh = std::fs::read_to_string(scripts.join("merge.sh")).unwrap();
     assert!(
-        merge_sh.contains(" merge state.shard-*-of-4 "),
+        merge_sh.contains("printf '%s\\n' ./state.shard-*-of-4 > ")
+            && merge_sh.contains(" merge --shards-from "),
         "{merge_sh}"
     );
     // Run the scripts as Slurm would: each task with its SLURM_ARRAY_TASK_ID, then the merge.
@@ -435,4 +436,56 @@ fn slurm_writes_an_array_and_a_merge_that_run_as_the_scheduler_would() {
         out.to_str().unwrap(),
     ]);
     assert_usage_error(&o, &["--shards", "0"]);
+}
+
+/// Every value a Slurm script interpolates is quoted for its reader or refused: an --out with
+/// a space and a `%` (quoted in `#SBATCH --output`, `%` doubled), a study name starting with
+/// `-`; a newline in --out is refused before anything is written.
+#[test]
+fn slurm_scripts_quote_or_refuse_every_value() {
+    let dir = scratch("slurm-quoting");
+    let study = manifest(&dir, "s.yaml", &STATE.replace("name: state", "name: -dash"));
+    let out = dir.join("out 50%");
+    let o = archstudy(&[
+        "slurm",
+        study.to_str().unwrap(),
+        "--shards",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let scripts = out.join("-dash.slurm");
+    let array = std::fs::read_to_string(scripts.join("array.sh")).unwrap();
+    let logs = format!("{}/-dash.slurm/logs", out.display()).replace('%', "%%");
+    assert!(
+        array.contains(&format!("#SBATCH --output=\"{logs}/shard-%a.out\"\n")),
+        "{array}"
+    );
+    for task in 0..2 {
+        let o = Command::new("bash")
+            .arg(scripts.join("array.sh"))
+            .env("SLURM_ARRAY_TASK_ID", task.to_string())
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "task {task}: {}", stderr(&o));
+    }
+    let o = Command::new("bash")
+        .arg(scripts.join("merge.sh"))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "merge: {}", stderr(&o));
+    assert!(out.join("-dash/report.html").is_file());
+    // A newline would end a comment or a #SBATCH line: refused, nothing written.
+    let bad = dir.join("a\nrm -rf x");
+    let o = archstudy(&[
+        "slurm",
+        study.to_str().unwrap(),
+        "--shards",
+        "2",
+        "--out",
+        bad.to_str().unwrap(),
+    ]);
+    assert_usage_error(&o, &["--out", "control characters"]);
+    assert!(!bad.exists());
 }

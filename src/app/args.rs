@@ -42,8 +42,12 @@ pub enum Command {
 #[derive(Debug, Args)]
 pub struct MergeArgs {
     /// The shard directories `OUT/<name>.shard-I-of-N` of one manifest, every shard once.
-    #[arg(value_name = "SHARD_DIR", required = true)]
+    #[arg(value_name = "SHARD_DIR", required_unless_present = "shards_from")]
     pub shards: Vec<PathBuf>,
+    /// Takes the shard directories from a directory (its subdirectories named
+    /// `<name>.shard-I-of-N`) or a list file (one directory a line), besides any SHARD_DIR.
+    #[arg(long, value_name = "DIR|FILE")]
+    pub shards_from: Option<PathBuf>,
     /// Directory under which the run directory `<name>/` is written.
     #[arg(long, default_value = "output")]
     pub out: PathBuf,

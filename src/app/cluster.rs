@@ -14,8 +14,12 @@ pub(super) fn merge(args: &MergeArgs) -> Result<ExitCode> {
             UsageError::new("--jobs", 0, "the number of threads must be at least 1").into(),
         );
     }
+    let mut shards = args.shards.clone();
+    if let Some(from) = &args.shards_from {
+        shards.extend(merging::shards_from(from)?);
+    }
     let opts = merging::MergeOptions {
-        shards: args.shards.clone(),
+        shards,
         out: args.out.clone(),
         jobs: args.jobs,
         progress: shown(args.quiet),

@@ -233,7 +233,8 @@ pub fn load_info(layout: &RunLayout) -> Result<RunInfo> {
         return Err(not_run_dir("it does not exist or is not a directory".into()).into());
     }
     let run_json = layout.run_json();
-    let text = std::fs::read_to_string(&run_json).map_err(|e| {
+    let text = crate::output::read_regular_text(&run_json, crate::output::MAX_RUN_JSON_BYTES)
+        .map_err(|e| {
         not_run_dir(format!(
             "cannot read {} ({e}); a run directory holds the run.json that `archstudy run` writes",
             run_json.display()

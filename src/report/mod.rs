@@ -93,10 +93,13 @@ fn environment() -> Result<Environment<'static>> {
     Ok(env)
 }
 
-/// The HTML report of a view model.
+/// The HTML report of a view model; control characters and the invisible characters that
+/// reorder or hide text (bidirectional overrides, zero-width characters) removed, wherever
+/// they came from ([`tables::export::plain`]).
 pub fn html(view: &view::ReportView) -> Result<String> {
     let env = environment()?;
-    Ok(env.get_template("report.html.j2")?.render(Serde(view))?)
+    let s = env.get_template("report.html.j2")?.render(Serde(view))?;
+    Ok(tables::export::plain(&s))
 }
 
 /// Text from the manifest (title, description) made inert in Markdown, as report.html's
@@ -137,13 +140,13 @@ pub fn markdown_text(text: &str, multiline: bool) -> String {
 }
 
 /// The Markdown report of a view model; the title and description from the manifest are
-/// escaped ([`markdown_text`]).
+/// escaped ([`markdown_text`]); control and invisible characters removed as in [`html`].
 pub fn markdown(view: &view::ReportView) -> Result<String> {
     let env = environment()?;
     let mut view = view.clone();
     view.title = markdown_text(&view.title, false);
     view.description = markdown_text(&view.description, true);
-    let mut s = env.get_template("report.md.j2")?.render(Serde(&view))?;
+    let mut s = tables::export::plain(&env.get_template("report.md.j2")?.render(Serde(&view))?);
     if !s.ends_with('\n') {
         s.push('\n');
     }

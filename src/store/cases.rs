@@ -464,6 +464,72 @@ pub fn read_case_results_rows(
     read_frame(plan, &df).with_context(|| format!("in {} (rows from {offset})", path.display()))
 }
 
+/// [`read_case_results_rows`] of a table written elsewhere (a shard's), checked to be the
+/// table this build writes for the rows it reads back as: the same columns in the same order,
+/// of the same types, with the same values. A value the rows do not carry (a grid value or load case other than
+/// the plan's) or a column dropped, renamed or retyped is an error naming the column. `plan`
+/// holds exactly the cases of the rows, in order.
+pub fn read_foreign_case_results_rows(
+    plan: &Plan,
+    path: &Path,
+    (offset, len): (usize, usize),
+) -> Result<Vec<CaseResult>> {
+    let file =
+        std::fs::File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
+    let df = polars::prelude::ParquetReader::new(file)
+        .with_slice(Some((offset, len)))
+        .finish()
+        .with_context(|| format!("cannot read {} as Parquet", path.display()))?;
+    let rows = read_frame(plan, &df)
+        .with_context(|| format!("in {} (rows from {offset})", path.display()))?;
+    same_as_written(plan, &df, &rows)
+        .with_context(|| format!("in {} (rows from {offset})", path.display()))?;
+    Ok(rows)
+}
+
+/// The stored frame against the frame this build writes for `rows` of `plan`; Err names the
+/// first column that differs.
+fn same_as_written(plan: &Plan, stored: &DataFrame, rows: &[CaseResult]) -> Result<()> {
+    let again = super::results_frame(plan, rows)?;
+    let names = |df: &DataFrame| -> Vec<String> {
+        df.get_column_names()
+            .iter()
+            .map(|n| n.to_string())
+            .collect()
+    };
+    let (have, want) = (names(stored), names(&again));
+    if have != want {
+        let missing: Vec<&String> = want.iter().filter(|n| !have.contains(n)).collect();
+        let extra: Vec<&String> = have.iter().filter(|n| !want.contains(n)).collect();
+        bail!(
+            "the columns are not those of a results table of this manifest (missing: \
+             {missing:?}; not expected: {extra:?}; or in another order)"
+        );
+    }
+    for col in again.columns() {
+        let name = col.name().as_str();
+        let s = stored.column(name)?;
+        if s.dtype() != col.dtype() {
+            bail!(
+                "column `{name}` is of type {}, a results table's is {}",
+                s.dtype(),
+                col.dtype()
+            );
+        }
+        if !s
+            .as_materialized_series()
+            .equals_missing(col.as_materialized_series())
+        {
+            bail!(
+                "column `{name}` holds values that its rows do not give (a value the plan \
+                 fixes, such as a grid value or load case, or one that contradicts the \
+                 other columns of its row)"
+            );
+        }
+    }
+    Ok(())
+}
+
 /// The case ids of results.parquet, in file order (no other column is decoded).
 pub fn read_case_ids(path: &Path) -> Result<Vec<u64>> {
     let df = super::read_parquet_columns(path, &["case_id"])?;

@@ -10,7 +10,9 @@ mod schema;
 mod table;
 
 pub use boundaries::{bifurcations_frame, boundaries_frame};
-pub use cases::{read_case_ids, read_case_results, read_case_results_rows};
+pub use cases::{
+    read_case_ids, read_case_results, read_case_results_rows, read_foreign_case_results_rows,
+};
 pub use figures::{
     BifurcationGroup, CurvePoint, LoadFactorCase, MechanismRow, ReferenceRow, RowArch, StateRow,
     curves_frame, mechanisms_frame, read_bifurcation_groups, read_curves, read_load_factor_cases,
@@ -175,20 +177,75 @@ impl TableBuilder {
     }
 }
 
+/// A file that remembers the first error of a write: the Parquet writer reports a failed
+/// write as its own error ("Invalid thrift: transport error"), which hides the cause (a full
+/// disk); [`WriteErrors::cause`] gives it back.
+pub struct RecordingFile {
+    file: File,
+    first_error: std::sync::Arc<std::sync::Mutex<Option<std::io::Error>>>,
+}
+
+/// The first write error of a [`RecordingFile`], read after the writer has failed.
+#[derive(Clone)]
+pub struct WriteErrors(std::sync::Arc<std::sync::Mutex<Option<std::io::Error>>>);
+
+impl WriteErrors {
+    /// `err` with the write error that caused it as its context (the cause named first:
+    /// "No space left on device"), or `err` as it is when no write failed.
+    fn cause(&self, err: anyhow::Error, path: &Path) -> anyhow::Error {
+        let recorded = self.0.lock().ok().and_then(|mut e| e.take());
+        match recorded {
+            Some(io) => anyhow::Error::new(io).context(format!("cannot write {}", path.display())),
+            None => err.context(format!("cannot write {}", path.display())),
+        }
+    }
+}
+
+impl RecordingFile {
+    fn create(path: &Path) -> Result<(Self, WriteErrors)> {
+        let file =
+            File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
+        let first_error = std::sync::Arc::new(std::sync::Mutex::new(None));
+        let errors = WriteErrors(first_error.clone());
+        Ok((RecordingFile { file, first_error }, errors))
+    }
+
+    fn record<T>(&self, r: std::io::Result<T>) -> std::io::Result<T> {
+        if let Err(e) = &r
+            && let Ok(mut slot) = self.first_error.lock()
+            && slot.is_none()
+        {
+            *slot = Some(std::io::Error::new(e.kind(), e.to_string()));
+        }
+        r
+    }
+}
+
+impl std::io::Write for RecordingFile {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let r = self.file.write(buf);
+        self.record(r)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        let r = self.file.flush();
+        self.record(r)
+    }
+}
+
 /// Writes a data frame as Parquet, atomically: a temporary file in the same directory is
 /// renamed into place once complete.
 pub fn write_parquet(df: &mut DataFrame, path: &Path) -> Result<()> {
     let tmp = crate::output::temp_sibling(path);
     crate::output::register_pending(&tmp);
     let result = (|| -> Result<()> {
-        let file =
-            File::create(&tmp).with_context(|| format!("cannot create {}", tmp.display()))?;
+        let (file, errors) = RecordingFile::create(&tmp)?;
         let metadata = KeyValueMetadata::Static(vec![schema::stored_schema(df)]);
         ParquetWriter::new(file)
             .with_compression(ParquetCompression::Lz4Raw)
             .with_key_value_metadata(Some(metadata))
             .finish(df)
-            .with_context(|| format!("cannot write {}", tmp.display()))?;
+            .map_err(|e| errors.cause(e.into(), &tmp))?;
         std::fs::rename(&tmp, path)
             .with_context(|| format!("cannot move {} into place", path.display()))?;
         Ok(())
@@ -204,7 +261,8 @@ pub fn write_parquet(df: &mut DataFrame, path: &Path) -> Result<()> {
 /// large slice of a plan need not be in memory at once. Written to a temporary sibling and
 /// renamed into place by [`ParquetAppender::finish`]; dropped unfinished, it leaves nothing.
 pub struct ParquetAppender {
-    writer: polars::prelude::BatchedWriter<File>,
+    writer: polars::prelude::BatchedWriter<RecordingFile>,
+    errors: WriteErrors,
     tmp: std::path::PathBuf,
     path: std::path::PathBuf,
     finished: bool,
@@ -216,15 +274,16 @@ impl ParquetAppender {
     pub fn create(path: &Path, first: &mut DataFrame) -> Result<Self> {
         let tmp = crate::output::temp_sibling(path);
         crate::output::register_pending(&tmp);
-        let file = File::create(&tmp).with_context(|| format!("cannot create {}", tmp.display()));
+        let (file, errors) = RecordingFile::create(&tmp)?;
         let mut appender = ParquetAppender {
-            writer: ParquetWriter::new(file?)
+            writer: ParquetWriter::new(file)
                 .with_compression(ParquetCompression::Lz4Raw)
                 .with_key_value_metadata(Some(KeyValueMetadata::Static(vec![
                     schema::stored_schema(first),
                 ])))
                 .batched(first.schema())
-                .with_context(|| format!("cannot write {}", tmp.display()))?,
+                .map_err(|e| errors.cause(e.into(), &tmp))?,
+            errors,
             tmp,
             path: path.to_path_buf(),
             finished: false,
@@ -238,14 +297,14 @@ impl ParquetAppender {
         let chunked = polars::frame::chunk_df_for_writing(df, 512 * 512)?;
         self.writer
             .write_batch(&chunked)
-            .with_context(|| format!("cannot write {}", self.tmp.display()))
+            .map_err(|e| self.errors.cause(e.into(), &self.tmp))
     }
 
     /// Writes the footer and moves the file into place.
     pub fn finish(mut self) -> Result<()> {
         self.writer
             .finish()
-            .with_context(|| format!("cannot write {}", self.tmp.display()))?;
+            .map_err(|e| self.errors.cause(e.into(), &self.tmp))?;
         std::fs::rename(&self.tmp, &self.path)
             .with_context(|| format!("cannot move {} into place", self.path.display()))?;
         self.finished = true;
@@ -446,4 +505,32 @@ pub fn bool_column(df: &DataFrame, name: &str) -> Result<Vec<Option<bool>>> {
         .column(name)
         .with_context(|| format!("column `{name}` is missing"))?;
     Ok(c.as_materialized_series().bool()?.iter().collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A write that fails for want of space (/dev/full) is named as such, not as the Parquet
+    /// writer's "transport error".
+    #[test]
+    fn a_full_disk_is_named_not_hidden_behind_the_parquet_writer() {
+        let full = Path::new("/dev/full");
+        if !full.exists() {
+            eprintln!("no /dev/full here; nothing checked");
+            return;
+        }
+        let (file, errors) = RecordingFile::create(full).unwrap();
+        let mut df = TableBuilder::new()
+            .f64("x", (0..100_000).map(f64::from).collect())
+            .finish()
+            .unwrap();
+        let e = ParquetWriter::new(file)
+            .finish(&mut df)
+            .map_err(|e| errors.cause(e.into(), full))
+            .unwrap_err();
+        let text = format!("{e:#}");
+        assert!(text.contains("No space left on device"), "{text}");
+        assert!(!text.contains("thrift"), "{text}");
+    }
 }

@@ -336,6 +336,8 @@ fn float_verdict<T>(
 ) -> ColumnVerdict {
     let mut max_abs_diff: f64 = 0.0;
     let mut rows_differing = 0;
+    // Whether a differing row differs by a number (not a null or infinity against a value).
+    let mut numeric_difference = false;
     let mut first = Vec::new();
     for (row, (x, y)) in a.iter().zip(b).enumerate() {
         let d = diff(x, y);
@@ -344,6 +346,7 @@ fn float_verdict<T>(
         }
         let ok = matches!(d, Some((d, scale)) if within(d, scale, tolerance));
         if !ok {
+            numeric_difference |= d.is_some();
             rows_differing += 1;
             if first.len() < ROWS_SHOWN {
                 first.push(RowDiff {
@@ -355,10 +358,12 @@ fn float_verdict<T>(
         }
     }
     if rows_differing > 0 {
+        // Rows that differ only by nulls or infinities against values have no numeric
+        // difference to show ("max difference 0" would say they agree).
         ColumnVerdict::Different {
             rows_differing,
             first,
-            max_abs_diff: Some(max_abs_diff),
+            max_abs_diff: numeric_difference.then_some(max_abs_diff),
         }
     } else if max_abs_diff > 0.0 {
         ColumnVerdict::WithinTolerance { max_abs_diff }
@@ -581,6 +586,16 @@ mod tests {
         let b = col("x", "f64", ColumnData::Float(vec![Some(0.0), Some(1.0)]));
         assert!(!compare_columns(&a, &b, 1.0).agrees());
         assert_eq!(compare_columns(&a, &a, 0.0), ColumnVerdict::Identical);
+        // A value against a null has no numeric difference: none is claimed (not "0").
+        match compare_columns(&a, &b, 0.0) {
+            ColumnVerdict::Different { max_abs_diff, .. } => assert_eq!(max_abs_diff, None),
+            v => panic!("{v:?}"),
+        }
+        let c = col("x", "f64", ColumnData::Float(vec![Some(0.0), Some(3.0)]));
+        match compare_columns(&a, &c, 0.0) {
+            ColumnVerdict::Different { max_abs_diff, .. } => assert_eq!(max_abs_diff, Some(2.0)),
+            v => panic!("{v:?}"),
+        }
     }
 
     #[test]

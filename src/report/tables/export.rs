@@ -271,14 +271,26 @@ pub fn number(cell: &str) -> Option<f64> {
     t.parse::<f64>().ok().filter(|x| x.is_finite())
 }
 
+/// The first characters by which a spreadsheet takes a cell for a formula: a CSV cell that
+/// starts with one of them (and is not a plain number) is written with a leading `'`, as
+/// OWASP's advice on CSV injection has it, so that it stays text.
+pub const FORMULA_PREFIXES: [char; 6] = ['=', '+', '-', '@', '\t', '\r'];
+
 /// The CSV of a table (RFC 4180): the cells as the report shows them, minus signs as ASCII
-/// hyphens in numbers so that every reader parses them.
+/// hyphens in numbers so that every reader parses them; a text cell that a spreadsheet would
+/// take for a formula neutralised ([`FORMULA_PREFIXES`]); control characters other than the
+/// line breaks inside a quoted cell dropped.
 pub fn csv(t: &ExportTable) -> String {
     let field = |s: &str| {
         let s = if number(s).is_some() {
-            s.replace('\u{2212}', "-")
+            s.trim().replace('\u{2212}', "-")
         } else {
-            s.to_string()
+            let clean = plain(s);
+            if clean.starts_with(FORMULA_PREFIXES) {
+                format!("'{clean}")
+            } else {
+                clean
+            }
         };
         if s.contains([',', '"', '\n', '\r']) {
             format!("\"{}\"", s.replace('"', "\"\""))
@@ -294,6 +306,21 @@ pub fn csv(t: &ExportTable) -> String {
         out.push_str("\r\n");
     }
     out
+}
+
+/// Text without control characters (but tab and line breaks) and without the invisible
+/// characters that reorder or hide text (bidirectional controls, zero-width characters).
+pub fn plain(s: &str) -> String {
+    s.chars()
+        .filter(|&c| (!c.is_control() || matches!(c, '\t' | '\n' | '\r')) && !is_invisible(c))
+        .collect()
+}
+
+/// Bidirectional controls and zero-width characters: shown by no reader as what they do.
+pub fn is_invisible(c: char) -> bool {
+    matches!(c,
+        '\u{200B}'..='\u{200F}' | '\u{202A}'..='\u{202E}' | '\u{2060}'..='\u{2069}'
+        | '\u{FEFF}' | '\u{061C}')
 }
 
 /// A number to `digits` significant digits, as LaTeX math: `1.23457`, `$-0.5$`,
@@ -359,16 +386,63 @@ pub fn tex_text(s: &str) -> String {
     out
 }
 
-/// A character inside math mode.
+/// A character inside math mode: letters, digits and plain punctuation as they are, Greek
+/// letters as commands, every other character set as escaped text in an `\mbox` (a LaTeX
+/// special, in a sub- or superscript too, is never active).
 fn math_char(c: char) -> String {
     greek(c).map_or_else(
         || match c {
             '\u{2212}' => "-".into(),
-            '{' | '}' | '%' | '#' | '&' => format!("\\{c}"),
-            c => c.to_string(),
+            c if c.is_ascii_alphanumeric() || "+-.,:;'()/=*<>! ".contains(c) => c.to_string(),
+            c => format!("\\mbox{{{}}}", escape(&c.to_string())),
         },
         |g| format!("{g} "),
     )
+}
+
+/// Unicode superscript and subscript characters, which pdflatex does not know, as LaTeX
+/// math: `Hʳ` is `H$^{r}$`.
+fn script_char(c: char) -> Option<String> {
+    const SUP: [(char, char); 18] = [
+        ('ʳ', 'r'),
+        ('ˢ', 's'),
+        ('ⁿ', 'n'),
+        ('ᵗ', 't'),
+        ('ᵃ', 'a'),
+        ('ᶜ', 'c'),
+        ('ⁱ', 'i'),
+        ('⁰', '0'),
+        ('¹', '1'),
+        ('²', '2'),
+        ('³', '3'),
+        ('⁴', '4'),
+        ('⁵', '5'),
+        ('⁶', '6'),
+        ('⁷', '7'),
+        ('⁸', '8'),
+        ('⁹', '9'),
+        ('⁻', '-'),
+    ];
+    const SUB: [(char, char); 12] = [
+        ('₀', '0'),
+        ('₁', '1'),
+        ('₂', '2'),
+        ('₃', '3'),
+        ('₄', '4'),
+        ('₅', '5'),
+        ('₆', '6'),
+        ('₇', '7'),
+        ('₈', '8'),
+        ('₉', '9'),
+        ('ᵣ', 'r'),
+        ('ₛ', 's'),
+    ];
+    if let Some((_, b)) = SUP.iter().find(|(u, _)| *u == c) {
+        return Some(format!("$^{{{b}}}$"));
+    }
+    SUB.iter()
+        .find(|(u, _)| *u == c)
+        .map(|(_, b)| format!("$_{{{b}}}$"))
 }
 
 fn greek(c: char) -> Option<&'static str> {
@@ -400,7 +474,11 @@ fn escape(s: &str) -> String {
             continue;
         }
         match c {
+            c if c.is_control() || is_invisible(c) => {}
             '\\' => out.push_str("\\textbackslash{}"),
+            '<' => out.push_str("\\textless{}"),
+            '>' => out.push_str("\\textgreater{}"),
+            '|' => out.push_str("\\textbar{}"),
             '&' | '%' | '$' | '#' | '_' | '{' | '}' => {
                 out.push('\\');
                 out.push(c);
@@ -417,7 +495,10 @@ fn escape(s: &str) -> String {
             '≈' => out.push_str("$\\approx$"),
             '∞' => out.push_str("$\\infty$"),
             '°' => out.push_str("\\textdegree{}"),
-            c => out.push(c),
+            c => match script_char(c) {
+                Some(m) => out.push_str(&m),
+                None => out.push(c),
+            },
         }
     }
     out
@@ -511,5 +592,69 @@ mod tests {
         assert_eq!(tex_number(-0.0, 6), "0");
         assert_eq!(tex_number(12345678.0, 6), "12345700");
         assert_eq!(tex_text("t/R_c"), "t/$R_{c}$");
+    }
+
+    /// A path or title with `^(\input /etc/passwd )` (a superscript of LaTeX specials) and
+    /// every special character, in text and in sub- and superscripts, is inert LaTeX.
+    #[test]
+    fn latex_specials_are_inert_in_every_mode() {
+        let t = tex_text("/tmp/x^(\\input /etc/passwd )_{$#&%~}");
+        assert!(!t.contains("\\input"), "{t}");
+        assert!(t.contains("textbackslash{}"), "{t}");
+        for bad in ["^{(\\i", "{$", "#&"] {
+            assert!(!t.contains(bad), "{bad}: {t}");
+        }
+        let raw = "a\\b{c}$d#e&f%g_h~i^j<k>l|m";
+        let t = tex_text(&format!("K_{raw} {raw}"));
+        // No unescaped special: every `\` starts a command this module writes.
+        for (i, c) in t.char_indices() {
+            if matches!(c, '#' | '&' | '%' | '~') {
+                assert!(t[..i].ends_with('\\'), "{c} at {i}: {t}");
+            }
+        }
+        assert!(!t.contains("\\b"), "{t}");
+        // Hʳ, Hˢ (characters pdflatex rejects) as math; control and bidi characters dropped.
+        assert_eq!(tex_text("Hʳ, Hˢ"), "H$^{r}$, H$^{s}$");
+        assert_eq!(tex_text("a\u{202E}b\u{7}c\u{1b}d"), "abcd");
+    }
+
+    /// A text cell that a spreadsheet takes for a formula gets a leading `'`; plain numbers,
+    /// negative ones included, stay numbers.
+    #[test]
+    fn csv_formulas_are_neutralised_and_numbers_kept() {
+        let s = |x: &str| x.to_string();
+        let t = ExportTable {
+            stem: "t".into(),
+            title: s("t"),
+            headers: vec![s("a")],
+            rows: [
+                "=HYPERLINK(\"http://x\",\"y\")",
+                "+1+2",
+                "-x",
+                "@SUM(A1)",
+                "\tcmd",
+                "\rcmd",
+                "-0.5",
+                "\u{2212}2",
+                "+3",
+                "1e-9",
+                "a\u{202E}b",
+            ]
+            .iter()
+            .map(|c| vec![s(c)])
+            .collect(),
+        };
+        let lines: Vec<String> = csv(&t).split("\r\n").map(str::to_string).collect();
+        assert_eq!(lines[1], "\"'=HYPERLINK(\"\"http://x\"\",\"\"y\"\")\"");
+        assert_eq!(lines[2], "'+1+2");
+        assert_eq!(lines[3], "'-x");
+        assert_eq!(lines[4], "'@SUM(A1)");
+        assert_eq!(lines[5], "'\tcmd");
+        assert!(lines[6].starts_with("\"'\rcmd"), "{lines:?}");
+        assert_eq!(lines[7], "-0.5");
+        assert_eq!(lines[8], "-2");
+        assert_eq!(lines[9], "+3");
+        assert_eq!(lines[10], "1e-9");
+        assert_eq!(lines[11], "ab");
     }
 }
