@@ -503,7 +503,7 @@ mod tests {
                     "{what}: `{name}` is filled but left out"
                 );
             }
-            let finds = study_finds(&plan);
+            let finds = study_finds(&plan.manifest.load_cases);
             for c in kept.columns() {
                 let name = c.name().as_str();
                 assert!(
