@@ -394,19 +394,7 @@ fn slurm_writes_an_array_and_a_merge_that_run_as_the_scheduler_would() {
         "{merge_sh}"
     );
     // Run the scripts as Slurm would: each task with its SLURM_ARRAY_TASK_ID, then the merge.
-    for task in 0..4 {
-        let o = Command::new("bash")
-            .arg(scripts.join("array.sh"))
-            .env("SLURM_ARRAY_TASK_ID", task.to_string())
-            .output()
-            .unwrap();
-        assert!(o.status.success(), "task {task}: {}", stderr(&o));
-    }
-    let o = Command::new("bash")
-        .arg(scripts.join("merge.sh"))
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "merge: {}", stderr(&o));
+    run_scripts(&scripts, 4);
     let whole = run_study(&opts(&study, dir.join("whole"))).unwrap().dir;
     assert_same_run(&whole, &out.join("state"));
     // Values that would not survive a #SBATCH line are refused.
@@ -438,6 +426,24 @@ fn slurm_writes_an_array_and_a_merge_that_run_as_the_scheduler_would() {
     assert_usage_error(&o, &["--shards", "0"]);
 }
 
+/// Runs the scripts of `slurm` as the scheduler would: each of the `tasks` array tasks with
+/// its SLURM_ARRAY_TASK_ID, then the merge; each must succeed.
+fn run_scripts(scripts: &std::path::Path, tasks: usize) {
+    for task in 0..tasks {
+        let o = Command::new("bash")
+            .arg(scripts.join("array.sh"))
+            .env("SLURM_ARRAY_TASK_ID", task.to_string())
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "task {task}: {}", stderr(&o));
+    }
+    let o = Command::new("bash")
+        .arg(scripts.join("merge.sh"))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "merge: {}", stderr(&o));
+}
+
 /// Every value a Slurm script interpolates is quoted for its reader or refused: an --out with
 /// a space and a `%` (quoted in `#SBATCH --output`, `%` doubled), a study name starting with
 /// `-`; a newline in --out is refused before anything is written.
@@ -462,19 +468,7 @@ fn slurm_scripts_quote_or_refuse_every_value() {
         array.contains(&format!("#SBATCH --output=\"{logs}/shard-%a.out\"\n")),
         "{array}"
     );
-    for task in 0..2 {
-        let o = Command::new("bash")
-            .arg(scripts.join("array.sh"))
-            .env("SLURM_ARRAY_TASK_ID", task.to_string())
-            .output()
-            .unwrap();
-        assert!(o.status.success(), "task {task}: {}", stderr(&o));
-    }
-    let o = Command::new("bash")
-        .arg(scripts.join("merge.sh"))
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "merge: {}", stderr(&o));
+    run_scripts(&scripts, 2);
     assert!(out.join("-dash/report.html").is_file());
     // A newline would end a comment or a #SBATCH line: refused, nothing written.
     let bad = dir.join("a\nrm -rf x");

@@ -455,13 +455,18 @@ pub fn read_case_results_rows(
     path: &Path,
     (offset, len): (usize, usize),
 ) -> Result<Vec<CaseResult>> {
+    let df = read_slice(path, (offset, len))?;
+    read_frame(plan, &df).with_context(|| format!("in {} (rows from {offset})", path.display()))
+}
+
+/// Every column of the rows `offset .. offset + len` of a Parquet file.
+fn read_slice(path: &Path, (offset, len): (usize, usize)) -> Result<polars::prelude::DataFrame> {
     let file =
         std::fs::File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
-    let df = polars::prelude::ParquetReader::new(file)
+    polars::prelude::ParquetReader::new(file)
         .with_slice(Some((offset, len)))
         .finish()
-        .with_context(|| format!("cannot read {} as Parquet", path.display()))?;
-    read_frame(plan, &df).with_context(|| format!("in {} (rows from {offset})", path.display()))
+        .with_context(|| format!("cannot read {} as Parquet", path.display()))
 }
 
 /// [`read_case_results_rows`] of a table written elsewhere (a shard's), checked to be the
@@ -474,12 +479,7 @@ pub fn read_foreign_case_results_rows(
     path: &Path,
     (offset, len): (usize, usize),
 ) -> Result<Vec<CaseResult>> {
-    let file =
-        std::fs::File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
-    let df = polars::prelude::ParquetReader::new(file)
-        .with_slice(Some((offset, len)))
-        .finish()
-        .with_context(|| format!("cannot read {} as Parquet", path.display()))?;
+    let df = read_slice(path, (offset, len))?;
     let rows = read_frame(plan, &df)
         .with_context(|| format!("in {} (rows from {offset})", path.display()))?;
     same_as_written(plan, &df, &rows)
