@@ -100,11 +100,18 @@ impl LambdaMap {
         RGBColor(m(a.0, b.0), m(a.1, b.1), m(a.2, b.2))
     }
 
-    /// For each mechanism, the raster cell (i, j) farthest from another mechanism and from
-    /// the border: where its name fits best (two-pass chamfer distance, in cells).
+    /// The mechanism a cell is drawn with: none where it has no finite λ (drawn grey,
+    /// whatever the classification of its place says).
+    fn drawn_mechanism(&self, c: usize) -> Option<u8> {
+        self.mechanism[c].filter(|_| self.lambda[c].is_finite())
+    }
+
+    /// For each mechanism, the raster cell (i, j) of finite λ farthest from another
+    /// mechanism, from grey cells and from the border: where its name fits best (two-pass
+    /// chamfer distance, in cells).
     pub fn label_cells(&self) -> Vec<(u8, usize, usize)> {
         let (nx, ny) = (self.nx, self.ny);
-        let at = |i: usize, j: usize| self.mechanism[j * nx + i];
+        let at = |i: usize, j: usize| self.drawn_mechanism(j * nx + i);
         let mut d = vec![f64::INFINITY; nx * ny];
         for j in 0..ny {
             for i in 0..nx {
@@ -146,7 +153,7 @@ impl LambdaMap {
         let mut out = Vec::new();
         for m in 0..self.mechanisms.len() as u8 {
             let best = (0..nx * ny)
-                .filter(|&c| self.mechanism[c] == Some(m))
+                .filter(|&c| self.drawn_mechanism(c) == Some(m))
                 .max_by(|&a, &b| d[a].total_cmp(&d[b]).then(b.cmp(&a)));
             if let Some(c) = best {
                 out.push((m, c % nx, c / nx));
@@ -443,6 +450,23 @@ mod tests {
             infinite: None,
             gaps: Vec::new(),
         }
+    }
+
+    #[test]
+    fn a_mechanism_is_named_inside_its_cells_of_finite_lambda() {
+        // Ten by ten cells, all classified as mechanism 0, finite λ only in the 3 × 3 block of
+        // the top-right corner: the name goes there, not into the grey middle.
+        let mut m = map(false, (0.0, 1.0));
+        (m.nx, m.ny) = (10, 10);
+        m.mechanisms = vec!["mixed".into()];
+        m.mechanism = vec![Some(0); 100];
+        m.lambda = (0..100)
+            .map(|c| if c % 10 >= 7 && c / 10 >= 7 { 0.5 } else { f64::NAN })
+            .collect();
+        let cells = m.label_cells();
+        assert_eq!(cells.len(), 1);
+        let (_, i, j) = cells[0];
+        assert!(i >= 7 && j >= 7, "({i}, {j})");
     }
 
     #[test]
