@@ -38,6 +38,11 @@ pub(super) fn friendly(message: &str) -> String {
         ),
         ("expected string scalar", "expected a text value"),
         ("invalid f64", "expected a number such as 1.35"),
+        (
+            "invalid floating point",
+            "expected a finite number such as 1.35: `inf`, `nan` and numbers beyond ±1.8e308 \
+             are not numbers here (only μ may be `inf`, in the grid and in scenes)",
+        ),
         ("invalid bool", "expected true or false"),
     ] {
         if message == theirs {
@@ -107,6 +112,11 @@ mod tests {
         let b = friendly("budget breached: Nodes { nodes: 250001 }");
         assert!(b.contains("250000") && !b.contains("Nodes {"), "{b}");
         assert!(friendly("expected sequence start").contains("a list"));
+        let n = friendly("invalid floating point");
+        assert!(
+            n.contains("finite number") && n.contains("only μ may be `inf`"),
+            "{n}"
+        );
     }
 
     #[test]

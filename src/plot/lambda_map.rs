@@ -461,7 +461,13 @@ mod tests {
         m.mechanisms = vec!["mixed".into()];
         m.mechanism = vec![Some(0); 100];
         m.lambda = (0..100)
-            .map(|c| if c % 10 >= 7 && c / 10 >= 7 { 0.5 } else { f64::NAN })
+            .map(|c| {
+                if c % 10 >= 7 && c / 10 >= 7 {
+                    0.5
+                } else {
+                    f64::NAN
+                }
+            })
             .collect();
         let cells = m.label_cells();
         assert_eq!(cells.len(), 1);
