@@ -54,7 +54,12 @@ pub fn state_row(sol: &Solution) -> StateRow {
         Find::Thickness | Find::Friction | Find::LoadFactor
     );
     if critical && sol.outcome == Some(Outcome::Found) {
-        row.state = "collapse".into();
+        // λ_max is drawn as a load-factor collapse; K_c and μ_c as the find's limit state.
+        row.state = if sol.find == Find::LoadFactor {
+            "collapse".into()
+        } else {
+            "limit".into()
+        };
         row.mechanism = sol.mechanism.map(|m| m.as_str().to_string());
         row.thrust_over_half_weight = sol.thrust_over_half_weight;
         row.crown_moment = sol.crown_moment;
@@ -117,11 +122,17 @@ mod tests {
         .unwrap();
         let sol = crate::scene::solve_static(&scene);
         let row = state_row(&sol);
-        assert_eq!(row.state, "collapse");
+        assert_eq!(row.state, "limit");
         assert_eq!(Some(row.k), sol.k_crit);
         let svg = svg(&sol).unwrap();
         assert!(svg.starts_with("<svg"), "{}", &svg[..40]);
         assert!(svg.contains("K = "), "the title names K");
+        // Not the words of a study's scene that cannot stand.
+        assert!(
+            svg.contains("Static limit"),
+            "the title names the static limit"
+        );
+        assert!(!svg.contains("cannot stand"));
     }
 
     #[test]

@@ -144,6 +144,7 @@ impl StateTexts {
                 Self::load_factor_collapse(s, &mech, values)
             }
             "collapse" => Self::collapse(s, &mech, values),
+            "limit" => Self::limit(&mech, values),
             "no_load_factor" => Self::no_load_factor(s),
             _ => Self::no_equilibrium(s),
         }
@@ -291,6 +292,20 @@ impl StateTexts {
             note: None,
             caption: format!(
                 "The admissible state of least crown thrust of the scene ({values}): the arch to scale with its line of thrust, the joints where it touches a face (hinges) and the joints at the limit of friction (sliding, with the sense of the crown-side part)."
+            ),
+        }
+    }
+
+    /// The limit state of a thickness or friction find solved on its own (a notebook's
+    /// `solve`): the arch at K_c or μ_c.
+    fn limit(mech: &str, values: String) -> Self {
+        StateTexts {
+            title: format!("Static limit: {mech} collapse"),
+            heading: format!("Static limit state, {mech} collapse"),
+            subtitle: vec![values.clone(), format!("{mech} mechanism")],
+            note: None,
+            caption: format!(
+                "The limit state of the find ({values}): the arch to scale at its critical value with its line of thrust, hinges and sliding joints (with the sense of the crown-side part)."
             ),
         }
     }
