@@ -1,4 +1,4 @@
-//! The attack catalogue of issue 20: bad input, full disks, interruptions, links out of the
+//! The attack catalogue: bad input, full disks, interruptions, links out of the
 //! run directory. Each test asserts the refusal (exit 2, the key or option named) or that the
 //! earlier run is intact and no temporary is left.
 
