@@ -48,6 +48,14 @@ fn a_merge_refuses_shard_tables_that_are_not_what_the_shard_wrote_or_the_plan_ho
             vec!["not the table the shard wrote"],
         ),
         (
+            "a grid value edited, hash recomputed",
+            |s| {
+                store::rewrite_f64_value(&s.join("results.parquet"), "k", 0, Some(7.7)).unwrap();
+                rehash(s);
+            },
+            vec!["row 0 (case 0)", "`k` is not the plan's value"],
+        ),
+        (
             "rows swapped keeping their ids",
             |s| {
                 let p = s.join("results.parquet");

@@ -482,6 +482,15 @@ pub fn read_foreign_case_results_rows(
     let df = read_slice(path, (offset, len))?;
     let rows = read_frame(plan, &df)
         .with_context(|| format!("in {} (rows from {offset})", path.display()))?;
+    for (i, (case, r)) in plan.cases.iter().zip(&rows).enumerate() {
+        if let Some(name) = differs_from_plan(&case.scene, &r.solution) {
+            bail!(
+                "row {} (case {}): `{name}` is not the plan's value for that case",
+                offset + i,
+                case.id
+            );
+        }
+    }
     same_as_written(plan, &df, &rows)
         .with_context(|| format!("in {} (rows from {offset})", path.display()))?;
     Ok(rows)
@@ -489,6 +498,37 @@ pub fn read_foreign_case_results_rows(
 
 /// The stored frame against the frame this build writes for `rows` of `plan`; Err names the
 /// first column that differs.
+/// The first input column of a stored answer that is not the value its case's scene gives
+/// (K, μ, the arch): a row carries its inputs back, so a forged grid value would otherwise
+/// be read and written again as if it were the plan's.
+fn differs_from_plan(
+    scene: &crate::scene::Scene,
+    stored: &crate::scene::Solution,
+) -> Option<&'static str> {
+    let want = crate::scene::Solution::empty(scene);
+    let same = |a: Option<f64>, b: Option<f64>| a.map(f64::to_bits) == b.map(f64::to_bits);
+    [
+        ("k", same(want.k, stored.k)),
+        ("t_over_r", same(want.t_over_r, stored.t_over_r)),
+        (
+            "mu",
+            same(want.mu, stored.mu) && want.mu_infinite == stored.mu_infinite,
+        ),
+        (
+            "half_angle_deg",
+            want.half_angle_deg.to_bits() == stored.half_angle_deg.to_bits(),
+        ),
+        ("voussoirs", want.voussoirs == stored.voussoirs),
+        ("weight", want.weight == stored.weight),
+        ("shape", want.shape == stored.shape),
+        ("joints", want.joints == stored.joints),
+        ("lambda", same(want.lambda, stored.lambda)),
+    ]
+    .into_iter()
+    .find(|(_, ok)| !ok)
+    .map(|(name, _)| name)
+}
+
 fn same_as_written(plan: &Plan, stored: &DataFrame, rows: &[CaseResult]) -> Result<()> {
     let again = super::results_frame(plan, rows)?;
     let names = |df: &DataFrame| -> Vec<String> {
