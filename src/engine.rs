@@ -21,7 +21,7 @@ use crate::analysis::symmetric::{self, RotationalDomain, SlidingDomain};
 use crate::model::Discretisation;
 use crate::plan::{Case, Plan};
 use crate::progress::{Progress, Stage};
-use crate::scene::{self, Find, Solution};
+use crate::scene::{self, Find, Scene, Solution};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -62,6 +62,17 @@ pub enum GridPath {
 impl GridPath {
     /// The path the engine takes for a plan.
     pub fn of(plan: &Plan) -> Self {
+        // A sampling study's scenes share no K line; only the state of the circular arch
+        // under self-weight keeps the separable structure (each K and each μ once).
+        if let Some(s) = &plan.manifest.sampling {
+            return if s.question == crate::manifest::Question::Probability
+                && plan.is_separable_state_grid()
+            {
+                GridPath::Separable
+            } else {
+                GridPath::CaseByCase
+            };
+        }
         if plan.is_separable_state_grid() {
             GridPath::Separable
         } else if is_symmetric_state_grid(plan) {
@@ -140,19 +151,32 @@ pub fn analyse(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
     match GridPath::of(plan) {
         GridPath::Separable => run_separable(&plan.cases, plan.manifest.arch.weight, progress),
         GridPath::KLines => run_lines(plan, progress),
-        GridPath::CaseByCase => case_by_case(&plan.cases, progress),
+        GridPath::CaseByCase => {
+            // A sample asks whether the arch stands, or for its static limit: the search for
+            // the first complete solution beyond it (the gap) is not made.
+            let solve = if plan.manifest.sampling.is_some() {
+                scene::solve_static
+            } else {
+                scene::solve
+            };
+            case_by_case(&plan.cases, progress, solve)
+        }
     }
 }
 
 /// Every case on its own; once `progress` asks to stop, the cases not begun are skipped.
-fn case_by_case(cases: &[Case], progress: &dyn Progress) -> Vec<CaseResult> {
+fn case_by_case(
+    cases: &[Case],
+    progress: &dyn Progress,
+    solve: fn(&Scene) -> Solution,
+) -> Vec<CaseResult> {
     cases
         .par_iter()
         .map(|c| {
             if progress.stopped() {
                 return skipped(c);
             }
-            let r = checked(c, || scene::solve(&c.scene));
+            let r = checked(c, || solve(&c.scene));
             progress.advance(1);
             r
         })
@@ -194,7 +218,7 @@ pub fn solve_scenes(
     progress.begin(Stage::Analyse, Some(cases.len() as u64));
     let rows = match weight {
         Some(w) if separable => run_separable(&cases, w, progress),
-        _ => case_by_case(&cases, progress),
+        _ => case_by_case(&cases, progress, scene::solve),
     };
     progress.end(Stage::Analyse);
     if progress.stopped() {

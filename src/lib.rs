@@ -29,6 +29,7 @@ pub mod provenance;
 pub mod records;
 pub mod report;
 pub mod runner;
+pub mod sampling;
 pub mod scene;
 pub mod shard;
 pub mod slurm;

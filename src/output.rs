@@ -181,6 +181,15 @@ impl RunLayout {
     pub fn mechanisms(&self) -> PathBuf {
         self.dir.join("mechanisms.parquet")
     }
+    /// samples.parquet: every sample of a sampling study with its values and answer
+    /// (docs/report-files.md).
+    pub fn samples(&self) -> PathBuf {
+        self.dir.join("samples.parquet")
+    }
+    /// estimates.parquet: the estimates of a sampling study (docs/report-files.md).
+    pub fn estimates(&self) -> PathBuf {
+        self.dir.join("estimates.parquet")
+    }
     /// run.json.
     pub fn run_json(&self) -> PathBuf {
         self.dir.join("run.json")

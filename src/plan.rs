@@ -3,8 +3,9 @@
 //! innermost). A load case spans the axes its find uses: a `thresholds` load case in a study
 //! whose other load cases have k and mu axes has one case per value of the other axes.
 
-use crate::manifest::{AxisName, LoadCase, Manifest};
-use crate::model::{Arch, Discretisation, Friction, Load, k_from_t_over_r};
+use crate::manifest::{AxisName, LoadCase, Manifest, ParamName};
+use crate::model::{Arch, Discretisation, Friction, Load, Shape, k_from_t_over_r};
+use crate::sampling::Design;
 use crate::scene::{Find, Scene};
 
 /// The index of `x` among the increasing values `v` of a grid axis, within a relative
@@ -53,8 +54,10 @@ pub struct PlanTooLarge {
     pub requested: u128,
 }
 
-/// Number of cases a manifest asks for.
+/// Number of cases a manifest asks for: the grid points of each load case, times the sample
+/// rows of a sampling study.
 pub fn case_count(m: &Manifest) -> u128 {
+    let rows = m.sampling.as_ref().map_or(1, |s| u128::from(s.rows()));
     m.load_cases
         .iter()
         .map(|lc| {
@@ -63,6 +66,7 @@ pub fn case_count(m: &Manifest) -> u128 {
                 .filter(|a| lc.spans(a.name))
                 .map(|a| a.values.len() as u128)
                 .product::<u128>()
+                * rows
         })
         .sum()
 }
@@ -70,6 +74,7 @@ pub fn case_count(m: &Manifest) -> u128 {
 /// The number of positions of each grid axis for the cases of `load_case`, in grid order
 /// (the case ids run through them as an odometer, last axis fastest): an axis the load case
 /// does not span has a single position (never read: the scene finds that parameter itself).
+/// A sampling study has one more position, innermost: the sample row.
 pub fn load_case_dims(manifest: &Manifest, load_case: &LoadCase) -> Vec<u64> {
     manifest
         .grid
@@ -81,6 +86,7 @@ pub fn load_case_dims(manifest: &Manifest, load_case: &LoadCase) -> Vec<u64> {
                 1
             }
         })
+        .chain(manifest.sampling.as_ref().map(|s| s.rows()))
         .collect()
 }
 
@@ -102,6 +108,8 @@ pub fn build_slice(manifest: Manifest, ids: std::ops::Range<u64>) -> Plan {
     let (start, end) = (ids.start.min(total), ids.end.min(total));
     let mut cases = Vec::with_capacity(usize::try_from(end.saturating_sub(start)).unwrap_or(0));
     let mut first = 0u64;
+    // The sample rows are drawn from one design, built once for the slice.
+    let design = manifest.sampling.as_ref().map(|s| s.design());
     for (lc, load_case) in manifest.load_cases.iter().enumerate() {
         let dims = load_case_dims(&manifest, load_case);
         let per_lc: u64 = dims.iter().product();
@@ -118,7 +126,7 @@ pub fn build_slice(manifest: Manifest, ids: std::ops::Range<u64>) -> Plan {
                 cases.push(Case {
                     id,
                     load_case: lc,
-                    scene: scene_at(&manifest, lc, &idx),
+                    scene: scene_at(&manifest, lc, &idx, design.as_ref()),
                 });
                 // Odometer increment, last axis fastest.
                 for d in (0..dims.len()).rev() {
@@ -143,8 +151,10 @@ pub fn shard_ids(total: u64, index: u64, count: u64) -> std::ops::Range<u64> {
     at(index.saturating_sub(1))..at(index)
 }
 
-fn scene_at(m: &Manifest, lc: usize, idx: &[usize]) -> Scene {
+fn scene_at(m: &Manifest, lc: usize, idx: &[usize], design: Option<&Design>) -> Scene {
     let mut half = m.arch.half_angle_deg;
+    let mut form = m.arch.form();
+    let mut lambda = None;
     let mut at_deg = None;
     let mut at_x = None;
     let mut joints = m.arch.voussoirs;
@@ -162,16 +172,29 @@ fn scene_at(m: &Manifest, lc: usize, idx: &[usize]) -> Scene {
             AxisName::TOverR => k = k_from_t_over_r(v),
             AxisName::Mu => mu = v,
             AxisName::HalfAngleDeg => half = v,
-            AxisName::Voussoirs => {
-                joints = if v.is_infinite() {
-                    Discretisation::Continuum
-                } else {
-                    Discretisation::Voussoirs(v as u32)
-                }
-            }
+            AxisName::Voussoirs => joints = discretisation(v),
             AxisName::AtDeg => at_deg = Some(v),
             AxisName::AtX => at_x = Some(v),
         }
+    }
+    let find = case.map_or(m.find, |c| c.find);
+    if let (Some(s), Some(design)) = (&m.sampling, design) {
+        let row = idx.get(m.grid.len()).map_or(0, |&r| r as u64);
+        for (p, v) in s.params.iter().zip(s.values(design, row)) {
+            match p.name {
+                ParamName::K => k = v,
+                ParamName::TOverR => k = k_from_t_over_r(v),
+                ParamName::Mu => mu = v,
+                ParamName::HalfAngleDeg => half = v,
+                ParamName::Eccentricity => form.shape = Shape::Pointed { eccentricity: v },
+                ParamName::Voussoirs => joints = discretisation(v),
+                ParamName::AtDeg => at_deg = Some(v),
+                ParamName::AtX => at_x = Some(v),
+                ParamName::Lambda => lambda = Some(v),
+            }
+        }
+        // A sample at the closed end of a continuous support rounds onto it: K = 1 is no arch.
+        k = k.max(1f64.next_up());
     }
     // Every value was validated with the manifest, so the constructors cannot fail.
     let arch = Arch::from_valid(k, half, m.arch.weight, joints);
@@ -179,10 +202,19 @@ fn scene_at(m: &Manifest, lc: usize, idx: &[usize]) -> Scene {
     Scene {
         arch,
         friction,
-        find: case.map_or(m.find, |c| c.find),
-        form: m.arch.form(),
+        find,
+        form,
         load: case.map_or(Load::SelfWeight, |c| c.load(at_deg, at_x)),
-        lambda: case.and_then(|c| c.lambda).unwrap_or(0.0),
+        lambda: lambda.or(case.and_then(|c| c.lambda)).unwrap_or(0.0),
+    }
+}
+
+/// The discretisation of a voussoir count (+inf: the continuum).
+fn discretisation(v: f64) -> Discretisation {
+    if v.is_infinite() {
+        Discretisation::Continuum
+    } else {
+        Discretisation::Voussoirs(v as u32)
     }
 }
 
@@ -215,7 +247,11 @@ impl Plan {
 /// the number of cases is [`case_count`], so a plan of 10⁸ cases costs what a plan of ten
 /// does.
 pub fn describe(m: &Manifest) -> String {
-    let mut s = format!("study `{}`: find {}\n", m.name, m.find);
+    let find = m
+        .sampling
+        .as_ref()
+        .map_or(m.find.to_string(), |s| s.question.to_string());
+    let mut s = format!("study `{}`: find {find}\n", m.name);
     let shape = match m.arch.eccentricity {
         Some(e) => format!("{} (e = {e})", m.arch.shape),
         None => m.arch.shape.to_string(),
@@ -269,7 +305,7 @@ pub fn describe(m: &Manifest) -> String {
             if let Some(x) = l.lambda {
                 d.push_str(&format!(", λ = {x}"));
             }
-            if l.find != m.find {
+            if l.find != m.find && m.sampling.is_none() {
                 d.push_str(&format!(", find {}", l.find));
             }
             d.push(')');
@@ -277,6 +313,30 @@ pub fn describe(m: &Manifest) -> String {
         })
         .collect();
     s.push_str(&format!("load cases: {}\n", names.join(", ")));
+    if let Some(u) = &m.sampling {
+        for p in &u.params {
+            s.push_str(&format!(
+                "uncertain {}: {}\n",
+                p.name.as_str(),
+                p.distribution.describe()
+            ));
+        }
+        if let Some(c) = u.correlation {
+            s.push_str(&format!(
+                "correlation of {} and {}: {}\n",
+                u.params[c.first].name.as_str(),
+                u.params[c.second].name.as_str(),
+                c.value
+            ));
+        }
+        s.push_str(&format!(
+            "samples: {} by {} (seed {}), {} analyses per grid point\n",
+            u.n,
+            u.method.as_str(),
+            u.seed,
+            u.rows()
+        ));
+    }
     s.push_str(&format!("cases: {}\n", case_count(m)));
     s
 }

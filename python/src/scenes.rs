@@ -194,5 +194,6 @@ fn load_case(base: &SceneOptions, first: Option<&Scene>) -> LoadCase {
             || archstudy::scene::Find::parse(&base.find).unwrap_or_default(),
             |s| s.find,
         ),
+        sampled: false,
     }
 }

@@ -111,6 +111,11 @@ pub fn locate_with(plan: &Plan, results: &[CaseResult], progress: &dyn Progress)
 /// [cell code](cell_code) of every case (`codes[n]` of case n): the plan is read a chunk at a
 /// time and only the cells of each grid are held, one byte a case.
 pub fn locate_codes(manifest: &Manifest, codes: &[u8], progress: &dyn Progress) -> Located {
+    if manifest.sampling.is_some() {
+        // Samples are scattered, not a lattice: the collapse curve of a sampling study is
+        // computed along μ by the figure data, and nothing is located between samples.
+        return Located::default();
+    }
     let counter = Counter::new(progress);
     let tol = manifest.boundary_tolerance;
     let groups = grid::groups(manifest, codes);

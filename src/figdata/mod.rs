@@ -11,6 +11,7 @@ mod general_states;
 pub mod load_factors;
 pub mod mechanisms;
 mod reference;
+pub mod sampled;
 pub use reference::find_of_quantity;
 
 use crate::analysis::symmetric;
@@ -459,6 +460,9 @@ fn symmetric_states(
 
 /// Runs the stage: computes the figure data of a run and writes it into its directory.
 pub fn run(manifest: &Manifest, layout: &RunLayout) -> Result<FigureDataSummary> {
+    if let Some(s) = &manifest.sampling {
+        return run_sampled(manifest, s, layout);
+    }
     let bifurcations = if layout.bifurcations().exists() {
         store::read_bifurcations(&layout.bifurcations())?
     } else {
@@ -533,6 +537,26 @@ pub fn run(manifest: &Manifest, layout: &RunLayout) -> Result<FigureDataSummary>
         curve_points: out.points.len(),
         references: refs.len(),
         mechanisms: mechs.len(),
+    })
+}
+
+/// The stage for a sampling study: samples.parquet and estimates.parquet from the results,
+/// the collapse curves under the samples, and no drawn states.
+fn run_sampled(
+    manifest: &Manifest,
+    s: &crate::manifest::Sampling,
+    layout: &RunLayout,
+) -> Result<FigureDataSummary> {
+    let summary = sampled::run(manifest, s, layout)?;
+    let points = sampled::curves(manifest, s);
+    store::write_parquet(&mut store::curves_frame(&points)?, &layout.curves())?;
+    store::write_parquet(&mut store::states_frame(&[])?, &layout.states())?;
+    store::write_parquet(&mut store::reference_frame(&[])?, &layout.reference())?;
+    store::write_parquet(&mut store::mechanisms_frame(&[])?, &layout.mechanisms())?;
+    Ok(FigureDataSummary {
+        curve_points: points.len(),
+        references: summary.estimates,
+        ..FigureDataSummary::default()
     })
 }
 

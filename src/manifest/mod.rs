@@ -10,6 +10,7 @@ mod parse_errors;
 mod raw;
 mod scene_options;
 mod types;
+mod uncertain;
 mod validate;
 
 pub use error::ManifestError;
@@ -20,7 +21,13 @@ pub use types::{
     ArchOptions, Author, AxisName, DEFAULT_BOUNDARY_TOLERANCE, FigureWidth, GridAxis, LoadCase,
     LoadKind, Manifest, SceneSpec,
 };
-pub use validate::{MAX_AXIS_STEPS, MAX_GENERAL_VOUSSOIRS, MAX_K, MAX_NAME_CHARS, short_number};
+pub use uncertain::{
+    Correlation, DEFAULT_BOOTSTRAP, DEFAULT_SAMPLES, ParamName, Question, Sampling, UncertainParam,
+};
+pub use validate::{
+    MAX_AXIS_STEPS, MAX_BOOTSTRAP, MAX_GENERAL_VOUSSOIRS, MAX_K, MAX_NAME_CHARS, MAX_SAMPLES,
+    short_number,
+};
 
 use raw::RawManifest;
 use std::path::Path;

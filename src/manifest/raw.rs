@@ -184,4 +184,57 @@ pub(super) struct RawManifest {
     pub(super) scenes: Option<Vec<Spanned<RawScene>>>,
     pub(super) boundaries: Option<RawBoundaries>,
     pub(super) figures: Option<RawFigures>,
+    pub(super) uncertain: Option<Spanned<RawUncertain>>,
+    pub(super) samples: Option<Spanned<RawSamples>>,
+}
+
+/// One uncertain parameter as written: a distribution by name and its parameters.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawDistribution {
+    pub(super) distribution: Spanned<String>,
+    pub(super) mean: Option<Spanned<f64>>,
+    pub(super) sd: Option<Spanned<f64>>,
+    pub(super) median: Option<Spanned<f64>>,
+    pub(super) cov: Option<Spanned<f64>>,
+    pub(super) from: Option<Spanned<f64>>,
+    pub(super) to: Option<Spanned<f64>>,
+    pub(super) alpha: Option<Spanned<f64>>,
+    pub(super) beta: Option<Spanned<f64>>,
+    pub(super) values: Option<Vec<Spanned<Number>>>,
+    pub(super) weights: Option<Vec<Spanned<f64>>>,
+}
+
+/// A correlation between two uncertain parameters as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawCorrelation {
+    pub(super) between: Spanned<Vec<String>>,
+    pub(super) value: Spanned<f64>,
+}
+
+/// The `uncertain:` block as written: a distribution for each uncertain parameter.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawUncertain {
+    pub(super) k: Option<Spanned<RawDistribution>>,
+    pub(super) t_over_r: Option<Spanned<RawDistribution>>,
+    pub(super) mu: Option<Spanned<RawDistribution>>,
+    pub(super) half_angle_deg: Option<Spanned<RawDistribution>>,
+    pub(super) eccentricity: Option<Spanned<RawDistribution>>,
+    pub(super) voussoirs: Option<Spanned<RawDistribution>>,
+    pub(super) at_deg: Option<Spanned<RawDistribution>>,
+    pub(super) at_x: Option<Spanned<RawDistribution>>,
+    pub(super) lambda: Option<Spanned<RawDistribution>>,
+    pub(super) correlation: Option<Spanned<RawCorrelation>>,
+}
+
+/// The `samples:` block as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawSamples {
+    pub(super) n: Option<Spanned<i64>>,
+    pub(super) method: Option<Spanned<String>>,
+    pub(super) seed: Option<Spanned<i64>>,
+    pub(super) bootstrap: Option<Spanned<i64>>,
 }

@@ -52,8 +52,13 @@ pub struct LoadCase {
     /// The given load factor λ of the live part (state, thickness and friction studies).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lambda: Option<f64>,
-    /// What the cases of this load case compute: the load case's own `find`, or the study's.
+    /// What the cases of this load case compute: the load case's own `find`, or the study's
+    /// (in a sampling study, what each sample is analysed with).
     pub find: Find,
+    /// The load case of a sampling study: its cases span every grid axis and the sample
+    /// rows, whatever its find.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub sampled: bool,
 }
 
 impl LoadCase {
@@ -76,6 +81,9 @@ impl LoadCase {
     /// ones its find finds itself (K for `thickness`, μ for `friction`, both for
     /// `thresholds`).
     pub fn spans(&self, axis: AxisName) -> bool {
+        if self.sampled {
+            return true;
+        }
         match axis {
             AxisName::K | AxisName::TOverR => self.find.needs_k(),
             AxisName::Mu => self.find.needs_mu(),
@@ -221,6 +229,10 @@ pub struct Manifest {
     pub boundary_tolerance: f64,
     /// The column width the paper figures (PDF, SVG, PNG in plots/) are drawn for.
     pub figure_width: FigureWidth,
+    /// The uncertain parameters of a sampling study (`find: probability`, `fragility` or
+    /// `sensitivity`): every grid point is analysed at each of their sample rows.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sampling: Option<super::uncertain::Sampling>,
 }
 
 /// The printed width of the paper figures: one column or the full page of a two-column

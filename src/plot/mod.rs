@@ -21,13 +21,14 @@ pub mod paper;
 pub mod regime_map;
 pub mod state;
 mod style;
+pub mod uncertainty;
 
 use crate::manifest::FigureWidth;
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
-pub use style::LegendItem;
+pub use style::{LegendItem, palette};
 
 /// Output format of a figure.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -95,7 +95,68 @@ pub struct ManifestView {
     /// option have none and are drawn at the default.
     #[serde(default)]
     pub figure_width: Option<String>,
+    /// The uncertain parameters of a sampling study.
+    #[serde(default)]
+    pub sampling: Option<SamplingView>,
 }
+
+/// An uncertain parameter of the resolved manifest.
+#[derive(Debug, Clone, Deserialize)]
+pub struct ParamView {
+    /// `k`, `mu`, …
+    pub name: String,
+    /// `normal`, `uniform`, …
+    pub distribution: String,
+    /// The distribution in words, with its parameters.
+    pub description: String,
+}
+
+/// The sampling of the resolved manifest.
+#[derive(Debug, Clone, Deserialize)]
+pub struct SamplingView {
+    /// `probability`, `fragility` or `sensitivity`.
+    pub question: String,
+    /// The uncertain parameters.
+    pub params: Vec<ParamView>,
+    /// A correlation between two of them.
+    #[serde(default)]
+    pub correlation: Option<CorrelationView>,
+    /// Samples.
+    pub n: u64,
+    /// `sobol`, `lhs` or `random`.
+    pub method: String,
+    /// Seed.
+    pub seed: u64,
+    /// Bootstrap resamples.
+    pub bootstrap: u64,
+}
+
+/// A correlation of the resolved manifest.
+#[derive(Debug, Clone, Deserialize)]
+pub struct CorrelationView {
+    /// Index of the first parameter.
+    pub first: usize,
+    /// Index of the second.
+    pub second: usize,
+    /// The correlation of their normal scores.
+    pub value: f64,
+}
+
+/// A sample drawn over the (μ, K) plane, from samples.parquet.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SampleRow {
+    /// Load case.
+    pub load_case: String,
+    /// μ.
+    pub mu: f64,
+    /// K.
+    pub k: f64,
+    /// `stable`, or the mechanism it fails by.
+    pub outcome: String,
+}
+
+/// Samples of each load case drawn over the (μ, K) plane.
+pub const SAMPLES_DRAWN: usize = 2000;
 
 impl ManifestView {
     /// The column width of the paper figures.
@@ -202,6 +263,11 @@ pub struct RunData {
     pub result_arches: Vec<store::RowArch>,
     /// The arch of every row of boundaries.parquet (empty as `result_arches`).
     pub boundary_arches: Vec<store::RowArch>,
+    /// estimates.parquet of a sampling study (empty otherwise).
+    pub estimates: Vec<store::EstimateRow>,
+    /// The first samples of each load case's first grid point, when they spread over K and
+    /// μ (empty otherwise).
+    pub samples: Vec<SampleRow>,
 }
 
 fn optional<T>(path: &Path, read: impl Fn(&Path) -> Result<T>) -> Result<Option<T>> {
@@ -288,10 +354,11 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
         Ok(())
     })?;
     totals.finish();
-    let (load_factors, load_factor_singled) = if manifest
-        .load_cases
-        .iter()
-        .any(|l| manifest.find_of(&l.name) == "load_factor")
+    let (load_factors, load_factor_singled) = if manifest.sampling.is_none()
+        && manifest
+            .load_cases
+            .iter()
+            .any(|l| manifest.find_of(&l.name) == "load_factor")
     {
         let r = crate::figdata::load_factors::LoadFactorCases::read(&file, |id| lattice.keeps(id))?;
         let singled = r.singled();
@@ -318,6 +385,10 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
     } else {
         (Vec::new(), Vec::new())
     };
+    let samples = match &manifest.sampling {
+        Some(s) => read_samples(layout, &manifest, s)?,
+        None => Vec::new(),
+    };
     let data = RunData {
         info,
         manifest,
@@ -335,6 +406,8 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
             .unwrap_or_default(),
         result_arches,
         boundary_arches,
+        estimates: optional(&layout.estimates(), store::read_estimates)?.unwrap_or_default(),
+        samples,
     };
     super::checks::check_tables(&layout.dir, &data)?;
     Ok(data)
@@ -367,4 +440,64 @@ impl RunData {
             .filter(|b| b.load_case == load_case)
             .collect()
     }
+}
+
+/// The first [`SAMPLES_DRAWN`] samples of each load case's first grid point from
+/// samples.parquet, when the samples spread over the thickness and μ.
+fn read_samples(layout: &RunLayout, m: &ManifestView, s: &SamplingView) -> Result<Vec<SampleRow>> {
+    let has = |n: &str| s.params.iter().any(|p| p.name == n);
+    let thickness = if has("k") {
+        "k"
+    } else if has("t_over_r") {
+        "t_over_r"
+    } else {
+        return Ok(Vec::new());
+    };
+    if !has("mu") || !layout.samples().is_file() {
+        return Ok(Vec::new());
+    }
+    let per_point = if s.question == "sensitivity" {
+        s.n * (s.params.len() as u64 + 2)
+    } else {
+        s.n
+    };
+    let points: u64 = m.grid.iter().map(|a| a.values.len() as u64).product();
+    let mut out = Vec::new();
+    for (i, lc) in m.load_cases.iter().enumerate() {
+        let first = i as u64 * points * per_point;
+        let len = SAMPLES_DRAWN.min(per_point as usize);
+        let df = store::read_parquet_rows(
+            &layout.samples(),
+            &[thickness, "mu", "stands", "mechanism"],
+            Some((first as usize, len)),
+        )?;
+        let t = store::f64_column(&df, thickness)?;
+        let mu = store::f64_column(&df, "mu")?;
+        let stands = store::bool_column(&df, "stands")?;
+        let mech = store::str_column(&df, "mechanism")?;
+        // A fragility sample is drawn by the mechanism of its λ_max.
+        let limit = s.question == "fragility";
+        for j in 0..df.height() {
+            let (Some(t), Some(mu), Some(st)) = (t[j], mu[j], stands[j]) else {
+                continue;
+            };
+            let outcome = match (st, limit) {
+                (true, false) => "stable".to_string(),
+                (false, true) => "none".to_string(),
+                _ => mech[j].clone().unwrap_or_else(|| "none".into()),
+            };
+            let k = if thickness == "k" {
+                t
+            } else {
+                crate::model::k_from_t_over_r(t)
+            };
+            out.push(SampleRow {
+                load_case: lc.name.clone(),
+                mu,
+                k,
+                outcome,
+            });
+        }
+    }
+    Ok(out)
 }

@@ -48,6 +48,24 @@ pub fn position_deg(v: f64) -> String {
     }
 }
 
+/// A value to `digits` significant digits: plain from 10⁻³ to 10⁶, in exponent form beyond,
+/// `∞` for infinity.
+pub fn sig(v: f64, digits: usize) -> String {
+    if !v.is_finite() {
+        return if v.is_nan() { "—".into() } else { given(v) };
+    }
+    if v == 0.0 {
+        return "0".into();
+    }
+    let mag = v.abs().log10().floor() as i32;
+    if (-3..6).contains(&mag) {
+        let decimals = (digits as i32 - 1 - mag).max(0) as usize;
+        format!("{v:.decimals$}")
+    } else {
+        format!("{v:.*e}", digits.saturating_sub(1))
+    }
+}
+
 /// A grid or scene value as given: shortest round-trip form, `∞` for infinity.
 pub fn given(v: f64) -> String {
     if v.is_infinite() {

@@ -26,11 +26,20 @@ type LoadCaseLattice = (u64, u64, Vec<(u64, u64)>);
 pub struct FigureLattice {
     /// Per load case, in plan order.
     load_cases: Vec<LoadCaseLattice>,
+    /// No case is drawn as a grid point: the cases of a sampling study are samples, drawn
+    /// from samples.parquet and estimates.parquet.
+    none: bool,
 }
 
 impl FigureLattice {
     /// The lattice of a manifest's plan.
     pub fn of(m: &Manifest) -> Self {
+        if m.sampling.is_some() {
+            return FigureLattice {
+                load_cases: Vec::new(),
+                none: true,
+            };
+        }
         let mut first = 0u64;
         let mut load_cases = Vec::new();
         for lc in &m.load_cases {
@@ -57,7 +66,10 @@ impl FigureLattice {
             load_cases.push((first, count, axes));
             first += count;
         }
-        FigureLattice { load_cases }
+        FigureLattice {
+            load_cases,
+            none: false,
+        }
     }
 
     /// True when some axis is reduced.
@@ -69,6 +81,9 @@ impl FigureLattice {
 
     /// Whether the figures show case `id` (every case when nothing is reduced).
     pub fn keeps(&self, id: u64) -> bool {
+        if self.none {
+            return false;
+        }
         let Some((first, _, axes)) = self
             .load_cases
             .iter()

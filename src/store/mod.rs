@@ -3,6 +3,7 @@
 
 mod boundaries;
 mod cases;
+mod estimates;
 mod figures;
 mod results;
 mod rows;
@@ -13,6 +14,7 @@ pub use boundaries::{bifurcations_frame, boundaries_frame};
 pub use cases::{
     read_case_ids, read_case_results, read_case_results_rows, read_foreign_case_results_rows,
 };
+pub use estimates::{EstimateRow, estimates_frame, read_estimates};
 pub use figures::{
     BifurcationGroup, CurvePoint, LoadFactorCase, MechanismRow, ReferenceRow, RowArch, StateRow,
     curves_frame, mechanisms_frame, read_bifurcation_groups, read_curves, read_load_factor_cases,

@@ -11,6 +11,50 @@ use std::collections::BTreeMap;
 /// means the same thing in every table of a run.
 const COLUMN_DOCS: &[(&str, &str, &str)] = &[
     ("case_id", "", "position of the case in the plan"),
+    (
+        "point",
+        "",
+        "index of the grid point among the load case's points (sampling studies)",
+    ),
+    (
+        "sample",
+        "",
+        "index of the sample (of the base sample of a sensitivity design)",
+    ),
+    (
+        "block",
+        "",
+        "sensitivity design: A, B, or AB_p (A with the column of parameter p from B)",
+    ),
+    (
+        "stands",
+        "",
+        "the arch stands (at its λ; for λ_max and the margin, under its own weight)",
+    ),
+    (
+        "lambda_max",
+        "",
+        "largest load factor of the sample (0: does not stand under its own weight; inf: unbounded)",
+    ),
+    (
+        "margin",
+        "",
+        "stability margin t/t_c − 1 (t_c the collapse thickness at the sample's other values; −1: no thickness stands)",
+    ),
+    (
+        "quantity",
+        "",
+        "what an estimate is: probability, exact_probability, mechanism, fragility_cdf, quantile, first_order, total, convergence, grid, …",
+    ),
+    (
+        "parameter",
+        "",
+        "the mechanism, quantile level, uncertain parameter, sampling method or grid axis an estimate is about",
+    ),
+    ("value", "", "the estimate"),
+    ("lo", "", "lower end of its 95 % interval"),
+    ("hi", "", "upper end of its 95 % interval"),
+    ("note", "", "how a value was obtained, or why it is missing"),
     ("load_case", "", "load case name"),
     (
         "load_kind",

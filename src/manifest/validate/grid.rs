@@ -15,6 +15,7 @@ pub const MAX_AXIS_STEPS: i64 = 100_000;
 pub(super) fn validate_grid(
     g: Option<&RawGrid>,
     lcs: &[LoadCase],
+    uncertain: &[GridAxis],
     cx: &Ctx,
 ) -> Result<Vec<GridAxis>, ManifestError> {
     let empty = RawGrid::default();
@@ -32,7 +33,9 @@ pub(super) fn validate_grid(
     }
     check_axes_are_spanned(g, lcs, &finds, cx)?;
     let axes = grid_axes(g, cx)?;
-    check_needed_axes(&axes, lcs, &finds, cx)?;
+    // An uncertain K or μ is as good as an axis.
+    let with_uncertain: Vec<GridAxis> = axes.iter().chain(uncertain).cloned().collect();
+    check_needed_axes(&with_uncertain, lcs, &finds, cx)?;
     Ok(axes)
 }
 
@@ -156,7 +159,10 @@ fn check_needed_axes(
         if lc.find.needs_k() && !has_k {
             return Err(cx.err_unplaced(
                 "grid",
-                format!("{} needs a k (or t_over_r) axis", whose(lc)),
+                format!(
+                    "{} needs a k (or t_over_r) axis, or an uncertain k",
+                    whose(lc)
+                ),
             ));
         }
         if lc.find.needs_mu() && !has_mu && lc.find != Find::Thickness {

@@ -22,6 +22,7 @@ pub(super) fn validate_load_cases(
             at_x: None,
             lambda: None,
             find,
+            sampled: false,
         }]);
     };
     if list.is_empty() {
@@ -48,6 +49,7 @@ pub(super) fn validate_load_cases(
                 None => find,
                 Some(f) => parse_find(f, "load_cases.find", cx)?,
             },
+            sampled: false,
         });
     }
     Ok(out)

@@ -8,13 +8,15 @@ mod grid;
 mod limits;
 mod load_checks;
 mod loads;
+mod uncertain;
 
 pub use grid::MAX_AXIS_STEPS;
 pub use limits::{MAX_GENERAL_VOUSSOIRS, MAX_K, MAX_NAME_CHARS, short_number};
+pub use uncertain::{MAX_BOOTSTRAP, MAX_SAMPLES};
 
 use super::error::ManifestError;
 use super::raw::{RawBoundaries, RawFigures, RawManifest, RawScene};
-use super::types::{DEFAULT_BOUNDARY_TOLERANCE, FigureWidth, Manifest, SceneSpec};
+use super::types::{AxisName, DEFAULT_BOUNDARY_TOLERANCE, FigureWidth, Manifest, SceneSpec};
 use crate::scene::Find;
 use serde_saphyr::{Location, Spanned};
 use std::path::Path;
@@ -64,17 +66,63 @@ pub(super) fn manifest(raw: RawManifest, path: &Path) -> Result<Manifest, Manife
     let cx = &Ctx { path };
     check_name(&raw.name, cx)?;
     let arch = arch::validate_arch(&raw.arch, cx)?;
-    let find = match &raw.find {
-        None => Find::State,
-        Some(f) => parse_find(f, "find", cx)?,
+    let question = raw
+        .find
+        .as_ref()
+        .and_then(|f| crate::manifest::Question::parse(&f.value));
+    let find = match (&raw.find, question) {
+        (None, _) | (Some(_), Some(_)) => Find::State,
+        (Some(f), None) => parse_find(f, "find", cx)?,
     };
-    let load_cases = loads::validate_load_cases(raw.load_cases.as_deref(), find, cx)?;
-    let grid = grid::validate_grid(raw.grid.as_ref(), &load_cases, cx)?;
-    load_checks::check_loads(&raw, &arch, &grid, &load_cases, cx)?;
+    let mut load_cases = loads::validate_load_cases(raw.load_cases.as_deref(), find, cx)?;
+    let sampled = match question {
+        Some(q) => Some(uncertain::validate(&raw, q, &arch, &mut load_cases, cx)?),
+        None => {
+            if let Some(u) = &raw.uncertain {
+                return Err(cx.err(
+                    Some(u.referenced),
+                    "uncertain",
+                    "uncertain parameters are sampled by a `find: probability`, `fragility` or \
+                     `sensitivity` study: set the study's find to one of them",
+                ));
+            }
+            if let Some(s) = &raw.samples {
+                return Err(cx.err(
+                    Some(s.referenced),
+                    "samples",
+                    "`samples` sets how the uncertain parameters of a probability, fragility or \
+                     sensitivity study are sampled: this study has none",
+                ));
+            }
+            None
+        }
+    };
+    // The other checks see each uncertain parameter as an axis of its extreme values.
+    let shadow = sampled.as_ref().map_or(&[][..], |v| &v.shadow[..]);
+    let grid = grid::validate_grid(raw.grid.as_ref(), &load_cases, shadow, cx)?;
+    let mut checked = grid.clone();
+    checked.extend(
+        (shadow.iter())
+            .filter(|a| !matches!(a.name, AxisName::AtDeg | AxisName::AtX))
+            .cloned(),
+    );
+    let checked_lcs = match &sampled {
+        Some(v) => uncertain::as_checked(&v.sampling, &load_cases),
+        None => load_cases.clone(),
+    };
+    load_checks::check_loads(&raw, &arch, &checked, &checked_lcs, cx)?;
     let scenes = validate_scenes(raw.scenes.as_deref().unwrap_or(&[]), cx)?;
     let boundary_tolerance = boundary_tolerance(raw.boundaries.as_ref(), cx)?;
     let figure_width = figure_width(raw.figures.as_ref(), cx)?;
-    limits::check_limits(&raw, &arch, &grid, &load_cases, &scenes, cx)?;
+    limits::check_limits(&raw, &arch, &checked, &load_cases, &scenes, cx)?;
+    if let Some(v) = &sampled {
+        // Checked as the state or load-factor studies they resemble; each sample is then
+        // analysed with the find its question asks for.
+        for lc in &mut load_cases {
+            lc.find = v.sampling.question.scene_find(lc.kind);
+            lc.sampled = true;
+        }
+    }
     Ok(Manifest {
         name: raw.name.value,
         title: raw.title,
@@ -88,6 +136,7 @@ pub(super) fn manifest(raw: RawManifest, path: &Path) -> Result<Manifest, Manife
         scenes,
         boundary_tolerance,
         figure_width,
+        sampling: sampled.map(|v| v.sampling),
     })
 }
 
@@ -130,7 +179,7 @@ fn parse_find(f: &Spanned<String>, key: &str, cx: &Ctx) -> Result<Find, Manifest
             Some(f.referenced),
             key,
             format!(
-                "value {:?} is not allowed: use state, thickness, friction, thrust, thresholds or load_factor",
+                "value {:?} is not allowed: use state, thickness, friction, thrust, thresholds or load_factor (or, with uncertain parameters, probability, fragility or sensitivity)",
                 f.value
             ),
         )

@@ -13,6 +13,7 @@ pub mod mechanisms;
 pub mod regime_map;
 pub mod solution;
 pub mod state;
+pub mod uncertainty;
 
 pub use accuracy::{AccuracyRow, accuracy_rows, orders, quantity_label, quantity_rank};
 pub use mechanisms::{flow_rule_text, mechanisms_stem};
@@ -50,6 +51,12 @@ pub enum Chart {
     Lines(LinesChart),
     /// The collapse load factor as a colour over (μ, K), with the mechanisms' regions.
     LambdaMap(LambdaMap),
+    /// Samples over (μ, K) with the collapse curve.
+    SampleMap(crate::plot::uncertainty::SampleMap),
+    /// Bars with intervals.
+    Bars(crate::plot::uncertainty::BarsChart),
+    /// Curves with bands.
+    Curves(crate::plot::uncertainty::CurvesChart),
 }
 
 /// A figure of the report.
@@ -78,6 +85,9 @@ impl FigureSpec {
             Chart::Mechanisms(c) => plot::render(c, format),
             Chart::Lines(c) => plot::render(c, format),
             Chart::LambdaMap(c) => plot::render(c, format),
+            Chart::SampleMap(c) => plot::render(c, format),
+            Chart::Bars(c) => plot::render(c, format),
+            Chart::Curves(c) => plot::render(c, format),
         }
     }
 }
@@ -133,6 +143,10 @@ pub fn build(data: &RunData) -> Vec<FigureSpec> {
                 String::new()
             },
         };
+        if data.manifest.sampling.is_some() {
+            out.extend(uncertainty::figures(data, &lc));
+            continue;
+        }
         out.extend(regime_map::figure(data, &lc));
         out.extend(arch_axis::figures(data, &lc));
         out.extend(critical::figure(data, &lc));

@@ -40,6 +40,15 @@ fn compare(v: f64, p: Option<Printed>) -> (String, String) {
 /// critical values of a critical find. Every value is one stored cell, named in `source`.
 /// The second value says why the table is empty, when it is.
 pub fn key_results(data: &RunData) -> (Vec<KeyResult>, String) {
+    if data.manifest.sampling.is_some() {
+        let rows = super::uncertainty::key_results(data);
+        let note = if rows.is_empty() {
+            "no sample of this run gave an answer".to_string()
+        } else {
+            String::new()
+        };
+        return (rows, note);
+    }
     let multi = data.manifest.load_cases.len() > 1;
     let mut rows = Rows {
         out: Vec::new(),

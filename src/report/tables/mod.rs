@@ -12,6 +12,7 @@ pub mod notes;
 pub mod provenance;
 pub mod study;
 pub mod timing;
+pub mod uncertainty;
 pub mod values;
 
 use serde::Serialize;

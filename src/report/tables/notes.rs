@@ -34,7 +34,7 @@ fn distinct(mut v: Vec<f64>) -> Vec<f64> {
 
 /// The notes of a run, each a sentence or two.
 pub fn notes(data: &RunData) -> Vec<String> {
-    let mut out = Vec::new();
+    let mut out = super::uncertainty::notes(data);
     out.extend(never_stands(data));
     out.extend(unbounded(data));
     out.extend(slivers(data));

@@ -26,7 +26,7 @@ pub struct ValueTable {
 
 /// The value tables of a run, in report order.
 pub fn value_tables(data: &RunData) -> Vec<ValueTable> {
-    let mut out = Vec::new();
+    let mut out = super::uncertainty::value_tables(data);
     out.extend(bifurcations_by_arch(data));
     out.extend(values_behind_errors(data));
     out

@@ -1,0 +1,876 @@
+//! The `uncertain:` and `samples:` blocks of a sampling study: each distribution checked
+//! against the parameter it describes (its support must lie in the values the parameter may
+//! take), the correlation, the sample design, and how the study's load cases fit the question.
+
+use super::MAX_K;
+use super::{Ctx, fmt_num};
+use crate::manifest::error::ManifestError;
+use crate::manifest::raw::{RawDistribution, RawManifest, RawUncertain};
+use crate::manifest::types::{ArchOptions, AxisName, GridAxis, LoadCase, LoadKind};
+use crate::manifest::uncertain::{
+    Correlation, DEFAULT_BOOTSTRAP, DEFAULT_SAMPLES, ParamName, Question, Sampling, UncertainParam,
+};
+use crate::model::t_over_r_from_k;
+use crate::sampling::{Distribution, MAX_DIMS, Method};
+use crate::scene::Find;
+use serde_saphyr::{Location, Spanned};
+
+/// Largest number of samples of a study (the sensitivity design multiplies it by d + 2).
+pub const MAX_SAMPLES: i64 = 1 << 32;
+
+/// Largest number of bootstrap resamples of the Sobol indices.
+pub const MAX_BOOTSTRAP: i64 = 100_000;
+
+/// A validated sampling study, with what the other checks need to know of it.
+pub(super) struct Validated {
+    /// The sampling.
+    pub sampling: Sampling,
+    /// For the checks of the grid and the loads only: an axis for each uncertain parameter
+    /// that a grid axis could span, holding the extreme values its distribution takes.
+    pub shadow: Vec<GridAxis>,
+}
+
+/// The values a parameter may take: a closed range for continuous distributions (whose
+/// samples never hit an end of their support), with the ends a discrete value may take.
+struct Allowed {
+    lo: f64,
+    hi: f64,
+    /// The ends themselves allowed as discrete values.
+    lo_inclusive: bool,
+    hi_inclusive: bool,
+    text: String,
+}
+
+fn allowed(name: ParamName, arch: &ArchOptions, alpha_lo: f64) -> Allowed {
+    let t_max = t_over_r_from_k(MAX_K);
+    let (lo, hi, lo_inc, hi_inc, text) = match name {
+        ParamName::K => (1.0, MAX_K, false, true, format!("(1, {MAX_K}]")),
+        ParamName::TOverR => (0.0, t_max, false, true, format!("(0, {t_max:.4}]")),
+        ParamName::Mu => (0.0, f64::INFINITY, true, true, "[0, inf]".to_string()),
+        ParamName::HalfAngleDeg => (0.0, 180.0, false, false, "(0, 180) degrees".into()),
+        ParamName::Eccentricity => (0.0, 1.0, true, false, "[0, 1)".into()),
+        ParamName::Voussoirs => (
+            1.0,
+            f64::INFINITY,
+            true,
+            true,
+            "integers ≥ 1 or continuum".into(),
+        ),
+        ParamName::AtDeg => {
+            let a = alpha_lo.min(arch.half_angle_deg);
+            (
+                -a,
+                a,
+                true,
+                true,
+                format!("[−{a}, {a}] degrees (within the half-angle)"),
+            )
+        }
+        ParamName::AtX => (0.0, 1.0, true, true, "[0, 1]".into()),
+        ParamName::Lambda => (0.0, f64::INFINITY, true, false, "[0, inf)".into()),
+    };
+    Allowed {
+        lo,
+        hi,
+        lo_inclusive: lo_inc,
+        hi_inclusive: hi_inc,
+        text,
+    }
+}
+
+/// The raw distribution of each parameter, in [`ParamName::ALL`] order.
+fn raw_params(u: &RawUncertain) -> Vec<(ParamName, &Spanned<RawDistribution>)> {
+    let fields = [
+        &u.k,
+        &u.t_over_r,
+        &u.mu,
+        &u.half_angle_deg,
+        &u.eccentricity,
+        &u.voussoirs,
+        &u.at_deg,
+        &u.at_x,
+        &u.lambda,
+    ];
+    ParamName::ALL
+        .into_iter()
+        .zip(fields)
+        .filter_map(|(n, f)| f.as_ref().map(|f| (n, f)))
+        .collect()
+}
+
+/// Validates the sampling of a study whose `find` is `question`, and sets the find of each
+/// load case (the state at its λ, or the largest load factor).
+pub(super) fn validate(
+    raw: &RawManifest,
+    question: Question,
+    arch: &ArchOptions,
+    load_cases: &mut [LoadCase],
+    cx: &Ctx,
+) -> Result<Validated, ManifestError> {
+    let find_at = raw.find.as_ref().map(|f| f.referenced);
+    let Some(u) = &raw.uncertain else {
+        return Err(cx.err(
+            find_at,
+            "uncertain",
+            format!(
+                "a `{question}` study needs an `uncertain:` block giving a distribution to at least \
+                 one parameter, e.g. `mu: {{distribution: uniform, from: 0.3, to: 0.5}}`"
+            ),
+        ));
+    };
+    if let Some((i, lc)) = raw
+        .load_cases
+        .iter()
+        .flatten()
+        .enumerate()
+        .find_map(|(i, lc)| lc.value.find.as_ref().map(|f| (i, f)))
+    {
+        return Err(cx.err(
+            Some(lc.referenced),
+            "load_cases.find",
+            format!(
+                "load case {:?} has its own find, but a `{question}` study analyses every load \
+                 case for its question: remove `find` from the load case",
+                load_cases[i].name
+            ),
+        ));
+    }
+    let list = raw_params(&u.value);
+    if list.is_empty() {
+        return Err(cx.err(
+            Some(u.referenced),
+            "uncertain",
+            "the block gives no distribution: give one to at least one of k, t_over_r, mu, \
+             half_angle_deg, eccentricity, voussoirs, at_deg, at_x, lambda",
+        ));
+    }
+    if list.len() > MAX_DIMS / 2 {
+        return Err(cx.err(
+            Some(u.referenced),
+            "uncertain",
+            "too many uncertain parameters",
+        ));
+    }
+    check_exclusive(raw, &list, cx)?;
+    check_fits_study(raw, question, arch, load_cases, &list, cx)?;
+    // Positions lie within the smallest half-angle an uncertain α takes.
+    let alpha_lo = match list.iter().find(|(n, _)| *n == ParamName::HalfAngleDeg) {
+        Some((_, d)) => distribution(ParamName::HalfAngleDeg, d, cx)?.support().0,
+        None => arch.half_angle_deg,
+    };
+    let mut params = Vec::new();
+    for (name, d) in &list {
+        let key = format!("uncertain.{}", name.as_str());
+        let dist = distribution(*name, d, cx)?;
+        check_support(&dist, &allowed(*name, arch, alpha_lo), (d, &key), cx)?;
+        if *name == ParamName::Voussoirs {
+            check_voussoir_counts(&dist, d, cx)?;
+        }
+        params.push(UncertainParam {
+            name: *name,
+            distribution: dist,
+        });
+    }
+    let correlation = match &u.value.correlation {
+        None => None,
+        Some(c) => Some(correlation(c, &params, question, cx)?),
+    };
+    let (n, method, seed, bootstrap) = samples(raw, question, cx)?;
+    for lc in load_cases.iter_mut() {
+        // Probability asks for the state at the given λ; the others find λ_max, or (the
+        // self-weight margin) the collapse thickness, which the plan sets on each scene.
+        lc.find = match (question, lc.kind.is_live()) {
+            (Question::Probability, _) | (Question::Sensitivity, false) => Find::State,
+            _ => Find::LoadFactor,
+        };
+    }
+    let shadow = shadow_axes(&params);
+    Ok(Validated {
+        sampling: Sampling {
+            question,
+            params,
+            correlation,
+            n,
+            method,
+            seed,
+            bootstrap,
+        },
+        shadow,
+    })
+}
+
+/// A parameter is uncertain or a grid axis, not both; K is given one way.
+fn check_exclusive(
+    raw: &RawManifest,
+    list: &[(ParamName, &Spanned<RawDistribution>)],
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    let has = |n: ParamName| list.iter().find(|(p, _)| *p == n).map(|(_, d)| d);
+    if let (Some(_), Some(t)) = (has(ParamName::K), has(ParamName::TOverR)) {
+        return Err(cx.err(
+            Some(t.referenced),
+            "uncertain.t_over_r",
+            "give the thickness one way: an uncertain k or an uncertain t_over_r, not both",
+        ));
+    }
+    if let (Some(_), Some(x)) = (has(ParamName::AtDeg), has(ParamName::AtX)) {
+        return Err(cx.err(
+            Some(x.referenced),
+            "uncertain.at_x",
+            "give the load position one way: an uncertain at_deg or an uncertain at_x, not both",
+        ));
+    }
+    let Some(g) = &raw.grid else {
+        return Ok(());
+    };
+    let thickness_axis = g.k.is_some() || g.t_over_r.is_some();
+    let position_axis = g.at_deg.is_some() || g.at_x.is_some();
+    for (name, d) in list {
+        let on_grid = match name {
+            ParamName::K | ParamName::TOverR => thickness_axis,
+            ParamName::Mu => g.mu.is_some(),
+            ParamName::HalfAngleDeg => g.half_angle_deg.is_some(),
+            ParamName::Voussoirs => g.voussoirs.is_some(),
+            ParamName::AtDeg | ParamName::AtX => position_axis,
+            ParamName::Eccentricity | ParamName::Lambda => false,
+        };
+        if on_grid {
+            return Err(cx.err(
+                Some(d.referenced),
+                &format!("uncertain.{}", name.as_str()),
+                format!(
+                    "{} is both uncertain and a grid axis: give it a distribution or grid values, \
+                     not both",
+                    name.as_str()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The load cases fit the question and the uncertain parameters: a fragility curve is of a
+/// live load; an uncertain λ or position replaces the load case's own; an eccentricity is
+/// of a pointed arch.
+fn check_fits_study(
+    raw: &RawManifest,
+    question: Question,
+    arch: &ArchOptions,
+    load_cases: &[LoadCase],
+    list: &[(ParamName, &Spanned<RawDistribution>)],
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    let at = |i: usize| {
+        raw.load_cases
+            .as_ref()
+            .and_then(|l| l.get(i))
+            .map(|l| l.referenced)
+    };
+    if question == Question::Fragility
+        && let Some((i, lc)) = load_cases
+            .iter()
+            .enumerate()
+            .find(|(_, l)| !l.kind.is_live())
+    {
+        return Err(cx.err(
+            at(i),
+            "load_cases.kind",
+            format!(
+                "load case {:?} is self_weight: a fragility curve is the distribution of the \
+                 largest load factor of a live load (horizontal or point); use `find: \
+                 probability` for self-weight",
+                lc.name
+            ),
+        ));
+    }
+    for (name, d) in list {
+        let key = format!("uncertain.{}", name.as_str());
+        match name {
+            ParamName::Lambda => {
+                if question != Question::Probability {
+                    return Err(cx.err(
+                        Some(d.referenced),
+                        &key,
+                        format!(
+                            "a `{question}` study finds the largest load factor λ_max itself: \
+                             remove the uncertain lambda (a probability study asks whether the \
+                             arch stands at an uncertain λ)"
+                        ),
+                    ));
+                }
+                if let Some((i, lc)) = load_cases
+                    .iter()
+                    .enumerate()
+                    .find(|(_, l)| l.lambda.is_some())
+                {
+                    return Err(cx.err(
+                        at(i),
+                        "load_cases.lambda",
+                        format!(
+                            "load case {:?} gives its own lambda, but λ is uncertain: remove one \
+                             of them",
+                            lc.name
+                        ),
+                    ));
+                }
+                if !load_cases.iter().any(|l| l.kind.is_live()) {
+                    return Err(cx.err(
+                        Some(d.referenced),
+                        &key,
+                        "λ scales a live load, and the study has none: add a horizontal or point \
+                         load case",
+                    ));
+                }
+            }
+            ParamName::AtDeg | ParamName::AtX => {
+                if let Some((i, lc)) = load_cases
+                    .iter()
+                    .enumerate()
+                    .find(|(_, l)| l.at_deg.is_some() || l.at_x.is_some())
+                {
+                    return Err(cx.err(
+                        at(i),
+                        "load_cases.at_deg",
+                        format!(
+                            "load case {:?} gives its own position, but the position is \
+                             uncertain: remove one of them",
+                            lc.name
+                        ),
+                    ));
+                }
+                if let Some(lc) = load_cases.iter().find(|l| l.kind != LoadKind::Point) {
+                    return Err(cx.err(
+                        Some(d.referenced),
+                        &key,
+                        format!(
+                            "an uncertain position places point loads, but load case {:?} is {}: \
+                             give it a study of its own",
+                            lc.name,
+                            lc.kind.as_str()
+                        ),
+                    ));
+                }
+            }
+            ParamName::Eccentricity if arch.shape != "pointed" => {
+                return Err(cx.err(
+                    Some(d.referenced),
+                    &key,
+                    "only a pointed arch has an eccentricity: add `shape: pointed` (and its \
+                     nominal `eccentricity`) to the arch",
+                ));
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+fn num(v: &Option<Spanned<f64>>) -> Option<f64> {
+    v.as_ref().map(|s| s.value)
+}
+
+/// The distribution as written, with its parameters checked.
+fn distribution(
+    name: ParamName,
+    d: &Spanned<RawDistribution>,
+    cx: &Ctx,
+) -> Result<Distribution, ManifestError> {
+    let r = &d.value;
+    let base = format!("uncertain.{}", name.as_str());
+    let kind = r.distribution.value.as_str();
+    // The keys each distribution takes; any other key given is refused.
+    let keys: &[&str] = match kind {
+        "normal" => &["mean", "sd"],
+        "lognormal" => &["median", "cov", "mean", "sd"],
+        "uniform" => &["from", "to"],
+        "truncated_normal" => &["mean", "sd", "from", "to"],
+        "beta" => &["alpha", "beta", "from", "to"],
+        "discrete" => &["values", "weights"],
+        other => {
+            return Err(cx.err(
+                Some(r.distribution.referenced),
+                &format!("{base}.distribution"),
+                format!(
+                    "value {other:?} is not allowed: use normal, lognormal, uniform, \
+                     truncated_normal, beta or discrete"
+                ),
+            ));
+        }
+    };
+    let given: [(&str, Option<Location>); 11] = [
+        ("mean", r.mean.as_ref().map(|v| v.referenced)),
+        ("sd", r.sd.as_ref().map(|v| v.referenced)),
+        ("median", r.median.as_ref().map(|v| v.referenced)),
+        ("cov", r.cov.as_ref().map(|v| v.referenced)),
+        ("from", r.from.as_ref().map(|v| v.referenced)),
+        ("to", r.to.as_ref().map(|v| v.referenced)),
+        ("alpha", r.alpha.as_ref().map(|v| v.referenced)),
+        ("beta", r.beta.as_ref().map(|v| v.referenced)),
+        ("values", r.values.as_ref().map(|_| d.referenced)),
+        ("weights", r.weights.as_ref().map(|_| d.referenced)),
+        ("distribution", None),
+    ];
+    for (key, at) in given {
+        if let Some(at) = at
+            && !keys.contains(&key)
+        {
+            return Err(cx.err(
+                Some(at),
+                &format!("{base}.{key}"),
+                format!(
+                    "`{key}` is not a parameter of a {kind} distribution: give {}",
+                    keys.join(", ")
+                ),
+            ));
+        }
+    }
+    let need = |key: &str, v: Option<f64>| {
+        v.ok_or_else(|| {
+            cx.err(
+                Some(d.referenced),
+                &format!("{base}.{key}"),
+                format!(
+                    "a {kind} distribution needs `{key}` (it takes {})",
+                    keys.join(", ")
+                ),
+            )
+        })
+    };
+    let bad = |key: &str, v: f64, rule: &str| {
+        cx.err(
+            Some(d.referenced),
+            &format!("{base}.{key}"),
+            format!("value {} is not allowed: {rule}", fmt_num(v)),
+        )
+    };
+    let positive = |key: &str, v: f64| {
+        if v > 0.0 && v.is_finite() {
+            Ok(v)
+        } else {
+            Err(bad(key, v, "it must be a finite number > 0"))
+        }
+    };
+    let finite = |key: &str, v: f64| {
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(bad(key, v, "it must be a finite number"))
+        }
+    };
+    let range = |from: f64, to: f64| {
+        if from.is_nan() || to.is_nan() || from >= to {
+            Err(bad(
+                "to",
+                to,
+                &format!("`to` must be greater than `from` ({})", fmt_num(from)),
+            ))
+        } else {
+            Ok((from, to))
+        }
+    };
+    Ok(match kind {
+        "normal" => Distribution::Normal {
+            mean: finite("mean", need("mean", num(&r.mean))?)?,
+            sd: positive("sd", need("sd", num(&r.sd))?)?,
+        },
+        "lognormal" => match (num(&r.median), num(&r.cov), num(&r.mean), num(&r.sd)) {
+            (Some(m), Some(c), None, None) => {
+                Distribution::lognormal_from_median_cov(positive("median", m)?, positive("cov", c)?)
+            }
+            (None, None, Some(m), Some(s)) => {
+                Distribution::lognormal_from_mean_sd(positive("mean", m)?, positive("sd", s)?)
+            }
+            _ => {
+                return Err(cx.err(
+                    Some(d.referenced),
+                    &base,
+                    "a lognormal distribution is given by `median` and `cov` (coefficient of \
+                     variation), or by `mean` and `sd`",
+                ));
+            }
+        },
+        "uniform" => {
+            let from = finite("from", need("from", num(&r.from))?)?;
+            let to = finite("to", need("to", num(&r.to))?)?;
+            let (from, to) = range(from, to)?;
+            Distribution::Uniform { from, to }
+        }
+        "truncated_normal" => {
+            let mean = finite("mean", need("mean", num(&r.mean))?)?;
+            let sd = positive("sd", need("sd", num(&r.sd))?)?;
+            if r.from.is_none() && r.to.is_none() {
+                return Err(cx.err(
+                    Some(d.referenced),
+                    &format!("{base}.from"),
+                    "a truncated normal distribution needs `from`, `to` or both (the bounds of \
+                     its truncation)",
+                ));
+            }
+            let from = num(&r.from).unwrap_or(f64::NEG_INFINITY);
+            let to = num(&r.to).unwrap_or(f64::INFINITY);
+            let (from, to) = range(from, to)?;
+            let t = Distribution::TruncatedNormal { mean, sd, from, to };
+            // A truncation that keeps almost none of the normal's mass is a mistake.
+            let z = |x: f64| (x - mean) / sd;
+            if z(from) > 37.0 || z(to) < -37.0 {
+                return Err(bad(
+                    "from",
+                    from,
+                    "the truncation keeps no probability of the normal distribution (its bounds \
+                     lie more than 37 sd from the mean)",
+                ));
+            }
+            t
+        }
+        "beta" => {
+            let alpha = positive("alpha", need("alpha", num(&r.alpha))?)?;
+            let beta = positive("beta", need("beta", num(&r.beta))?)?;
+            let from = finite("from", num(&r.from).unwrap_or(0.0))?;
+            let to = finite("to", num(&r.to).unwrap_or(1.0))?;
+            let (from, to) = range(from, to)?;
+            Distribution::Beta {
+                alpha,
+                beta,
+                from,
+                to,
+            }
+        }
+        _ => discrete(r, &base, d.referenced, cx)?,
+    })
+}
+
+/// A discrete distribution: distinct values, with weights ≥ 0 summing to more than 0 (equal
+/// weights when none are given).
+fn discrete(
+    r: &RawDistribution,
+    base: &str,
+    at: Location,
+    cx: &Ctx,
+) -> Result<Distribution, ManifestError> {
+    let values: Vec<f64> = match &r.values {
+        Some(v) if !v.is_empty() => v.iter().map(|x| x.value.0).collect(),
+        _ => {
+            return Err(cx.err(
+                Some(at),
+                &format!("{base}.values"),
+                "a discrete distribution needs `values: [...]` (at least one value)",
+            ));
+        }
+    };
+    if let Some(v) = values.iter().find(|v| v.is_nan()) {
+        return Err(cx.err(
+            Some(at),
+            &format!("{base}.values"),
+            format!(
+                "value {} is not allowed: values must be numbers",
+                fmt_num(*v)
+            ),
+        ));
+    }
+    let mut sorted = values.clone();
+    sorted.sort_by(f64::total_cmp);
+    if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
+        return Err(cx.err(
+            Some(at),
+            &format!("{base}.values"),
+            format!(
+                "value {} is listed twice: each value once, with its weight",
+                fmt_num(w[0])
+            ),
+        ));
+    }
+    let weights: Vec<f64> = match &r.weights {
+        None => vec![1.0; values.len()],
+        Some(w) => {
+            if w.len() != values.len() {
+                return Err(cx.err(
+                    Some(at),
+                    &format!("{base}.weights"),
+                    format!(
+                        "{} weights for {} values: give one weight per value",
+                        w.len(),
+                        values.len()
+                    ),
+                ));
+            }
+            if let Some(bad) = w.iter().find(|x| !(x.value >= 0.0 && x.value.is_finite())) {
+                return Err(cx.err(
+                    Some(bad.referenced),
+                    &format!("{base}.weights"),
+                    format!(
+                        "value {} is not allowed: a weight is a finite number ≥ 0",
+                        fmt_num(bad.value)
+                    ),
+                ));
+            }
+            w.iter().map(|x| x.value).collect()
+        }
+    };
+    if weights.iter().sum::<f64>() <= 0.0 {
+        return Err(cx.err(
+            Some(at),
+            &format!("{base}.weights"),
+            "the weights sum to 0: give at least one value a positive weight",
+        ));
+    }
+    Ok(Distribution::discrete(values, weights))
+}
+
+/// The support of a distribution lies within the values its parameter may take.
+fn check_support(
+    dist: &Distribution,
+    allowed: &Allowed,
+    (d, key): (&Spanned<RawDistribution>, &str),
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    let (lo, hi) = dist.support();
+    let inside = match dist {
+        Distribution::Discrete { values, .. } => values.iter().all(|&v| {
+            (v > allowed.lo || (allowed.lo_inclusive && v == allowed.lo))
+                && (v < allowed.hi || (allowed.hi_inclusive && v == allowed.hi))
+        }),
+        // Continuous: the samples never hit an end of the support, which may close the range.
+        _ => lo >= allowed.lo && hi <= allowed.hi && (hi.is_finite() || allowed.hi_inclusive),
+    };
+    if inside {
+        return Ok(());
+    }
+    let hint = match dist {
+        Distribution::Normal { .. } => {
+            "; a normal distribution takes every real value: use truncated_normal with `from` \
+             and `to`, or lognormal for a positive parameter"
+        }
+        Distribution::LogNormal { .. } => "; use truncated_normal or beta with bounds inside it",
+        _ => "",
+    };
+    Err(cx.err(
+        Some(d.referenced),
+        key,
+        format!(
+            "the {} distribution takes values in [{}, {}], which leaves the values {} may take, \
+             {}{hint}",
+            dist.name(),
+            fmt_num(lo),
+            fmt_num(hi),
+            key.trim_start_matches("uncertain."),
+            allowed.text
+        ),
+    ))
+}
+
+/// A voussoir count is an integer (or continuum): only a discrete distribution gives one.
+fn check_voussoir_counts(
+    dist: &Distribution,
+    d: &Spanned<RawDistribution>,
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    let Distribution::Discrete { values, .. } = dist else {
+        return Err(cx.err(
+            Some(d.referenced),
+            "uncertain.voussoirs",
+            format!(
+                "a voussoir count is an integer: use a discrete distribution (values with \
+                 weights), not {}",
+                dist.name()
+            ),
+        ));
+    };
+    if let Some(v) = values
+        .iter()
+        .find(|v| v.is_finite() && (v.fract() != 0.0 || **v > 1e7))
+    {
+        return Err(cx.err(
+            Some(d.referenced),
+            "uncertain.voussoirs.values",
+            format!(
+                "value {} is not allowed: the voussoir count must be an integer in [1, 10000000] \
+                 or continuum",
+                fmt_num(*v)
+            ),
+        ));
+    }
+    Ok(())
+}
+
+fn correlation(
+    c: &Spanned<crate::manifest::raw::RawCorrelation>,
+    params: &[UncertainParam],
+    question: Question,
+    cx: &Ctx,
+) -> Result<Correlation, ManifestError> {
+    let key = "uncertain.correlation";
+    if question == Question::Sensitivity {
+        return Err(cx.err(
+            Some(c.referenced),
+            key,
+            "Sobol indices apportion the variance among independent parameters: a sensitivity \
+             study takes no correlation",
+        ));
+    }
+    let names = &c.value.between.value;
+    let index = |s: &str| params.iter().position(|p| p.name.as_str() == s);
+    let (first, second) = match names.as_slice() {
+        [a, b] if a != b => match (index(a), index(b)) {
+            (Some(i), Some(j)) => (i, j),
+            _ => {
+                let missing = if index(a).is_none() { a } else { b };
+                return Err(cx.err(
+                    Some(c.value.between.referenced),
+                    &format!("{key}.between"),
+                    format!(
+                        "{missing:?} is not an uncertain parameter of this study: name two of {}",
+                        params
+                            .iter()
+                            .map(|p| p.name.as_str())
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                ));
+            }
+        },
+        _ => {
+            return Err(cx.err(
+                Some(c.value.between.referenced),
+                &format!("{key}.between"),
+                "name two different uncertain parameters, e.g. `between: [k, mu]`",
+            ));
+        }
+    };
+    let v = c.value.value.value;
+    if !(v > -1.0 && v < 1.0) {
+        return Err(cx.err(
+            Some(c.value.value.referenced),
+            &format!("{key}.value"),
+            format!(
+                "value {} is not allowed: a correlation lies in (−1, 1)",
+                fmt_num(v)
+            ),
+        ));
+    }
+    Ok(Correlation {
+        first,
+        second,
+        value: v,
+    })
+}
+
+/// `samples: {n, method, seed, bootstrap}`: n ≥ 2 (≥ 8 for Sobol indices), the method, a
+/// seed ≥ 0.
+fn samples(
+    raw: &RawManifest,
+    question: Question,
+    cx: &Ctx,
+) -> Result<(u64, Method, u64, u64), ManifestError> {
+    let Some(s) = &raw.samples else {
+        return Ok((DEFAULT_SAMPLES, Method::Sobol, 0, DEFAULT_BOOTSTRAP));
+    };
+    let least = if question == Question::Sensitivity {
+        8
+    } else {
+        2
+    };
+    let n = match &s.value.n {
+        None => DEFAULT_SAMPLES,
+        Some(n) if (least..=MAX_SAMPLES).contains(&n.value) => n.value as u64,
+        Some(n) => {
+            return Err(cx.err(
+                Some(n.referenced),
+                "samples.n",
+                format!(
+                    "value {} is not allowed: the number of samples must lie in [{least}, {MAX_SAMPLES}]",
+                    n.value
+                ),
+            ));
+        }
+    };
+    let method = match &s.value.method {
+        None => Method::Sobol,
+        Some(m) => Method::parse(&m.value).ok_or_else(|| {
+            cx.err(
+                Some(m.referenced),
+                "samples.method",
+                format!(
+                    "value {:?} is not allowed: use sobol, lhs or random",
+                    m.value
+                ),
+            )
+        })?,
+    };
+    let seed = match &s.value.seed {
+        None => 0,
+        Some(v) if v.value >= 0 => v.value as u64,
+        Some(v) => {
+            return Err(cx.err(
+                Some(v.referenced),
+                "samples.seed",
+                format!("value {} is not allowed: a seed is an integer ≥ 0", v.value),
+            ));
+        }
+    };
+    let bootstrap = match &s.value.bootstrap {
+        None => DEFAULT_BOOTSTRAP,
+        Some(b) if (0..=MAX_BOOTSTRAP).contains(&b.value) => b.value as u64,
+        Some(b) => {
+            return Err(cx.err(
+                Some(b.referenced),
+                "samples.bootstrap",
+                format!(
+                    "value {} is not allowed: the bootstrap resamples lie in [0, {MAX_BOOTSTRAP}]",
+                    b.value
+                ),
+            ));
+        }
+    };
+    Ok((n, method, seed, bootstrap))
+}
+
+/// An axis for each uncertain parameter that a grid axis could span, holding the extreme
+/// values its distribution takes (for the checks of the loads and the arch only).
+fn shadow_axes(params: &[UncertainParam]) -> Vec<GridAxis> {
+    params
+        .iter()
+        .filter_map(|p| {
+            let name = match p.name {
+                ParamName::K => AxisName::K,
+                ParamName::TOverR => AxisName::TOverR,
+                ParamName::Mu => AxisName::Mu,
+                ParamName::HalfAngleDeg => AxisName::HalfAngleDeg,
+                ParamName::Voussoirs => AxisName::Voussoirs,
+                ParamName::AtDeg => AxisName::AtDeg,
+                ParamName::AtX => AxisName::AtX,
+                ParamName::Eccentricity | ParamName::Lambda => return None,
+            };
+            let values = match &p.distribution {
+                Distribution::Discrete { values, .. } => values.clone(),
+                d => {
+                    let (lo, hi) = (d.quantile(1e-12), d.quantile(1.0 - 1e-12));
+                    if lo < hi { vec![lo, hi] } else { vec![lo] }
+                }
+            };
+            Some(GridAxis { name, values })
+        })
+        .collect()
+}
+
+/// The load cases as the checks of the loads see them: an uncertain λ or position stands in
+/// for the load case's own (at its lowest value, at the crown), which the checks require.
+pub(super) fn as_checked(sampling: &Sampling, load_cases: &[LoadCase]) -> Vec<LoadCase> {
+    let lambda = sampling
+        .param(ParamName::Lambda)
+        .map(|p| p.distribution.quantile(1e-12));
+    let position =
+        sampling.param(ParamName::AtDeg).is_some() || sampling.param(ParamName::AtX).is_some();
+    load_cases
+        .iter()
+        .map(|lc| {
+            let mut lc = lc.clone();
+            if lc.kind.is_live() && lc.find != Find::LoadFactor {
+                lc.lambda = lc.lambda.or(lambda);
+            }
+            if position && lc.kind == LoadKind::Point {
+                lc.at_deg = Some(0.0);
+            }
+            lc
+        })
+        .collect()
+}
