@@ -31,6 +31,7 @@ mod span_positions;
 mod state_drawings;
 mod symmetric_boundaries;
 mod symmetric_lines;
+mod uncertain;
 mod verify_forged;
 mod whole_study;
 mod windows;

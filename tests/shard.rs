@@ -115,6 +115,16 @@ fn a_load_factor_study_merges_into_the_unsharded_run() {
 }
 
 #[test]
+fn a_sampling_study_in_shards_merges_into_the_unsharded_run() {
+    // The samples of a shard are computed from their row alone: the same in any slice.
+    merged_equals_unsharded(
+        "sampled-shards",
+        "name: sampled\ngrid:\n  half_angle_deg: {values: [80, 90]}\nuncertain:\n  k: {distribution: uniform, from: 1.08, to: 1.3}\n  mu: {distribution: lognormal, median: 0.45, cov: 0.2}\nsamples: {n: 100, method: random, seed: 4}\nfind: probability\n",
+        3,
+    );
+}
+
+#[test]
 fn a_shard_records_its_slice_and_the_manifest() {
     let dir = scratch("shard-json");
     let study = manifest(&dir, "s.yaml", STATE);

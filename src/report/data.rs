@@ -475,8 +475,8 @@ fn read_samples(layout: &RunLayout, m: &ManifestView, s: &SamplingView) -> Resul
         let mu = store::f64_column(&df, "mu")?;
         let stands = store::bool_column(&df, "stands")?;
         let mech = store::str_column(&df, "mechanism")?;
-        // A fragility sample is drawn by the mechanism of its λ_max.
-        let limit = s.question == "fragility";
+        // A sample that finds λ_max is drawn by the mechanism of its λ_max.
+        let limit = s.question != "probability" && lc.kind != "self_weight";
         for j in 0..df.height() {
             let (Some(t), Some(mu), Some(st)) = (t[j], mu[j], stands[j]) else {
                 continue;

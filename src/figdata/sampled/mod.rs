@@ -125,8 +125,37 @@ pub fn run(m: &Manifest, s: &Sampling, layout: &RunLayout) -> Result<SampledSumm
         };
         rows.extend(grid_rows(m, lc.name.as_str(), g.point, &lay));
         rows.extend(g.estimates(&lc.name, s, &case.scene));
-        if s.question == Question::Probability && g.point == 0 {
-            rows.extend(convergence::rows(s, &case.scene, &lc.name, g, &rows));
+    }
+    if s.question == Question::Probability {
+        // The convergence of each load case at its point whose exact probability is nearest
+        // ½ (where the estimate's error is largest; at 0 or 1 every estimate is exact).
+        for (i, lc) in m.load_cases.iter().enumerate() {
+            let exact = |g: &&Group| {
+                rows.iter()
+                    .find(|r| {
+                        r.load_case == lc.name
+                            && r.point == g.point
+                            && r.quantity == "exact_probability"
+                    })
+                    .map(|r| r.value)
+                    .filter(|v| *v > 0.0 && *v < 1.0)
+            };
+            let Some(g) = groups
+                .iter()
+                .filter(|g| g.load_case == i)
+                .filter(|g| exact(g).is_some())
+                .min_by(|a, b| {
+                    let d = |g: &&Group| (exact(g).unwrap_or(0.0) - 0.5).abs();
+                    d(a).total_cmp(&d(b))
+                })
+            else {
+                continue;
+            };
+            let base = plan::build_slice(m.clone(), g.first_id(&lay)..g.first_id(&lay) + 1);
+            if let Some(case) = base.cases.first() {
+                let conv = convergence::rows(s, &case.scene, &lc.name, g, &rows);
+                rows.extend(conv);
+            }
         }
     }
     store::write_parquet(&mut store::estimates_frame(&rows)?, &layout.estimates())?;

@@ -238,18 +238,18 @@ impl Group {
                 );
             }
         }
+        if self.at_limit.iter().sum::<u64>() > 0 {
+            for (m, &k) in MECHANISMS.iter().zip(&self.at_limit) {
+                let i = share(k);
+                out.push(
+                    EstimateRow::value(lc, p, "limit_mechanism", m, i.value)
+                        .with_interval(i.lo, i.hi),
+                );
+            }
+        }
         match s.question {
             Question::Probability => out.push(exact_row(lc, p, s, base)),
-            Question::Fragility => {
-                for (m, &k) in MECHANISMS.iter().zip(&self.at_limit) {
-                    let i = share(k);
-                    out.push(
-                        EstimateRow::value(lc, p, "limit_mechanism", m, i.value)
-                            .with_interval(i.lo, i.hi),
-                    );
-                }
-                out.extend(self.fragility(lc));
-            }
+            Question::Fragility => out.extend(self.fragility(lc)),
             Question::Sensitivity => out.extend(self.sensitivity(lc, s)),
         }
         out

@@ -283,6 +283,44 @@ fn check_fits_study(
             ),
         ));
     }
+    let has = |n: ParamName| list.iter().any(|(p, _)| *p == n);
+    let grid = raw.grid.as_ref();
+    let k_given = has(ParamName::K)
+        || has(ParamName::TOverR)
+        || grid.is_some_and(|g| g.k.is_some() || g.t_over_r.is_some());
+    let mu_given = has(ParamName::Mu) || grid.is_some_and(|g| g.mu.is_some());
+    if !k_given || !mu_given {
+        let missing = if k_given {
+            "μ: a mu grid axis or an uncertain mu"
+        } else {
+            "K: a k (or t_over_r) grid axis or an uncertain k (or t_over_r)"
+        };
+        return Err(cx.err_unplaced(
+            "uncertain",
+            format!(
+                "a `{question}` study analyses each sample at its K and μ, and needs {missing}"
+            ),
+        ));
+    }
+    if question == Question::Probability
+        && !has(ParamName::Lambda)
+        && let Some((i, lc)) = load_cases
+            .iter()
+            .enumerate()
+            .find(|(_, l)| l.kind.is_live() && l.lambda.is_none())
+    {
+        return Err(cx.err(
+            at(i),
+            "load_cases.lambda",
+            format!(
+                "load case {:?} ({}) needs the load factor the probability is asked at: add \
+                 `lambda: L` (L ≥ 0) to it or give an uncertain lambda; `find: fragility` gives \
+                 the distribution of its largest load factor instead",
+                lc.name,
+                lc.kind.as_str()
+            ),
+        ));
+    }
     for (name, d) in list {
         let key = format!("uncertain.{}", name.as_str());
         match name {

@@ -105,6 +105,15 @@ pub fn figures(data: &RunData, lc: &LoadCaseFigure) -> Vec<FigureSpec> {
                 "Mechanism at λ_max",
             ));
         }
+        _ if live(data, lc) => {
+            out.extend(sobol_bars(data, &e, lc));
+            out.extend(mechanism_bars(
+                &e,
+                lc,
+                "limit_mechanism",
+                "Mechanism at λ_max",
+            ));
+        }
         _ => {
             out.extend(sobol_bars(data, &e, lc));
             out.extend(mechanism_bars(
@@ -116,6 +125,15 @@ pub fn figures(data: &RunData, lc: &LoadCaseFigure) -> Vec<FigureSpec> {
         }
     }
     out
+}
+
+/// True when the load case has a live load (its samples find λ_max).
+fn live(data: &RunData, lc: &LoadCaseFigure) -> bool {
+    data.manifest
+        .load_cases
+        .iter()
+        .find(|l| l.name == lc.name)
+        .is_some_and(|l| l.kind != "self_weight")
 }
 
 fn sample_map(data: &RunData, lc: &LoadCaseFigure) -> Option<FigureSpec> {
@@ -134,7 +152,7 @@ fn sample_map(data: &RunData, lc: &LoadCaseFigure) -> Option<FigureSpec> {
         .manifest
         .sampling
         .as_ref()
-        .is_some_and(|s| s.question == "fragility");
+        .is_some_and(|s| s.question != "probability" && live(data, lc));
     let figure = crate::figdata::sampled::samples_figure(lc.name);
     let curves: Vec<(String, Vec<(f64, f64)>)> = ["rotational", "mixed", "sliding"]
         .into_iter()
@@ -339,7 +357,11 @@ fn against_axis(e: &Estimates, lc: &LoadCaseFigure, quantity: &str) -> Option<Fi
                 },
                 points: exact,
                 band: Vec::new(),
-                color,
+                color: if lines.len() == 1 {
+                    palette::INK
+                } else {
+                    color
+                },
                 dashed: true,
                 dots: false,
             });
@@ -518,13 +540,7 @@ fn sobol_bars(data: &RunData, e: &Estimates, lc: &LoadCaseFigure) -> Option<Figu
     if groups.is_empty() {
         return None;
     }
-    let live = data
-        .manifest
-        .load_cases
-        .iter()
-        .find(|l| l.name == lc.name)
-        .is_some_and(|l| l.kind != "self_weight");
-    let output = if live {
+    let output = if live(data, lc) {
         "the largest load factor λ_max"
     } else {
         "the stability margin t/t_c − 1 (t_c the collapse thickness at the sample's other values; −1 where no thickness stands)"
