@@ -6,12 +6,13 @@ use std::path::{Path, PathBuf};
 
 /// The top-level modules of the library, lowest first. A module may use the modules before
 /// it, never one after it (docs/architecture.md says what each owns).
-const LAYERS: [&str; 25] = [
+const LAYERS: [&str; 26] = [
     "error",
     "progress",
     "provenance",
     "output",
     "model",
+    "sampling",
     "analysis",
     "scene",
     "manifest",

@@ -24,6 +24,8 @@ pub struct Curve {
     pub color: RGBColor,
     /// Dashed (a reference line) or solid.
     pub dashed: bool,
+    /// Points joined by a line (false: dots alone, values known at those points only).
+    pub line: bool,
     /// Points marked with dots.
     pub dots: bool,
 }
@@ -139,13 +141,27 @@ fn legend_of(panels: &[CurvePanel]) -> Vec<LegendItem> {
         if c.label.is_empty() || items.iter().any(|i| i.label == c.label) {
             continue;
         }
-        items.push(LegendItem::new(
-            c.label.clone(),
+        let mark = if c.line {
             Mark::Line {
                 color: c.color,
                 width: 2.0,
                 dashed: c.dashed,
-            },
+            }
+        } else {
+            Mark::Dot(c.color)
+        };
+        items.push(LegendItem::new(c.label.clone(), mark));
+    }
+    let banded: Vec<RGBColor> = panels
+        .iter()
+        .flat_map(|p| &p.curves)
+        .filter(|c| c.band.len() >= 2)
+        .map(|c| c.color)
+        .collect();
+    if let Some(&c) = banded.first() {
+        items.push(LegendItem::new(
+            "95 % interval (shaded)",
+            Mark::Swatch(style::over_white(c, 0.18)),
         ));
     }
     items
@@ -284,7 +300,12 @@ fn draw_curve_panel<DB: DrawingBackend>(
         let st = c
             .color
             .stroke_width(ctx.upx(if c.dashed { 1.4 } else { 2.0 }));
-        for piece in clip_polyline(&pts, (x0, x1), (y0, y1)) {
+        let pieces = if c.line {
+            clip_polyline(&pts, (x0, x1), (y0, y1))
+        } else {
+            Vec::new()
+        };
+        for piece in pieces {
             if c.dashed {
                 chart.draw_series(DashedLineSeries::new(piece, ctx.upx(6.0), ctx.upx(4.0), st))?;
             } else {
@@ -434,7 +455,19 @@ impl Figure for SampleMap {
                 legend.push(LegendItem::new(label, Mark::Dot(dot_color(m))));
             }
         }
-        for (m, _) in &self.curves {
+        let window = (
+            span(self.dots.iter().map(|d| d.mu), false),
+            span(self.dots.iter().map(|d| d.k), false),
+        );
+        let inside = |(mu, k): (f64, f64)| match window {
+            (Some((x0, x1)), Some((y0, y1))) => mu >= x0 && mu <= x1 && k >= y0 && k <= y1,
+            _ => false,
+        };
+        for (m, _) in self
+            .curves
+            .iter()
+            .filter(|(_, pts)| pts.iter().any(|&q| inside(q)))
+        {
             legend.push(LegendItem::new(
                 if self.by_limit {
                     format!("K_c(μ) under its own weight, {m}")
@@ -448,7 +481,11 @@ impl Figure for SampleMap {
                 },
             ));
         }
-        if self.mu_min.is_some() {
+        let mu_min_shown = match (self.mu_min, window.0) {
+            (Some(m), Some((x0, x1))) => m > x0 && m < x1,
+            _ => false,
+        };
+        if mu_min_shown {
             legend.push(LegendItem::new(
                 "μ_min",
                 Mark::Line {

@@ -172,7 +172,8 @@ impl ManifestView {
     /// True for the paper's case: a semicircular arch with radial joints, annular weight, a
     /// continuum of joints and self-weight only (and no axis varying the arch).
     pub fn is_paper_case(&self) -> bool {
-        self.is_paper_geometry()
+        self.sampling.is_none()
+            && self.is_paper_geometry()
             && self.arch.voussoir_count().is_none()
             && !self
                 .grid
@@ -468,9 +469,15 @@ fn read_samples(layout: &RunLayout, m: &ManifestView, s: &SamplingView) -> Resul
         let len = SAMPLES_DRAWN.min(per_point as usize);
         let df = store::read_parquet_rows(
             &layout.samples(),
-            &[thickness, "mu", "stands", "mechanism"],
+            &[thickness, "mu", "stands", "mechanism", "block"],
             Some((first as usize, len)),
         )?;
+        // A sensitivity design's samples are its A block; the others mix its columns.
+        let block = if df.column("block").is_ok() {
+            store::str_column(&df, "block")?
+        } else {
+            vec![None; df.height()]
+        };
         let t = store::f64_column(&df, thickness)?;
         let mu = store::f64_column(&df, "mu")?;
         let stands = store::bool_column(&df, "stands")?;
@@ -481,6 +488,9 @@ fn read_samples(layout: &RunLayout, m: &ManifestView, s: &SamplingView) -> Resul
             let (Some(t), Some(mu), Some(st)) = (t[j], mu[j], stands[j]) else {
                 continue;
             };
+            if block[j].as_deref().is_some_and(|b| b != "A") {
+                continue;
+            }
             let outcome = match (st, limit) {
                 (true, false) => "stable".to_string(),
                 (false, true) => "none".to_string(),

@@ -39,6 +39,8 @@ pub struct ReportView {
     pub cases: Vec<Item>,
     /// True for the paper's case.
     pub paper_case: bool,
+    /// True for a sampling study (uncertain parameters).
+    pub sampling: bool,
     /// Key results.
     pub key_results: Vec<KeyResult>,
     /// Why the key results table is empty, when it is.
@@ -96,6 +98,7 @@ pub fn build(data: &RunData, figs: &[FigureSpec], svgs: &[String]) -> ReportView
         load_cases: study::load_cases(m),
         cases: study::cases(data),
         paper_case: m.is_paper_case(),
+        sampling: m.sampling.is_some(),
         key_results,
         key_results_note: note,
         reading_notes: notes::notes(data),

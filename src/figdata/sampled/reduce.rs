@@ -164,6 +164,9 @@ pub struct Group {
     pub outputs: Vec<f64>,
     /// (n, failures among the first n rows) at n = 2, 4, 8, … (the run's own convergence).
     pub prefix: Vec<(u64, u64)>,
+    /// The rows per base sample of a sensitivity design (d + 2), whose A block alone is
+    /// counted in the shares.
+    stride: Option<u64>,
 }
 
 impl Group {
@@ -184,12 +187,22 @@ impl Group {
                 Vec::new()
             },
             prefix: Vec::new(),
+            stride: (s.question == Question::Sensitivity).then(|| s.params.len() as u64 + 2),
         }
     }
 
     /// Adds row `row` (rows arrive in order) and returns its answer.
     pub fn add(&mut self, row: u64, r: &Read, scene: &Scene) -> Answer {
         let a = answer(r, scene);
+        if self.outputs.capacity() > 0 {
+            self.outputs
+                .push(a.lambda_max.or(a.margin).unwrap_or(f64::NAN));
+        }
+        // The shares of a sensitivity design are those of its A block alone: the other
+        // blocks reuse its columns and are not independent samples.
+        if self.stride.is_some_and(|d| row % d != 0) {
+            return a;
+        }
         if a.error {
             self.errors += 1;
         } else {
@@ -206,10 +219,6 @@ impl Group {
                     self.by_mechanism[i] += 1;
                 }
             }
-        }
-        if self.outputs.capacity() > 0 {
-            self.outputs
-                .push(a.lambda_max.or(a.margin).unwrap_or(f64::NAN));
         }
         let n = row + 1;
         if n.is_power_of_two() && n >= 2 {
@@ -289,8 +298,11 @@ impl Group {
                         .at(*x),
                 );
             }
-            let mean = finite.iter().sum::<f64>() / finite.len() as f64;
-            out.push(EstimateRow::value(lc, p, "mean", "", mean));
+            // A mean of the finite values alone would say nothing where some are unbounded.
+            if finite.len() == v.len() {
+                let mean = finite.iter().sum::<f64>() / finite.len() as f64;
+                out.push(EstimateRow::value(lc, p, "mean", "", mean));
+            }
         }
         let unbounded = v.len() - finite.len();
         if unbounded > 0 {
@@ -339,7 +351,7 @@ fn exact_row(lc: &str, p: u64, s: &Sampling, base: &Scene) -> EstimateRow {
         Ok(e) => EstimateRow::value(lc, p, "exact_probability", "", e.value)
             .with_interval(e.value - e.error, e.value + e.error)
             .noted(format!(
-                "adaptive Gauss–Kronrod quadrature over μ, {} thickness or friction finds",
+                "adaptive Gauss–Kronrod quadrature over μ; thickness or friction finds: {}",
                 e.evaluations
             )),
         Err(e) => EstimateRow::value(lc, p, "exact_probability", "", f64::NAN).noted(e.to_string()),

@@ -171,6 +171,7 @@ pub(super) fn validate(
             distribution: dist,
         });
     }
+    check_thickness_and_friction(raw, question, &list, cx)?;
     let correlation = match &u.value.correlation {
         None => None,
         Some(c) => Some(correlation(c, &params, question, cx)?),
@@ -284,24 +285,6 @@ fn check_fits_study(
         ));
     }
     let has = |n: ParamName| list.iter().any(|(p, _)| *p == n);
-    let grid = raw.grid.as_ref();
-    let k_given = has(ParamName::K)
-        || has(ParamName::TOverR)
-        || grid.is_some_and(|g| g.k.is_some() || g.t_over_r.is_some());
-    let mu_given = has(ParamName::Mu) || grid.is_some_and(|g| g.mu.is_some());
-    if !k_given || !mu_given {
-        let missing = if k_given {
-            "μ: a mu grid axis or an uncertain mu"
-        } else {
-            "K: a k (or t_over_r) grid axis or an uncertain k (or t_over_r)"
-        };
-        return Err(cx.err_unplaced(
-            "uncertain",
-            format!(
-                "a `{question}` study analyses each sample at its K and μ, and needs {missing}"
-            ),
-        ));
-    }
     if question == Question::Probability
         && !has(ParamName::Lambda)
         && let Some((i, lc)) = load_cases
@@ -399,6 +382,35 @@ fn check_fits_study(
             }
             _ => {}
         }
+    }
+    Ok(())
+}
+
+/// Each sample is analysed at its K and μ: each is an uncertain parameter or a grid axis.
+fn check_thickness_and_friction(
+    raw: &RawManifest,
+    question: Question,
+    list: &[(ParamName, &Spanned<RawDistribution>)],
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    let has = |n: ParamName| list.iter().any(|(p, _)| *p == n);
+    let grid = raw.grid.as_ref();
+    let k_given = has(ParamName::K)
+        || has(ParamName::TOverR)
+        || grid.is_some_and(|g| g.k.is_some() || g.t_over_r.is_some());
+    let mu_given = has(ParamName::Mu) || grid.is_some_and(|g| g.mu.is_some());
+    if !k_given || !mu_given {
+        let missing = if k_given {
+            "μ: a mu grid axis or an uncertain mu"
+        } else {
+            "K: a k (or t_over_r) grid axis or an uncertain k (or t_over_r)"
+        };
+        return Err(cx.err_unplaced(
+            "uncertain",
+            format!(
+                "a `{question}` study analyses each sample at its K and μ, and needs {missing}"
+            ),
+        ));
     }
     Ok(())
 }

@@ -17,6 +17,9 @@ const MAX_CURVES: usize = 8;
 /// A fragility figure's λ axis is logarithmic when its values span more than this ratio.
 const LOG_SPREAD: f64 = 50.0;
 
+/// A fragility figure's λ axis ends at this many times the largest finite median.
+const CAP_MEDIANS: f64 = 20.0;
+
 /// The estimates of one load case.
 pub struct Estimates<'a> {
     rows: Vec<&'a EstimateRow>,
@@ -67,14 +70,75 @@ impl<'a> Estimates<'a> {
             .collect()
     }
 
-    /// A point's grid values in words (`k = 1.2, mu = 0.4`), empty without grid axes.
+    /// A point's grid values in words (`K = 1.2, μ = 0.4`), empty without grid axes.
     pub fn label(&self, point: u64) -> String {
         self.grid(point)
             .iter()
-            .map(|(a, v)| format!("{a} = {}", crate::report::format::given(*v)))
+            .map(|(a, v)| value_words(a, *v))
             .collect::<Vec<_>>()
             .join(", ")
     }
+
+    /// The point a one-point figure shows: the one whose probability of not standing is
+    /// nearest ½ (at 0 or 1 there is nothing to read), the first one when none has one.
+    pub fn informative_point(&self) -> Option<u64> {
+        let points = self.points();
+        let p = |q: u64| self.one(q, "probability", "").map(|r| r.value);
+        points
+            .iter()
+            .copied()
+            .filter(|&q| p(q).is_some())
+            .min_by(|&a, &b| {
+                let d = |q| (p(q).unwrap_or(0.0) - 0.5).abs();
+                d(a).total_cmp(&d(b))
+            })
+            .or_else(|| points.first().copied())
+    }
+}
+
+/// The symbol of a grid axis or uncertain parameter, with its unit.
+pub fn symbol(name: &str) -> &'static str {
+    match name {
+        "k" => "K",
+        "t_over_r" => "t/R_c",
+        "mu" => "μ",
+        "half_angle_deg" => "α (°)",
+        "eccentricity" => "e",
+        "voussoirs" => "N",
+        "at_deg" => "θ (°)",
+        "at_x" => "x/L",
+        "lambda" => "λ",
+        _ => "value",
+    }
+}
+
+/// An axis in words, for an axis title.
+pub fn axis_words(name: &str) -> &'static str {
+    match name {
+        "k" => "thickness ratio K = R/r",
+        "t_over_r" => "thickness t/R_c",
+        "mu" => "friction coefficient μ",
+        "half_angle_deg" => "half-angle α (°)",
+        "voussoirs" => "voussoirs N",
+        "at_deg" => "load position θ (° from the crown)",
+        "at_x" => "load position x/L",
+        _ => "value",
+    }
+}
+
+/// A grid value in words: `K = 1.2`, `θ = 22.5°`.
+pub fn value_words(name: &str, v: f64) -> String {
+    let v = crate::report::format::given(v);
+    match name {
+        "half_angle_deg" => format!("α = {v}°"),
+        "at_deg" => format!("θ = {v}°"),
+        other => format!("{} = {v}", symbol(other)),
+    }
+}
+
+/// A mechanism name in words, `none` being both domains empty.
+pub fn mechanism_words(m: &str) -> &str {
+    if m == "none" { "Hʳ and Hˢ empty" } else { m }
 }
 
 /// Every figure of a sampling study's load case.
@@ -164,6 +228,28 @@ fn sample_map(data: &RunData, lc: &LoadCaseFigure) -> Option<FigureSpec> {
         .first()
         .map(|p| p.0);
     let n = dots.len();
+    let points = Estimates::of(data, lc.name).points();
+    let at = match points.first() {
+        Some(&p) if points.len() > 1 => format!(" at {}", Estimates::of(data, lc.name).label(p)),
+        _ => String::new(),
+    };
+    let others: Vec<&str> = (data.manifest.sampling.iter())
+        .flat_map(|s| &s.params)
+        .map(|p| p.name.as_str())
+        .filter(|p| !matches!(*p, "k" | "t_over_r" | "mu"))
+        .collect();
+    let other = if others.is_empty() {
+        String::new()
+    } else {
+        format!(
+            " The samples also vary {}, which this projection onto (μ, K) does not show.",
+            others
+                .iter()
+                .map(|p| symbol(p))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    };
     let curve_text = if curves.is_empty() {
         String::new()
     } else {
@@ -175,16 +261,25 @@ fn sample_map(data: &RunData, lc: &LoadCaseFigure) -> Option<FigureSpec> {
         stem: format!("samples{}", lc.stem_suffix),
         title: format!("Samples over the (μ, K) plane{}", lc.title_suffix),
         caption: if limit {
+            let black = if dots.iter().any(|d| d.outcome == "none") {
+                " (black: the arch does not stand under its own weight, λ_max = 0)"
+            } else {
+                ""
+            };
+            let line = if curves.is_empty() {
+                ""
+            } else {
+                " The line, where it falls in the plotted range, is the collapse thickness under \
+                 self-weight alone, K_c(μ), below which λ_max is 0."
+            };
             format!(
-                "The first {n} samples of (μ, K), in the colour of the mechanism that sets their \
-                 largest load factor λ_max (black: the arch does not stand under its own weight, \
-                 λ_max = 0). The line is the collapse thickness under self-weight alone, K_c(μ), \
-                 where λ_max falls to 0."
+                "The first {n} samples of (μ, K){at}, in the colour of the mechanism that sets \
+                 their largest load factor λ_max{black}.{line}{other}"
             )
         } else {
             format!(
-                "The first {n} samples of (μ, K), grey where the arch stands and in the colour of \
-                 its collapse mechanism where it does not.{curve_text}"
+                "The first {n} samples of (μ, K){at}, grey where the arch stands and in the colour \
+                 of its collapse mechanism where it does not.{curve_text}{other}"
             )
         },
         chart: Chart::SampleMap(SampleMap {
@@ -204,22 +299,23 @@ fn mechanism_bars(
     quantity: &str,
     title: &str,
 ) -> Option<FigureSpec> {
-    let points = e.points();
-    let point = *points.first()?;
+    let point = e.informative_point()?;
     let mut groups = Vec::new();
     if quantity == "mechanism" {
         let total = e.one(point, "probability", "")?;
-        let mut bars = vec![bar("sampled", total, palette::INK)];
+        groups.push(BarGroup {
+            label: "does not stand".into(),
+            bars: vec![bar("", total, palette::INK)],
+        });
         if let Some(x) = e
             .one(point, "exact_probability", "")
             .filter(|x| x.value.is_finite())
         {
-            bars.push(bar("exact", x, palette::GREEN));
+            groups.push(BarGroup {
+                label: "does not stand, exact".into(),
+                bars: vec![bar("", x, palette::GREEN)],
+            });
         }
-        groups.push(BarGroup {
-            label: "does not stand".into(),
-            bars,
-        });
     }
     for m in ["rotational", "mixed", "sliding", "none"] {
         let Some(r) = e.one(point, quantity, m) else {
@@ -229,8 +325,8 @@ fn mechanism_bars(
             continue;
         }
         groups.push(BarGroup {
-            label: m.to_string(),
-            bars: vec![bar("sampled", r, palette::mechanism(m))],
+            label: mechanism_words(m).to_string(),
+            bars: vec![bar("", r, palette::mechanism(m))],
         });
     }
     let top = groups
@@ -269,7 +365,11 @@ fn mechanism_bars(
         ),
         chart: Chart::Bars(BarsChart {
             title: format!("{title}{}", lc.title_suffix),
-            x_desc: "probability".into(),
+            x_desc: if quantity == "mechanism" {
+                "probability".into()
+            } else {
+                "share of samples".into()
+            },
             groups,
             x_range: (0.0, (top * 1.25).clamp(1e-3, 1.0)),
         }),
@@ -347,6 +447,7 @@ fn against_axis(e: &Estimates, lc: &LoadCaseFigure, quantity: &str) -> Option<Fi
             color,
             dashed: false,
             dots: true,
+            line: true,
         });
         if !exact.is_empty() {
             curves.push(Curve {
@@ -362,8 +463,9 @@ fn against_axis(e: &Estimates, lc: &LoadCaseFigure, quantity: &str) -> Option<Fi
                 } else {
                     color
                 },
-                dashed: true,
-                dots: false,
+                dashed: false,
+                dots: true,
+                line: false,
             });
         }
     }
@@ -385,7 +487,7 @@ fn against_axis(e: &Estimates, lc: &LoadCaseFigure, quantity: &str) -> Option<Fi
             title: format!("P(collapse) against {axis}{}", lc.title_suffix),
             panels: vec![CurvePanel {
                 title: String::new(),
-                x_desc: axis.clone(),
+                x_desc: axis_words(&axis).into(),
                 y_desc: "probability of collapse".into(),
                 curves,
                 log: (false, false),
@@ -437,6 +539,7 @@ fn fragility(e: &Estimates, lc: &LoadCaseFigure) -> Option<FigureSpec> {
             color,
             dashed: false,
             dots: false,
+            line: true,
         });
     }
     if curves.is_empty() {
@@ -452,10 +555,29 @@ fn fragility(e: &Estimates, lc: &LoadCaseFigure) -> Option<FigureSpec> {
         .iter()
         .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
     let log_x = hi / lo > LOG_SPREAD;
-    if log_x {
-        for c in &mut curves {
+    // A few samples near an unbounded capacity would stretch the axis over decades: it ends
+    // at CAP_MEDIANS times the largest finite median, each curve level beyond it.
+    let cap = points
+        .iter()
+        .take(MAX_CURVES)
+        .filter_map(|&p| e.one(p, "quantile", "0.5").map(|r| r.value))
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .fold(0.0f64, f64::max)
+        * CAP_MEDIANS;
+    for c in &mut curves {
+        if log_x {
             c.points.retain(|p| p.0 > 0.0);
             c.band.retain(|b| b.0 > 0.0);
+        }
+        if cap > 0.0 {
+            let last = c.points.iter().rev().find(|p| p.0 <= cap).copied();
+            let last_band = c.band.iter().rev().find(|b| b.0 <= cap).copied();
+            c.points.retain(|p| p.0 <= cap);
+            c.band.retain(|b| b.0 <= cap);
+            if let (Some((_, y)), Some((_, lo, hi))) = (last, last_band) {
+                c.points.push((cap, y));
+                c.band.push((cap, lo, hi));
+            }
         }
     }
     let unbounded: Vec<String> = points
@@ -482,18 +604,33 @@ fn fragility(e: &Estimates, lc: &LoadCaseFigure) -> Option<FigureSpec> {
             unbounded.join(", ")
         )
     };
+    let at = e.label(points[0]);
+    let at = if at.is_empty() || points.len() == 1 {
+        String::new()
+    } else {
+        format!(" at {at}")
+    };
     let q: Vec<String> = ["0.05", "0.5", "0.95"]
         .iter()
         .filter_map(|l| {
             e.one(points[0], "quantile", l).map(|r| {
                 format!(
-                    "{} % quantile {}",
+                    "{} % quantile{at} {}",
                     (l.parse::<f64>().unwrap_or(0.0) * 100.0).round(),
                     crate::report::format::sig(r.value, 4)
                 )
             })
         })
         .collect();
+    let capped = if cap > 0.0 && hi > cap {
+        format!(
+            " The λ axis ends at {} ({CAP_MEDIANS} times the largest median); a curve goes on \
+             beyond it to its larger values.",
+            crate::report::format::sig(cap, 3)
+        )
+    } else {
+        String::new()
+    };
     Some(FigureSpec {
         stem: format!("fragility{}", lc.stem_suffix),
         title: format!("Fragility curve{}", lc.title_suffix),
@@ -501,7 +638,7 @@ fn fragility(e: &Estimates, lc: &LoadCaseFigure) -> Option<FigureSpec> {
             "The fragility curve: the probability that the largest load factor λ_max of the live \
              load is at most λ, from the samples' λ_max (the static limit, the largest λ at which \
              an admissible state exists), with the 95 % Dvoretzky–Kiefer–Wolfowitz band (shaded). \
-             An arch that does not stand under its own weight counts as λ_max = 0. {}.{unbounded}",
+             An arch that does not stand under its own weight counts as λ_max = 0. {}.{unbounded}{capped} The key results give every curve's quantiles.",
             q.join(", ")
         ),
         chart: Chart::Curves(CurvesChart {
@@ -530,7 +667,7 @@ fn sobol_bars(data: &RunData, e: &Estimates, lc: &LoadCaseFigure) -> Option<Figu
             continue;
         };
         groups.push(BarGroup {
-            label: p.name.clone(),
+            label: symbol(&p.name).to_string(),
             bars: vec![
                 bar("first order S_i", f, palette::BLUE),
                 bar("total S_Ti", t, palette::ORANGE),
@@ -571,7 +708,10 @@ fn sobol_bars(data: &RunData, e: &Estimates, lc: &LoadCaseFigure) -> Option<Figu
 }
 
 fn convergence(e: &Estimates, lc: &LoadCaseFigure, method: &str) -> Option<FigureSpec> {
-    let point = *e.points().first()?;
+    let point = e
+        .points()
+        .into_iter()
+        .find(|&p| !e.get(p, "convergence").is_empty())?;
     let rows = e.get(point, "convergence");
     if rows.is_empty() {
         return None;
@@ -592,17 +732,19 @@ fn convergence(e: &Estimates, lc: &LoadCaseFigure, method: &str) -> Option<Figur
             label: format!("Sobol (scrambled), slope {}", slope("sobol")),
             points: sobol.clone(),
             band: Vec::new(),
-            color: palette::BLUE,
+            color: palette::GREEN,
             dashed: false,
             dots: true,
+            line: true,
         },
         Curve {
             label: format!("random, slope {}", slope("random")),
             points: random.clone(),
             band: Vec::new(),
-            color: palette::RED,
+            color: palette::ORANGE,
             dashed: false,
             dots: true,
+            line: true,
         },
     ];
     if !run.is_empty() {
@@ -613,12 +755,13 @@ fn convergence(e: &Estimates, lc: &LoadCaseFigure, method: &str) -> Option<Figur
             color: palette::INK,
             dashed: false,
             dots: true,
+            line: true,
         });
     }
     // Reference slopes through the first point of each method.
     for (pts, power, color, name) in [
-        (&random, -0.5, palette::RED, "n^-0.5"),
-        (&sobol, -1.0, palette::BLUE, "n^-1"),
+        (&random, -0.5, palette::ORANGE, "n^(-1/2)"),
+        (&sobol, -1.0, palette::GREEN, "n^(-1)"),
     ] {
         if let (Some(&(n0, e0)), Some(&(n1, _))) = (pts.first(), pts.last()) {
             curves.push(Curve {
@@ -628,6 +771,7 @@ fn convergence(e: &Estimates, lc: &LoadCaseFigure, method: &str) -> Option<Figur
                 color,
                 dashed: true,
                 dots: false,
+                line: true,
             });
         }
     }
@@ -640,12 +784,12 @@ fn convergence(e: &Estimates, lc: &LoadCaseFigure, method: &str) -> Option<Figur
         caption: "The error of the sampled probability of collapse against the exact value, \
                   against the number of samples n: the root-mean-square error over independent \
                   replicates for scrambled Sobol points and for random sampling, and the absolute \
-                  error of this run's own estimate at each power of two. Dashed: the slopes n^-1 \
-                  and n^-0.5 through the first point of each method. The legend gives the \
-                  least-squares slope of each method. Random sampling falls as n^-0.5; scrambled \
-                  Sobol points reach n^-1 for smooth integrands only: whether an arch stands is \
+                  error of this run's own estimate at each power of two. Dashed: the slopes n^(-1) \
+                  and n^(-1/2) through the first point of each method. The legend gives the \
+                  least-squares slope of each method. Random sampling falls as n^(-1/2); scrambled \
+                  Sobol points reach n^(-1) for smooth integrands only: whether an arch stands is \
                   a step function of its parameters, for which the error of a scrambled net \
-                  falls as n^-(1/2 + 1/(2d)), n^-0.75 for d = 2 uncertain parameters."
+                  falls as n^(-1/2-1/(2d)), n^(-3/4) for d = 2 uncertain parameters."
             .into(),
         chart: Chart::Curves(CurvesChart {
             title: format!("Convergence{}", lc.title_suffix),

@@ -64,10 +64,27 @@ pub fn files(data: &RunData) -> Vec<Item> {
             "points where two collapse mechanisms coexist",
         ));
     }
-    v.push(item(
-        "curves.parquet, states.parquet, reference.parquet",
-        "figure data: curves from the statics, drawn states, continuum references",
-    ));
+    if data.manifest.sampling.is_some() {
+        v.push(item(
+            "samples.parquet",
+            "one row per sample: the values of the uncertain parameters and the answer",
+        ));
+        v.push(item(
+            "estimates.parquet",
+            "probabilities, fragility curves, quantiles and Sobol indices with their intervals; \
+             the exact probability and the convergence study",
+        ));
+        v.push(item(
+            "curves.parquet",
+            "figure data: the collapse curve drawn under the samples",
+        ));
+    } else {
+        v.push(item(
+            "curves.parquet, states.parquet, reference.parquet, mechanisms.parquet",
+            "figure data: curves from the statics, drawn states, continuum references, \
+             mechanisms at the bifurcations",
+        ));
+    }
     v.push(item(
         "run.json, manifest.yaml",
         "provenance: the resolved manifest, versions, timings; the manifest as given",

@@ -46,6 +46,22 @@ fn find_text(f: &str) -> &'static str {
 
 /// The find of the study, or of each load case when they differ.
 fn finds_text(m: &ManifestView) -> String {
+    if let Some(s) = &m.sampling {
+        return match s.question.as_str() {
+            "probability" => {
+                "probability: whether the arch stands (at its λ under a live load) at \
+                              every sample of the uncertain parameters, and by which mechanism it \
+                              fails"
+                    .into()
+            }
+            "fragility" => "fragility: the largest load factor λ_max of the live load at every \
+                            sample of the uncertain parameters, and its distribution"
+                .into(),
+            _ => "sensitivity: the Sobol indices of the stability margin (self-weight) or of \
+                  λ_max (a live load) to each uncertain parameter, from the Saltelli design"
+                .into(),
+        };
+    }
     let finds: Vec<(&str, &str)> = m
         .load_cases
         .iter()
@@ -101,10 +117,20 @@ fn axis_words(m: &ManifestView, name: &str) -> Option<String> {
 /// The arch and the model: shape, joints, weight model, material, find and tolerance. A
 /// half-angle or voussoir count that varies is described as the axis it is.
 pub fn model(m: &ManifestView) -> Vec<Item> {
+    let uncertain = |name: &str| {
+        m.sampling
+            .as_ref()
+            .is_some_and(|s| s.params.iter().any(|p| p.name == name))
+    };
     let alpha = axis_words(m, "half_angle_deg").map_or_else(
         || format!("half-embrace angle α = {}°", given(m.arch.half_angle_deg)),
         |w| format!("half-embrace angle α (°): {w}"),
     );
+    let alpha = if uncertain("half_angle_deg") {
+        "half-embrace angle α: uncertain (Uncertain parameters)".to_string()
+    } else {
+        alpha
+    };
     let joints = axis_words(m, "voussoirs").map_or_else(
         || {
             m.arch
@@ -115,15 +141,22 @@ pub fn model(m: &ManifestView) -> Vec<Item> {
         },
         |w| format!("voussoir count N: {w}"),
     );
+    let joints = if uncertain("voussoirs") {
+        "voussoir count N: uncertain (Uncertain parameters)".to_string()
+    } else {
+        joints
+    };
+    let eccentricity = match m.arch.eccentricity {
+        Some(e) if uncertain("eccentricity") => format!(" (eccentricity uncertain, nominal {e})"),
+        Some(e) => format!(" (eccentricity {e})"),
+        None => String::new(),
+    };
     vec![
         item(
             "shape",
             format!(
-                "{}{}, {alpha}",
+                "{}{eccentricity}, {alpha}",
                 m.arch.shape,
-                m.arch
-                    .eccentricity
-                    .map_or(String::new(), |e| format!(" (eccentricity {e})")),
             ),
         ),
         item("joints", format!("{}, {joints}", m.arch.joints)),
@@ -145,8 +178,14 @@ pub fn model(m: &ManifestView) -> Vec<Item> {
             "rigid voussoirs, no tension, infinite compressive strength, Coulomb friction μ = tan φ",
         ),
         item("find", finds_text(m)),
-        item("boundary tolerance", format!("{:e}", m.boundary_tolerance)),
     ]
+    .into_iter()
+    .chain(
+        m.sampling
+            .is_none()
+            .then(|| item("boundary tolerance", format!("{:e}", m.boundary_tolerance))),
+    )
+    .collect()
 }
 
 /// The grid axes: parameter, number of values, first and last.

@@ -10,8 +10,21 @@ use crate::report::data::RunData;
 use crate::report::format::sig;
 use crate::store::EstimateRow;
 
-/// Key results of a sampling study shown per load case for at most this many grid points.
-const KEY_POINTS: usize = 3;
+/// Key results of a sampling study shown per load case for at most this many grid points
+/// (evenly spread over them when there are more).
+const KEY_POINTS: usize = 12;
+
+/// The points the key results list: every one, or KEY_POINTS spread evenly.
+fn key_points(all: &[u64]) -> Vec<u64> {
+    if all.len() <= KEY_POINTS {
+        return all.to_vec();
+    }
+    let mut v: Vec<u64> = (0..KEY_POINTS)
+        .map(|i| all[i * (all.len() - 1) / (KEY_POINTS - 1)])
+        .collect();
+    v.dedup();
+    v
+}
 
 fn with_interval(r: &EstimateRow) -> String {
     match (r.lo, r.hi) {
@@ -41,7 +54,7 @@ pub fn key_results(data: &RunData) -> Vec<KeyResult> {
     let mut out = Vec::new();
     for lc in &data.manifest.load_cases {
         let e = Estimates::of(data, &lc.name);
-        for &p in e.points().iter().take(KEY_POINTS) {
+        for p in key_points(&e.points()) {
             let mut at = Vec::new();
             if multi {
                 at.push(lc.name.clone());
@@ -105,17 +118,33 @@ pub fn key_results(data: &RunData) -> Vec<KeyResult> {
                     ));
                 }
             }
-            if let Some(top) = e
+            let mut totals: Vec<&EstimateRow> = e
                 .get(p, "total")
                 .into_iter()
                 .filter(|r| r.value.is_finite())
-                .max_by(|a, b| a.value.total_cmp(&b.value))
-            {
+                .collect();
+            totals.sort_by(|a, b| b.value.total_cmp(&a.value));
+            if let Some(top) = totals.first() {
+                // Parameters whose total index's interval reaches the largest one's are not
+                // told apart by these samples.
+                let tied: Vec<&str> = totals[1..]
+                    .iter()
+                    .filter(|r| r.hi.unwrap_or(r.value) >= top.lo.unwrap_or(top.value))
+                    .map(|r| r.parameter.as_str())
+                    .collect();
                 let first = e.one(p, "first_order", &top.parameter);
+                let (quantity, lead) = if tied.is_empty() {
+                    ("dominant parameter", top.parameter.clone())
+                } else {
+                    (
+                        "dominant parameters (intervals overlap)",
+                        format!("{} and {}", top.parameter, tied.join(", ")),
+                    )
+                };
                 out.push(row(
-                    format!("dominant parameter{on}"),
+                    format!("{quantity}{on}"),
                     format!(
-                        "{} (total index {}, first order {})",
+                        "{lead}: {} has total index {}, first order {}",
                         top.parameter,
                         with_interval(top),
                         first.map_or("—".into(), with_interval)
@@ -186,6 +215,7 @@ pub fn value_tables(data: &RunData) -> Vec<ValueTable> {
                 cell("mechanism", "rotational"),
                 cell("mechanism", "mixed"),
                 cell("mechanism", "sliding"),
+                cell("mechanism", "none"),
             ]);
             for param in &s.params {
                 if let Some(f) = e.one(p, "first_order", &param.name) {
@@ -225,17 +255,30 @@ pub fn value_tables(data: &RunData) -> Vec<ValueTable> {
             "rotational",
             "mixed",
             "sliding",
+            "Hʳ and Hˢ empty",
         ]
         .map(String::from)
         .to_vec(),
         rows,
     });
+    // Whether a live load's capacity stands under its own weight says little; its table is
+    // that of λ_max.
+    let capacity_only = s.question == "fragility"
+        || (s.question == "sensitivity"
+            && data
+                .manifest
+                .load_cases
+                .iter()
+                .all(|l| l.kind != "self_weight"));
+    if capacity_only {
+        out.pop();
+    }
     if !quantiles.is_empty() {
         out.push(ValueTable {
             title: "Quantiles of λ_max".into(),
             note: "The 5 %, 50 % and 95 % quantiles of the largest load factor, each with its \
-                   distribution-free 95 % interval (order statistics), and the mean of the finite \
-                   values."
+                   distribution-free 95 % interval (order statistics), and the mean (— where some \
+                   λ_max are unbounded)."
                 .into(),
             headers: ["load case", "grid point", "5 %", "50 %", "95 %", "mean"]
                 .map(String::from)
