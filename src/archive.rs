@@ -31,7 +31,7 @@ pub const REQUIRED_FILES: [&str; 3] = ["manifest.yaml", "run.json", "results.par
 /// The files at the top of a run directory that a run writes (besides the figures
 /// plots/STEM.{svg,png,pdf} and the tables tables/STEM.{csv,tex}): nothing else is archived, and an archive holding anything else fails
 /// `verify`.
-pub const RUN_TOP_FILES: [&str; 12] = [
+pub const RUN_TOP_FILES: [&str; 14] = [
     "manifest.yaml",
     "run.json",
     "results.parquet",
@@ -41,6 +41,8 @@ pub const RUN_TOP_FILES: [&str; 12] = [
     "states.parquet",
     "reference.parquet",
     "mechanisms.parquet",
+    "samples.parquet",
+    "estimates.parquet",
     "report.html",
     "report.md",
     crate::output::CRATE_METADATA,

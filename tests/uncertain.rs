@@ -387,3 +387,21 @@ fn every_bad_sampling_input_is_refused_with_the_key_and_the_value() {
         }
     }
 }
+
+#[test]
+fn verify_re_derives_the_samples_and_the_estimates_and_catches_a_forged_probability() {
+    let text = "name: forged\nuncertain:\n  k: {distribution: uniform, from: 1.08, to: 1.2}\n  mu: {distribution: uniform, from: 0.3, to: 0.5}\nsamples: {n: 256, seed: 2}\nfind: probability\n";
+    let (out, rows) = run("verify-sampled", text, None);
+    let ok = archstudy(&["verify", out.to_str().unwrap()]);
+    assert!(ok.status.success(), "{}", crate::common::stdout(&ok));
+    let i = rows
+        .iter()
+        .position(|r| r.quantity == "probability")
+        .unwrap();
+    archstudy::store::rewrite_f64_value(&out.join("estimates.parquet"), "value", i, Some(0.01))
+        .unwrap();
+    let bad = archstudy(&["verify", out.to_str().unwrap()]);
+    assert!(!bad.status.success());
+    let text = crate::common::stdout(&bad);
+    assert!(text.contains("estimates.parquet"), "{text}");
+}
