@@ -262,6 +262,21 @@ fn draw_curve_panel<DB: DrawingBackend>(
         .light_line_style(TRANSPARENT)
         .bold_line_style(BLACK.mix(0.08).stroke_width(1))
         .draw()?;
+    draw_log_ticks(area, ctx, &chart, (lx, ly), ((x0, x1), (y0, y1)))?;
+    let t: Transforms = (&tx, &ty);
+    draw_bands(&chart, p, t, (y0, y1))?;
+    draw_lines(&mut chart, ctx, p, t, ((x0, x1), (y0, y1)))?;
+    Ok(())
+}
+
+/// The ticks of each logarithmic axis, drawn with their labels.
+fn draw_log_ticks<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    ctx: &PlotContext,
+    chart: &super::XyChart<DB>,
+    (lx, ly): (bool, bool),
+    ((x0, x1), (y0, y1)): ((f64, f64), (f64, f64)),
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     let plot = chart.plotting_area().get_pixel_range();
     if lx {
         let ticks: Vec<(i32, String)> = style::log_ticks(10f64.powf(x0), 10f64.powf(x1))
@@ -277,6 +292,19 @@ fn draw_curve_panel<DB: DrawingBackend>(
             .collect();
         style::draw_ticks(area, ctx, plot, AxisSide::Left, &ticks)?;
     }
+    Ok(())
+}
+
+/// The transform of each axis (log10 on a logarithmic one).
+type Transforms<'a> = (&'a dyn Fn(f64) -> f64, &'a dyn Fn(f64) -> f64);
+
+/// The shaded band of each curve that has one.
+fn draw_bands<DB: DrawingBackend>(
+    chart: &super::XyChart<DB>,
+    p: &CurvePanel,
+    (tx, ty): Transforms,
+    (y0, y1): (f64, f64),
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     for c in &p.curves {
         if c.band.len() >= 2 {
             let upper = c.band.iter().map(|b| (tx(b.0), ty(b.2).clamp(y0, y1)));
@@ -289,12 +317,22 @@ fn draw_curve_panel<DB: DrawingBackend>(
                 .chain(lower)
                 .filter(|q| q.0.is_finite() && q.1.is_finite())
                 .collect();
-            chart.draw_series(std::iter::once(Polygon::new(
-                poly,
-                c.color.mix(0.18).filled(),
-            )))?;
+            chart
+                .plotting_area()
+                .draw(&Polygon::new(poly, c.color.mix(0.18).filled()))?;
         }
     }
+    Ok(())
+}
+
+/// Each curve's line (clipped to the window) and dots.
+fn draw_lines<DB: DrawingBackend>(
+    chart: &mut super::XyChart<DB>,
+    ctx: &PlotContext,
+    p: &CurvePanel,
+    (tx, ty): Transforms,
+    ((x0, x1), (y0, y1)): ((f64, f64), (f64, f64)),
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     for c in &p.curves {
         let pts: Vec<(f64, f64)> = c.points.iter().map(|q| (tx(q.0), ty(q.1))).collect();
         let st = c
@@ -430,17 +468,13 @@ fn format_value(v: f64) -> String {
     }
 }
 
-impl Figure for SampleMap {
-    fn size(&self) -> (u32, u32) {
-        (640, 520)
-    }
+/// The plotted ranges of μ and K (none without samples).
+type Window = (Option<(f64, f64)>, Option<(f64, f64)>);
 
-    fn draw<DB: DrawingBackend>(
-        &self,
-        root: &DrawingArea<DB, Shift>,
-        ctx: &PlotContext,
-    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-        let area = style::title(root, ctx, &self.title)?;
+impl SampleMap {
+    /// The legend: the samples' colours, the collapse curves and μ_min that fall in the
+    /// plotted window.
+    fn legend(&self, window: Window) -> Vec<LegendItem> {
         let mut legend = Vec::new();
         if !self.by_limit {
             legend.push(LegendItem::new("stands", Mark::Dot(palette::GREY)));
@@ -455,10 +489,6 @@ impl Figure for SampleMap {
                 legend.push(LegendItem::new(label, Mark::Dot(dot_color(m))));
             }
         }
-        let window = (
-            span(self.dots.iter().map(|d| d.mu), false),
-            span(self.dots.iter().map(|d| d.k), false),
-        );
         let inside = |(mu, k): (f64, f64)| match window {
             (Some((x0, x1)), Some((y0, y1))) => mu >= x0 && mu <= x1 && k >= y0 && k <= y1,
             _ => false,
@@ -495,6 +525,26 @@ impl Figure for SampleMap {
                 },
             ));
         }
+        legend
+    }
+}
+
+impl Figure for SampleMap {
+    fn size(&self) -> (u32, u32) {
+        (640, 520)
+    }
+
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        ctx: &PlotContext,
+    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+        let area = style::title(root, ctx, &self.title)?;
+        let window = (
+            span(self.dots.iter().map(|d| d.mu), false),
+            span(self.dots.iter().map(|d| d.k), false),
+        );
+        let legend = self.legend(window);
         let area = above_legend(&area, ctx, &legend)?;
         let (Some((x0, x1)), Some((y0, y1))) = (
             span(self.dots.iter().map(|d| d.mu), false),

@@ -200,7 +200,7 @@ impl Group {
         }
         // The shares of a sensitivity design are those of its A block alone: the other
         // blocks reuse its columns and are not independent samples.
-        if self.stride.is_some_and(|d| row % d != 0) {
+        if self.stride.is_some_and(|d| !row.is_multiple_of(d)) {
             return a;
         }
         if a.error {

@@ -4,6 +4,7 @@
 
 mod arch;
 mod citation;
+mod distributions;
 mod grid;
 mod limits;
 mod load_checks;

@@ -2,7 +2,7 @@
 //! against the parameter it describes (its support must lie in the values the parameter may
 //! take), the correlation, the sample design, and how the study's load cases fit the question.
 
-use super::MAX_K;
+use super::distributions::{allowed, check_support, check_voussoir_counts, distribution};
 use super::{Ctx, fmt_num};
 use crate::manifest::error::ManifestError;
 use crate::manifest::raw::{RawDistribution, RawManifest, RawUncertain};
@@ -10,10 +10,9 @@ use crate::manifest::types::{ArchOptions, AxisName, GridAxis, LoadCase, LoadKind
 use crate::manifest::uncertain::{
     Correlation, DEFAULT_BOOTSTRAP, DEFAULT_SAMPLES, ParamName, Question, Sampling, UncertainParam,
 };
-use crate::model::t_over_r_from_k;
 use crate::sampling::{Distribution, MAX_DIMS, Method};
 use crate::scene::Find;
-use serde_saphyr::{Location, Spanned};
+use serde_saphyr::Spanned;
 
 /// Largest number of samples of a study (the sensitivity design multiplies it by d + 2).
 pub const MAX_SAMPLES: i64 = 1 << 32;
@@ -28,54 +27,6 @@ pub(super) struct Validated {
     /// For the checks of the grid and the loads only: an axis for each uncertain parameter
     /// that a grid axis could span, holding the extreme values its distribution takes.
     pub shadow: Vec<GridAxis>,
-}
-
-/// The values a parameter may take: a closed range for continuous distributions (whose
-/// samples never hit an end of their support), with the ends a discrete value may take.
-struct Allowed {
-    lo: f64,
-    hi: f64,
-    /// The ends themselves allowed as discrete values.
-    lo_inclusive: bool,
-    hi_inclusive: bool,
-    text: String,
-}
-
-fn allowed(name: ParamName, arch: &ArchOptions, alpha_lo: f64) -> Allowed {
-    let t_max = t_over_r_from_k(MAX_K);
-    let (lo, hi, lo_inc, hi_inc, text) = match name {
-        ParamName::K => (1.0, MAX_K, false, true, format!("(1, {MAX_K}]")),
-        ParamName::TOverR => (0.0, t_max, false, true, format!("(0, {t_max:.4}]")),
-        ParamName::Mu => (0.0, f64::INFINITY, true, true, "[0, inf]".to_string()),
-        ParamName::HalfAngleDeg => (0.0, 180.0, false, false, "(0, 180) degrees".into()),
-        ParamName::Eccentricity => (0.0, 1.0, true, false, "[0, 1)".into()),
-        ParamName::Voussoirs => (
-            1.0,
-            f64::INFINITY,
-            true,
-            true,
-            "integers ≥ 1 or continuum".into(),
-        ),
-        ParamName::AtDeg => {
-            let a = alpha_lo.min(arch.half_angle_deg);
-            (
-                -a,
-                a,
-                true,
-                true,
-                format!("[−{a}, {a}] degrees (within the half-angle)"),
-            )
-        }
-        ParamName::AtX => (0.0, 1.0, true, true, "[0, 1]".into()),
-        ParamName::Lambda => (0.0, f64::INFINITY, true, false, "[0, inf)".into()),
-    };
-    Allowed {
-        lo,
-        hi,
-        lo_inclusive: lo_inc,
-        hi_inclusive: hi_inc,
-        text,
-    }
 }
 
 /// The raw distribution of each parameter, in [`ParamName::ALL`] order.
@@ -304,84 +255,101 @@ fn check_fits_study(
             ),
         ));
     }
-    for (name, d) in list {
-        let key = format!("uncertain.{}", name.as_str());
-        match name {
-            ParamName::Lambda => {
-                if question != Question::Probability {
-                    return Err(cx.err(
-                        Some(d.referenced),
-                        &key,
-                        format!(
-                            "a `{question}` study finds the largest load factor λ_max itself: \
-                             remove the uncertain lambda (a probability study asks whether the \
-                             arch stands at an uncertain λ)"
-                        ),
-                    ));
-                }
-                if let Some((i, lc)) = load_cases
-                    .iter()
-                    .enumerate()
-                    .find(|(_, l)| l.lambda.is_some())
-                {
-                    return Err(cx.err(
-                        at(i),
-                        "load_cases.lambda",
-                        format!(
-                            "load case {:?} gives its own lambda, but λ is uncertain: remove one \
-                             of them",
-                            lc.name
-                        ),
-                    ));
-                }
-                if !load_cases.iter().any(|l| l.kind.is_live()) {
-                    return Err(cx.err(
-                        Some(d.referenced),
-                        &key,
-                        "λ scales a live load, and the study has none: add a horizontal or point \
-                         load case",
-                    ));
-                }
-            }
-            ParamName::AtDeg | ParamName::AtX => {
-                if let Some((i, lc)) = load_cases
-                    .iter()
-                    .enumerate()
-                    .find(|(_, l)| l.at_deg.is_some() || l.at_x.is_some())
-                {
-                    return Err(cx.err(
-                        at(i),
-                        "load_cases.at_deg",
-                        format!(
-                            "load case {:?} gives its own position, but the position is \
-                             uncertain: remove one of them",
-                            lc.name
-                        ),
-                    ));
-                }
-                if let Some(lc) = load_cases.iter().find(|l| l.kind != LoadKind::Point) {
-                    return Err(cx.err(
-                        Some(d.referenced),
-                        &key,
-                        format!(
-                            "an uncertain position places point loads, but load case {:?} is {}: \
-                             give it a study of its own",
-                            lc.name,
-                            lc.kind.as_str()
-                        ),
-                    ));
-                }
-            }
-            ParamName::Eccentricity if arch.shape != "pointed" => {
+    for &(name, d) in list {
+        check_param_fits((raw, question, arch), load_cases, (name, d), cx)?;
+    }
+    Ok(())
+}
+
+/// One uncertain parameter fits the load cases and the arch (see [`check_fits_study`]).
+fn check_param_fits(
+    (raw, question, arch): (&RawManifest, Question, &ArchOptions),
+    load_cases: &[LoadCase],
+    (name, d): (ParamName, &Spanned<RawDistribution>),
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    let at = |i: usize| {
+        raw.load_cases
+            .as_ref()
+            .and_then(|l| l.get(i))
+            .map(|l| l.referenced)
+    };
+    let key = format!("uncertain.{}", name.as_str());
+    match name {
+        ParamName::Lambda => {
+            if question != Question::Probability {
                 return Err(cx.err(
                     Some(d.referenced),
                     &key,
-                    "only a pointed arch has an eccentricity: add `shape: pointed` (and its \
-                     nominal `eccentricity`) to the arch",
+                    format!(
+                        "a `{question}` study finds the largest load factor λ_max itself: \
+                         remove the uncertain lambda (a probability study asks whether the \
+                         arch stands at an uncertain λ)"
+                    ),
                 ));
             }
-            _ => {}
+            if let Some((i, lc)) = load_cases
+                .iter()
+                .enumerate()
+                .find(|(_, l)| l.lambda.is_some())
+            {
+                return Err(cx.err(
+                    at(i),
+                    "load_cases.lambda",
+                    format!(
+                        "load case {:?} gives its own lambda, but λ is uncertain: remove one \
+                         of them",
+                        lc.name
+                    ),
+                ));
+            }
+            if !load_cases.iter().any(|l| l.kind.is_live()) {
+                return Err(cx.err(
+                    Some(d.referenced),
+                    &key,
+                    "λ scales a live load, and the study has none: add a horizontal or point \
+                     load case",
+                ));
+            }
         }
+        ParamName::AtDeg | ParamName::AtX => {
+            if let Some((i, lc)) = load_cases
+                .iter()
+                .enumerate()
+                .find(|(_, l)| l.at_deg.is_some() || l.at_x.is_some())
+            {
+                return Err(cx.err(
+                    at(i),
+                    "load_cases.at_deg",
+                    format!(
+                        "load case {:?} gives its own position, but the position is \
+                         uncertain: remove one of them",
+                        lc.name
+                    ),
+                ));
+            }
+            if let Some(lc) = load_cases.iter().find(|l| l.kind != LoadKind::Point) {
+                return Err(cx.err(
+                    Some(d.referenced),
+                    &key,
+                    format!(
+                        "an uncertain position places point loads, but load case {:?} is {}: \
+                         give it a study of its own",
+                        lc.name,
+                        lc.kind.as_str()
+                    ),
+                ));
+            }
+        }
+        ParamName::Eccentricity if arch.shape != "pointed" => {
+            return Err(cx.err(
+                Some(d.referenced),
+                &key,
+                "only a pointed arch has an eccentricity: add `shape: pointed` (and its \
+                 nominal `eccentricity`) to the arch",
+            ));
+        }
+        _ => {}
     }
     Ok(())
 }
@@ -409,333 +377,6 @@ fn check_thickness_and_friction(
             "uncertain",
             format!(
                 "a `{question}` study analyses each sample at its K and μ, and needs {missing}"
-            ),
-        ));
-    }
-    Ok(())
-}
-
-fn num(v: &Option<Spanned<f64>>) -> Option<f64> {
-    v.as_ref().map(|s| s.value)
-}
-
-/// The distribution as written, with its parameters checked.
-fn distribution(
-    name: ParamName,
-    d: &Spanned<RawDistribution>,
-    cx: &Ctx,
-) -> Result<Distribution, ManifestError> {
-    let r = &d.value;
-    let base = format!("uncertain.{}", name.as_str());
-    let kind = r.distribution.value.as_str();
-    // The keys each distribution takes; any other key given is refused.
-    let keys: &[&str] = match kind {
-        "normal" => &["mean", "sd"],
-        "lognormal" => &["median", "cov", "mean", "sd"],
-        "uniform" => &["from", "to"],
-        "truncated_normal" => &["mean", "sd", "from", "to"],
-        "beta" => &["alpha", "beta", "from", "to"],
-        "discrete" => &["values", "weights"],
-        other => {
-            return Err(cx.err(
-                Some(r.distribution.referenced),
-                &format!("{base}.distribution"),
-                format!(
-                    "value {other:?} is not allowed: use normal, lognormal, uniform, \
-                     truncated_normal, beta or discrete"
-                ),
-            ));
-        }
-    };
-    let given: [(&str, Option<Location>); 11] = [
-        ("mean", r.mean.as_ref().map(|v| v.referenced)),
-        ("sd", r.sd.as_ref().map(|v| v.referenced)),
-        ("median", r.median.as_ref().map(|v| v.referenced)),
-        ("cov", r.cov.as_ref().map(|v| v.referenced)),
-        ("from", r.from.as_ref().map(|v| v.referenced)),
-        ("to", r.to.as_ref().map(|v| v.referenced)),
-        ("alpha", r.alpha.as_ref().map(|v| v.referenced)),
-        ("beta", r.beta.as_ref().map(|v| v.referenced)),
-        ("values", r.values.as_ref().map(|_| d.referenced)),
-        ("weights", r.weights.as_ref().map(|_| d.referenced)),
-        ("distribution", None),
-    ];
-    for (key, at) in given {
-        if let Some(at) = at
-            && !keys.contains(&key)
-        {
-            return Err(cx.err(
-                Some(at),
-                &format!("{base}.{key}"),
-                format!(
-                    "`{key}` is not a parameter of a {kind} distribution: give {}",
-                    keys.join(", ")
-                ),
-            ));
-        }
-    }
-    let need = |key: &str, v: Option<f64>| {
-        v.ok_or_else(|| {
-            cx.err(
-                Some(d.referenced),
-                &format!("{base}.{key}"),
-                format!(
-                    "a {kind} distribution needs `{key}` (it takes {})",
-                    keys.join(", ")
-                ),
-            )
-        })
-    };
-    let bad = |key: &str, v: f64, rule: &str| {
-        cx.err(
-            Some(d.referenced),
-            &format!("{base}.{key}"),
-            format!("value {} is not allowed: {rule}", fmt_num(v)),
-        )
-    };
-    let positive = |key: &str, v: f64| {
-        if v > 0.0 && v.is_finite() {
-            Ok(v)
-        } else {
-            Err(bad(key, v, "it must be a finite number > 0"))
-        }
-    };
-    let finite = |key: &str, v: f64| {
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            Err(bad(key, v, "it must be a finite number"))
-        }
-    };
-    let range = |from: f64, to: f64| {
-        if from.is_nan() || to.is_nan() || from >= to {
-            Err(bad(
-                "to",
-                to,
-                &format!("`to` must be greater than `from` ({})", fmt_num(from)),
-            ))
-        } else {
-            Ok((from, to))
-        }
-    };
-    Ok(match kind {
-        "normal" => Distribution::Normal {
-            mean: finite("mean", need("mean", num(&r.mean))?)?,
-            sd: positive("sd", need("sd", num(&r.sd))?)?,
-        },
-        "lognormal" => match (num(&r.median), num(&r.cov), num(&r.mean), num(&r.sd)) {
-            (Some(m), Some(c), None, None) => {
-                Distribution::lognormal_from_median_cov(positive("median", m)?, positive("cov", c)?)
-            }
-            (None, None, Some(m), Some(s)) => {
-                Distribution::lognormal_from_mean_sd(positive("mean", m)?, positive("sd", s)?)
-            }
-            _ => {
-                return Err(cx.err(
-                    Some(d.referenced),
-                    &base,
-                    "a lognormal distribution is given by `median` and `cov` (coefficient of \
-                     variation), or by `mean` and `sd`",
-                ));
-            }
-        },
-        "uniform" => {
-            let from = finite("from", need("from", num(&r.from))?)?;
-            let to = finite("to", need("to", num(&r.to))?)?;
-            let (from, to) = range(from, to)?;
-            Distribution::Uniform { from, to }
-        }
-        "truncated_normal" => {
-            let mean = finite("mean", need("mean", num(&r.mean))?)?;
-            let sd = positive("sd", need("sd", num(&r.sd))?)?;
-            if r.from.is_none() && r.to.is_none() {
-                return Err(cx.err(
-                    Some(d.referenced),
-                    &format!("{base}.from"),
-                    "a truncated normal distribution needs `from`, `to` or both (the bounds of \
-                     its truncation)",
-                ));
-            }
-            let from = num(&r.from).unwrap_or(f64::NEG_INFINITY);
-            let to = num(&r.to).unwrap_or(f64::INFINITY);
-            let (from, to) = range(from, to)?;
-            let t = Distribution::TruncatedNormal { mean, sd, from, to };
-            // A truncation that keeps almost none of the normal's mass is a mistake.
-            let z = |x: f64| (x - mean) / sd;
-            if z(from) > 37.0 || z(to) < -37.0 {
-                return Err(bad(
-                    "from",
-                    from,
-                    "the truncation keeps no probability of the normal distribution (its bounds \
-                     lie more than 37 sd from the mean)",
-                ));
-            }
-            t
-        }
-        "beta" => {
-            let alpha = positive("alpha", need("alpha", num(&r.alpha))?)?;
-            let beta = positive("beta", need("beta", num(&r.beta))?)?;
-            let from = finite("from", num(&r.from).unwrap_or(0.0))?;
-            let to = finite("to", num(&r.to).unwrap_or(1.0))?;
-            let (from, to) = range(from, to)?;
-            Distribution::Beta {
-                alpha,
-                beta,
-                from,
-                to,
-            }
-        }
-        _ => discrete(r, &base, d.referenced, cx)?,
-    })
-}
-
-/// A discrete distribution: distinct values, with weights ≥ 0 summing to more than 0 (equal
-/// weights when none are given).
-fn discrete(
-    r: &RawDistribution,
-    base: &str,
-    at: Location,
-    cx: &Ctx,
-) -> Result<Distribution, ManifestError> {
-    let values: Vec<f64> = match &r.values {
-        Some(v) if !v.is_empty() => v.iter().map(|x| x.value.0).collect(),
-        _ => {
-            return Err(cx.err(
-                Some(at),
-                &format!("{base}.values"),
-                "a discrete distribution needs `values: [...]` (at least one value)",
-            ));
-        }
-    };
-    if let Some(v) = values.iter().find(|v| v.is_nan()) {
-        return Err(cx.err(
-            Some(at),
-            &format!("{base}.values"),
-            format!(
-                "value {} is not allowed: values must be numbers",
-                fmt_num(*v)
-            ),
-        ));
-    }
-    let mut sorted = values.clone();
-    sorted.sort_by(f64::total_cmp);
-    if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
-        return Err(cx.err(
-            Some(at),
-            &format!("{base}.values"),
-            format!(
-                "value {} is listed twice: each value once, with its weight",
-                fmt_num(w[0])
-            ),
-        ));
-    }
-    let weights: Vec<f64> = match &r.weights {
-        None => vec![1.0; values.len()],
-        Some(w) => {
-            if w.len() != values.len() {
-                return Err(cx.err(
-                    Some(at),
-                    &format!("{base}.weights"),
-                    format!(
-                        "{} weights for {} values: give one weight per value",
-                        w.len(),
-                        values.len()
-                    ),
-                ));
-            }
-            if let Some(bad) = w.iter().find(|x| !(x.value >= 0.0 && x.value.is_finite())) {
-                return Err(cx.err(
-                    Some(bad.referenced),
-                    &format!("{base}.weights"),
-                    format!(
-                        "value {} is not allowed: a weight is a finite number ≥ 0",
-                        fmt_num(bad.value)
-                    ),
-                ));
-            }
-            w.iter().map(|x| x.value).collect()
-        }
-    };
-    if weights.iter().sum::<f64>() <= 0.0 {
-        return Err(cx.err(
-            Some(at),
-            &format!("{base}.weights"),
-            "the weights sum to 0: give at least one value a positive weight",
-        ));
-    }
-    Ok(Distribution::discrete(values, weights))
-}
-
-/// The support of a distribution lies within the values its parameter may take.
-fn check_support(
-    dist: &Distribution,
-    allowed: &Allowed,
-    (d, key): (&Spanned<RawDistribution>, &str),
-    cx: &Ctx,
-) -> Result<(), ManifestError> {
-    let (lo, hi) = dist.support();
-    let inside = match dist {
-        Distribution::Discrete { values, .. } => values.iter().all(|&v| {
-            (v > allowed.lo || (allowed.lo_inclusive && v == allowed.lo))
-                && (v < allowed.hi || (allowed.hi_inclusive && v == allowed.hi))
-        }),
-        // Continuous: the samples never hit an end of the support, which may close the range.
-        _ => lo >= allowed.lo && hi <= allowed.hi && (hi.is_finite() || allowed.hi_inclusive),
-    };
-    if inside {
-        return Ok(());
-    }
-    let hint = match dist {
-        Distribution::Normal { .. } => {
-            "; a normal distribution takes every real value: use truncated_normal with `from` \
-             and `to`, or lognormal for a positive parameter"
-        }
-        Distribution::LogNormal { .. } => "; use truncated_normal or beta with bounds inside it",
-        _ => "",
-    };
-    Err(cx.err(
-        Some(d.referenced),
-        key,
-        format!(
-            "the {} distribution takes values in [{}, {}], which leaves the values {} may take, \
-             {}{hint}",
-            dist.name(),
-            fmt_num(lo),
-            fmt_num(hi),
-            key.trim_start_matches("uncertain."),
-            allowed.text
-        ),
-    ))
-}
-
-/// A voussoir count is an integer (or continuum): only a discrete distribution gives one.
-fn check_voussoir_counts(
-    dist: &Distribution,
-    d: &Spanned<RawDistribution>,
-    cx: &Ctx,
-) -> Result<(), ManifestError> {
-    let Distribution::Discrete { values, .. } = dist else {
-        return Err(cx.err(
-            Some(d.referenced),
-            "uncertain.voussoirs",
-            format!(
-                "a voussoir count is an integer: use a discrete distribution (values with \
-                 weights), not {}",
-                dist.name()
-            ),
-        ));
-    };
-    if let Some(v) = values
-        .iter()
-        .find(|v| v.is_finite() && (v.fract() != 0.0 || **v > 1e7))
-    {
-        return Err(cx.err(
-            Some(d.referenced),
-            "uncertain.voussoirs.values",
-            format!(
-                "value {} is not allowed: the voussoir count must be an integer in [1, 10000000] \
-                 or continuum",
-                fmt_num(*v)
             ),
         ));
     }

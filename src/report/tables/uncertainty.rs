@@ -6,7 +6,7 @@
 use super::key_results::KeyResult;
 use super::values::ValueTable;
 use crate::report::charts::uncertainty::Estimates;
-use crate::report::data::RunData;
+use crate::report::data::{RunData, SamplingView};
 use crate::report::format::sig;
 use crate::store::EstimateRow;
 
@@ -68,91 +68,98 @@ pub fn key_results(data: &RunData) -> Vec<KeyResult> {
             } else {
                 format!(" ({})", at.join(", "))
             };
-            if s.question != "fragility"
-                && let Some(r) = e.one(p, "probability", "")
-            {
-                out.push(row(
-                    format!("P(collapse), 95 % interval{on}"),
-                    with_interval(r),
-                    "probability",
-                ));
-            }
-            if let Some(r) = e.one(p, "exact_probability", "") {
-                let value = if r.value.is_finite() {
-                    format!(
-                        "{} (± {})",
-                        sig(r.value, 10),
-                        sig(r.hi.unwrap_or(r.value) - r.value, 2)
-                    )
-                } else {
-                    format!("none: {}", r.note)
-                };
-                out.push(row(
-                    format!("P(collapse), exact{on}"),
-                    value,
-                    "exact_probability",
-                ));
-            }
-            let (quantity, what) = if s.question == "fragility" {
-                ("limit_mechanism", "share of λ_max reached by a")
-            } else {
-                ("mechanism", "P(collapse by a")
-            };
-            for m in ["rotational", "mixed", "sliding", "none"] {
-                if let Some(r) = e.one(p, quantity, m).filter(|r| r.value > 0.0) {
-                    let close = if s.question == "fragility" { "" } else { ")" };
-                    out.push(row(
-                        format!("{what} {m} mechanism{close}{on}"),
-                        with_interval(r),
-                        quantity,
-                    ));
-                }
-            }
-            for level in ["0.05", "0.5", "0.95"] {
-                if let Some(r) = e.one(p, "quantile", level) {
-                    let pct = (level.parse::<f64>().unwrap_or(0.0) * 100.0).round();
-                    out.push(row(
-                        format!("λ_max, {pct} % quantile{on}"),
-                        with_interval(r),
-                        "quantile",
-                    ));
-                }
-            }
-            let mut totals: Vec<&EstimateRow> = e
-                .get(p, "total")
-                .into_iter()
-                .filter(|r| r.value.is_finite())
-                .collect();
-            totals.sort_by(|a, b| b.value.total_cmp(&a.value));
-            if let Some(top) = totals.first() {
-                // Parameters whose total index's interval reaches the largest one's are not
-                // told apart by these samples.
-                let tied: Vec<&str> = totals[1..]
-                    .iter()
-                    .filter(|r| r.hi.unwrap_or(r.value) >= top.lo.unwrap_or(top.value))
-                    .map(|r| r.parameter.as_str())
-                    .collect();
-                let first = e.one(p, "first_order", &top.parameter);
-                let (quantity, lead) = if tied.is_empty() {
-                    ("dominant parameter", top.parameter.clone())
-                } else {
-                    (
-                        "dominant parameters (intervals overlap)",
-                        format!("{} and {}", top.parameter, tied.join(", ")),
-                    )
-                };
-                out.push(row(
-                    format!("{quantity}{on}"),
-                    format!(
-                        "{lead}: {} has total index {}, first order {}",
-                        top.parameter,
-                        with_interval(top),
-                        first.map_or("—".into(), with_interval)
-                    ),
-                    "total",
-                ));
-            }
+            out.extend(point_rows(s, &e, p, &on));
         }
+    }
+    out
+}
+
+/// The key results of one grid point (`on` names it in the quantity).
+fn point_rows(s: &SamplingView, e: &Estimates, p: u64, on: &str) -> Vec<KeyResult> {
+    let mut out = Vec::new();
+    if s.question != "fragility"
+        && let Some(r) = e.one(p, "probability", "")
+    {
+        out.push(row(
+            format!("P(collapse), 95 % interval{on}"),
+            with_interval(r),
+            "probability",
+        ));
+    }
+    if let Some(r) = e.one(p, "exact_probability", "") {
+        let value = if r.value.is_finite() {
+            format!(
+                "{} (± {})",
+                sig(r.value, 10),
+                sig(r.hi.unwrap_or(r.value) - r.value, 2)
+            )
+        } else {
+            format!("none: {}", r.note)
+        };
+        out.push(row(
+            format!("P(collapse), exact{on}"),
+            value,
+            "exact_probability",
+        ));
+    }
+    let (quantity, what) = if s.question == "fragility" {
+        ("limit_mechanism", "share of λ_max reached by a")
+    } else {
+        ("mechanism", "P(collapse by a")
+    };
+    for m in ["rotational", "mixed", "sliding", "none"] {
+        if let Some(r) = e.one(p, quantity, m).filter(|r| r.value > 0.0) {
+            let close = if s.question == "fragility" { "" } else { ")" };
+            out.push(row(
+                format!("{what} {m} mechanism{close}{on}"),
+                with_interval(r),
+                quantity,
+            ));
+        }
+    }
+    for level in ["0.05", "0.5", "0.95"] {
+        if let Some(r) = e.one(p, "quantile", level) {
+            let pct = (level.parse::<f64>().unwrap_or(0.0) * 100.0).round();
+            out.push(row(
+                format!("λ_max, {pct} % quantile{on}"),
+                with_interval(r),
+                "quantile",
+            ));
+        }
+    }
+    let mut totals: Vec<&EstimateRow> = e
+        .get(p, "total")
+        .into_iter()
+        .filter(|r| r.value.is_finite())
+        .collect();
+    totals.sort_by(|a, b| b.value.total_cmp(&a.value));
+    if let Some(top) = totals.first() {
+        // Parameters whose total index's interval reaches the largest one's are not
+        // told apart by these samples.
+        let tied: Vec<&str> = totals[1..]
+            .iter()
+            .filter(|r| r.hi.unwrap_or(r.value) >= top.lo.unwrap_or(top.value))
+            .map(|r| r.parameter.as_str())
+            .collect();
+        let first = e.one(p, "first_order", &top.parameter);
+        let (quantity, lead) = if tied.is_empty() {
+            ("dominant parameter", top.parameter.clone())
+        } else {
+            (
+                "dominant parameters (intervals overlap)",
+                format!("{} and {}", top.parameter, tied.join(", ")),
+            )
+        };
+        out.push(row(
+            format!("{quantity}{on}"),
+            format!(
+                "{lead}: {} has total index {}, first order {}",
+                top.parameter,
+                with_interval(top),
+                first.map_or("—".into(), with_interval)
+            ),
+            "total",
+        ));
     }
     out
 }
@@ -162,34 +169,7 @@ pub fn value_tables(data: &RunData) -> Vec<ValueTable> {
     let Some(s) = &data.manifest.sampling else {
         return Vec::new();
     };
-    let mut out = vec![ValueTable {
-        title: "Uncertain parameters".into(),
-        note: format!(
-            "{} samples by {} (seed {}){}.",
-            s.n,
-            match s.method.as_str() {
-                "sobol" => "scrambled Sobol points",
-                "lhs" => "Latin hypercube sampling",
-                _ => "random sampling",
-            },
-            s.seed,
-            match &s.correlation {
-                Some(c) => format!(
-                    "; the normal scores of {} and {} correlated at {}",
-                    s.params.get(c.first).map_or("?", |p| p.name.as_str()),
-                    s.params.get(c.second).map_or("?", |p| p.name.as_str()),
-                    c.value
-                ),
-                None => String::new(),
-            }
-        ),
-        headers: vec!["parameter".into(), "distribution".into()],
-        rows: s
-            .params
-            .iter()
-            .map(|p| vec![p.name.clone(), p.description.clone()])
-            .collect(),
-    }];
+    let mut out = vec![parameters_table(s)];
     let mut rows = Vec::new();
     let mut sobol = Vec::new();
     let mut quantiles = Vec::new();
@@ -240,27 +220,7 @@ pub fn value_tables(data: &RunData) -> Vec<ValueTable> {
             }
         }
     }
-    out.push(ValueTable {
-        title: "Probability of collapse".into(),
-        note: "Per load case and grid point: the samples answered, the sampled probability that \
-               the arch does not stand with its 95 % Wilson interval, the exact probability where \
-               the mechanics gives it, and the probability of collapse by each mechanism."
-            .into(),
-        headers: [
-            "load case",
-            "grid point",
-            "samples",
-            "P(collapse)",
-            "exact",
-            "rotational",
-            "mixed",
-            "sliding",
-            "Hʳ and Hˢ empty",
-        ]
-        .map(String::from)
-        .to_vec(),
-        rows,
-    });
+    out.push(probability_table(rows));
     // Whether a live load's capacity stands under its own weight says little; its table is
     // that of λ_max.
     let capacity_only = s.question == "fragility"
@@ -303,6 +263,63 @@ pub fn value_tables(data: &RunData) -> Vec<ValueTable> {
         });
     }
     out
+}
+
+/// The probability of collapse of every grid point (`rows` from [`value_tables`]).
+fn probability_table(rows: Vec<Vec<String>>) -> ValueTable {
+    ValueTable {
+        title: "Probability of collapse".into(),
+        note: "Per load case and grid point: the samples answered, the sampled probability that \
+               the arch does not stand with its 95 % Wilson interval, the exact probability where \
+               the mechanics gives it, and the probability of collapse by each mechanism."
+            .into(),
+        headers: [
+            "load case",
+            "grid point",
+            "samples",
+            "P(collapse)",
+            "exact",
+            "rotational",
+            "mixed",
+            "sliding",
+            "Hʳ and Hˢ empty",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows,
+    }
+}
+
+/// The uncertain parameters and how they are sampled.
+fn parameters_table(s: &SamplingView) -> ValueTable {
+    ValueTable {
+        title: "Uncertain parameters".into(),
+        note: format!(
+            "{} samples by {} (seed {}){}.",
+            s.n,
+            match s.method.as_str() {
+                "sobol" => "scrambled Sobol points",
+                "lhs" => "Latin hypercube sampling",
+                _ => "random sampling",
+            },
+            s.seed,
+            match &s.correlation {
+                Some(c) => format!(
+                    "; the normal scores of {} and {} correlated at {}",
+                    s.params.get(c.first).map_or("?", |p| p.name.as_str()),
+                    s.params.get(c.second).map_or("?", |p| p.name.as_str()),
+                    c.value
+                ),
+                None => String::new(),
+            }
+        ),
+        headers: vec!["parameter".into(), "distribution".into()],
+        rows: s
+            .params
+            .iter()
+            .map(|p| vec![p.name.clone(), p.description.clone()])
+            .collect(),
+    }
 }
 
 /// How the estimates of a sampling study are made, for the reading notes.
