@@ -2,7 +2,7 @@
 //! point marked in the colour of its collapse mechanism: λ against K for a few μ, λ against
 //! μ for a few K, the influence line λ against the position of a point load.
 
-use super::style::{self, LabelPlacer, LegendItem, Mark, clip_polyline, decimals_for, palette};
+use super::style::{self, LabelPlacer, LegendItem, Mark, clip_polyline, palette};
 use super::{Figure, PlotContext, XyChart};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -131,44 +131,14 @@ fn draw_panel<DB: DrawingBackend>(
         .x_label_area_size(ctx.px(48.0))
         .y_label_area_size(ctx.px(66.0))
         .build_cartesian_2d(x0..x1, y0..y1)?;
-    let fx = |v: &f64| format!("{:.*}", decimals_for(x1 - x0), v);
-    let log = p.log_y;
-    // A logarithmic axis is ticked by `style::log_ticks`, not at plotters' key points.
-    let fy = |v: &f64| {
-        if log {
-            String::new()
-        } else {
-            format!("{:.*}", decimals_for(y1 - y0), v)
-        }
-    };
-    let tick = ctx.px(5.0);
-    chart
-        .configure_mesh()
-        .x_desc(p.x_desc.clone())
-        .y_desc(p.y_desc.clone())
-        .x_label_formatter(&fx)
-        .y_label_formatter(&fy)
-        .x_labels(6)
-        .y_labels(7)
-        .label_style(ctx.font(12.5))
-        .axis_desc_style(ctx.font(13.5))
-        .set_tick_mark_size(LabelAreaPosition::Bottom, tick)
-        .set_tick_mark_size(LabelAreaPosition::Left, if log { 0 } else { tick })
-        .light_line_style(TRANSPARENT)
-        .bold_line_style(if log {
-            TRANSPARENT.stroke_width(1)
-        } else {
-            BLACK.mix(0.08).stroke_width(1)
-        })
-        .draw()?;
-    if log {
-        let ticks: Vec<(i32, String)> = style::log_ticks(10f64.powf(y0), 10f64.powf(y1))
-            .into_iter()
-            .map(|(v, label)| (chart.backend_coord(&(x0, v.log10())).1, label))
-            .collect();
-        let plot = chart.plotting_area().get_pixel_range();
-        style::draw_ticks(root, ctx, plot, style::AxisSide::Left, &ticks)?;
-    }
+    super::draw_xy_axes(
+        root,
+        &mut chart,
+        ctx,
+        (&p.x_desc, &p.y_desc),
+        (((x0, x1), (y0, y1)), (false, p.log_y)),
+        7,
+    )?;
     for (i, l) in p.lines.iter().enumerate() {
         let grey = line_grey(i, p.lines.len());
         let pts: Vec<(f64, f64)> = l.points.iter().map(|q| (q.x, p.y_of(q.y))).collect();

@@ -142,6 +142,65 @@ pub(crate) type XyChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf6
 /// The data ranges of a chart: (x0, x1) and (y0, y1).
 pub(crate) type Window = ((f64, f64), (f64, f64));
 
+/// The axes of an x–y chart over `window` with their descriptions: labels at plotters' key
+/// points on a linear axis, and on a logarithmic one (`log`, whose data are log10 values)
+/// the ticks of `style::log_ticks` drawn on `root`; `y_labels` labels on a linear y axis.
+pub(crate) fn draw_xy_axes<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    chart: &mut XyChart<DB>,
+    ctx: &PlotContext,
+    (x_desc, y_desc): (&str, &str),
+    (((x0, x1), (y0, y1)), (log_x, log_y)): (Window, (bool, bool)),
+    y_labels: usize,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let fmt = |log: bool, span: f64| {
+        move |v: &f64| {
+            if log {
+                String::new()
+            } else {
+                format!("{:.*}", style::decimals_for(span), v)
+            }
+        }
+    };
+    let (fx, fy) = (fmt(log_x, x1 - x0), fmt(log_y, y1 - y0));
+    let tick = ctx.px(5.0);
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .x_label_formatter(&fx)
+        .y_label_formatter(&fy)
+        .x_labels(6)
+        .y_labels(y_labels)
+        .label_style(ctx.font(12.5))
+        .axis_desc_style(ctx.font(13.5))
+        .set_tick_mark_size(LabelAreaPosition::Bottom, if log_x { 0 } else { tick })
+        .set_tick_mark_size(LabelAreaPosition::Left, if log_y { 0 } else { tick })
+        .light_line_style(TRANSPARENT)
+        .bold_line_style(if log_x || log_y {
+            TRANSPARENT.stroke_width(1)
+        } else {
+            BLACK.mix(0.08).stroke_width(1)
+        })
+        .draw()?;
+    let plot = chart.plotting_area().get_pixel_range();
+    if log_x {
+        let ticks: Vec<(i32, String)> = style::log_ticks(10f64.powf(x0), 10f64.powf(x1))
+            .into_iter()
+            .map(|(v, l)| (chart.backend_coord(&(v.log10(), y0)).0, l))
+            .collect();
+        style::draw_ticks(root, ctx, plot.clone(), style::AxisSide::Bottom, &ticks)?;
+    }
+    if log_y {
+        let ticks: Vec<(i32, String)> = style::log_ticks(10f64.powf(y0), 10f64.powf(y1))
+            .into_iter()
+            .map(|(v, l)| (chart.backend_coord(&(x0, v.log10())).1, l))
+            .collect();
+        style::draw_ticks(root, ctx, plot, style::AxisSide::Left, &ticks)?;
+    }
+    Ok(())
+}
+
 /// The μ and K axes of a map over (μ, K), with faint grid lines where `grid_lines` (none
 /// over a colour scale).
 pub(crate) fn draw_mu_k_mesh<DB: DrawingBackend>(

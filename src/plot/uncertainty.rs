@@ -3,9 +3,7 @@
 //! with their intervals (the probability of each mechanism, Sobol indices), and the samples
 //! over the (μ, K) plane with the collapse curve they are judged against.
 
-use super::style::{
-    self, AxisSide, LegendItem, Mark, above_legend, clip_polyline, decimals_for, palette,
-};
+use super::style::{self, LegendItem, Mark, above_legend, clip_polyline, decimals_for, palette};
 use super::{Figure, PlotContext};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -232,66 +230,17 @@ fn draw_curve_panel<DB: DrawingBackend>(
         .x_label_area_size(ctx.px(48.0))
         .y_label_area_size(ctx.px(66.0))
         .build_cartesian_2d(x0..x1, y0..y1)?;
-    let fx = |v: &f64| {
-        if lx {
-            String::new()
-        } else {
-            format!("{:.*}", decimals_for(x1 - x0), v)
-        }
-    };
-    let fy = |v: &f64| {
-        if ly {
-            String::new()
-        } else {
-            format!("{:.*}", decimals_for(y1 - y0), v)
-        }
-    };
-    let tick = ctx.px(5.0);
-    chart
-        .configure_mesh()
-        .x_desc(p.x_desc.clone())
-        .y_desc(p.y_desc.clone())
-        .x_label_formatter(&fx)
-        .y_label_formatter(&fy)
-        .x_labels(6)
-        .y_labels(6)
-        .label_style(ctx.font(12.5))
-        .axis_desc_style(ctx.font(13.5))
-        .set_tick_mark_size(LabelAreaPosition::Bottom, if lx { 0 } else { tick })
-        .set_tick_mark_size(LabelAreaPosition::Left, if ly { 0 } else { tick })
-        .light_line_style(TRANSPARENT)
-        .bold_line_style(BLACK.mix(0.08).stroke_width(1))
-        .draw()?;
-    draw_log_ticks(area, ctx, &chart, (lx, ly), ((x0, x1), (y0, y1)))?;
+    super::draw_xy_axes(
+        area,
+        &mut chart,
+        ctx,
+        (&p.x_desc, &p.y_desc),
+        (((x0, x1), (y0, y1)), (lx, ly)),
+        6,
+    )?;
     let t: Transforms = (&tx, &ty);
     draw_bands(&chart, p, t, (y0, y1))?;
     draw_lines(&mut chart, ctx, p, t, ((x0, x1), (y0, y1)))?;
-    Ok(())
-}
-
-/// The ticks of each logarithmic axis, drawn with their labels.
-fn draw_log_ticks<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    ctx: &PlotContext,
-    chart: &super::XyChart<DB>,
-    (lx, ly): (bool, bool),
-    ((x0, x1), (y0, y1)): ((f64, f64), (f64, f64)),
-) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-    let plot = chart.plotting_area().get_pixel_range();
-    if lx {
-        let ticks: Vec<(i32, String)> = style::log_ticks(10f64.powf(x0), 10f64.powf(x1))
-            .into_iter()
-            .map(|(v, l)| (chart.backend_coord(&(v.log10(), y0)).0, l))
-            .collect();
-        style::draw_ticks(area, ctx, plot.clone(), AxisSide::Bottom, &ticks)?;
-    }
-    if ly {
-        let ticks: Vec<(i32, String)> = style::log_ticks(10f64.powf(y0), 10f64.powf(y1))
-            .into_iter()
-            .map(|(v, l)| (chart.backend_coord(&(x0, v.log10())).1, l))
-            .collect();
-        style::draw_ticks(area, ctx, plot, AxisSide::Left, &ticks)?;
-    }
     Ok(())
 }
 

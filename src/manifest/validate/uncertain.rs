@@ -212,12 +212,7 @@ fn check_fits_study(
     list: &[(ParamName, &Spanned<RawDistribution>)],
     cx: &Ctx,
 ) -> Result<(), ManifestError> {
-    let at = |i: usize| {
-        raw.load_cases
-            .as_ref()
-            .and_then(|l| l.get(i))
-            .map(|l| l.referenced)
-    };
+    let at = |i: usize| load_case_at(raw, i);
     if question == Question::Fragility
         && let Some((i, lc)) = load_cases
             .iter()
@@ -261,6 +256,14 @@ fn check_fits_study(
     Ok(())
 }
 
+/// Where load case `i` is written.
+fn load_case_at(raw: &RawManifest, i: usize) -> Option<serde_saphyr::Location> {
+    raw.load_cases
+        .as_ref()
+        .and_then(|l| l.get(i))
+        .map(|l| l.referenced)
+}
+
 /// One uncertain parameter fits the load cases and the arch (see [`check_fits_study`]).
 fn check_param_fits(
     (raw, question, arch): (&RawManifest, Question, &ArchOptions),
@@ -268,12 +271,7 @@ fn check_param_fits(
     (name, d): (ParamName, &Spanned<RawDistribution>),
     cx: &Ctx,
 ) -> Result<(), ManifestError> {
-    let at = |i: usize| {
-        raw.load_cases
-            .as_ref()
-            .and_then(|l| l.get(i))
-            .map(|l| l.referenced)
-    };
+    let at = |i: usize| load_case_at(raw, i);
     let key = format!("uncertain.{}", name.as_str());
     match name {
         ParamName::Lambda => {
