@@ -57,7 +57,10 @@ pub struct PlanTooLarge {
 /// Number of cases a manifest asks for: the grid points of each load case, times the sample
 /// rows of a sampling study.
 pub fn case_count(m: &Manifest) -> u128 {
-    let rows = m.sampling.as_ref().map_or(1, |s| u128::from(s.rows()));
+    let rows = m
+        .sampling
+        .as_ref()
+        .map_or(1, |s| u128::from(s.rows()) * u128::from(s.axis_points()));
     m.load_cases
         .iter()
         .map(|lc| {
@@ -86,7 +89,9 @@ pub fn load_case_dims(manifest: &Manifest, load_case: &LoadCase) -> Vec<u64> {
                 1
             }
         })
-        .chain(manifest.sampling.as_ref().map(|s| s.rows()))
+        .chain(manifest.sampling.iter().flat_map(|s| {
+            (s.axes.iter().map(|a| a.values.len() as u64)).chain(std::iter::once(s.rows()))
+        }))
         .collect()
 }
 
@@ -108,8 +113,10 @@ pub fn build_slice(manifest: Manifest, ids: std::ops::Range<u64>) -> Plan {
     let (start, end) = (ids.start.min(total), ids.end.min(total));
     let mut cases = Vec::with_capacity(usize::try_from(end.saturating_sub(start)).unwrap_or(0));
     let mut first = 0u64;
-    // The sample rows are drawn from one design, built once for the slice.
+    // The sample rows are drawn from one design, built once for the slice; the sampling at
+    // the current position of the distribution axes is rebuilt only when it moves.
     let design = manifest.sampling.as_ref().map(|s| s.design());
+    let mut at: Option<(Vec<usize>, crate::manifest::Sampling)> = None;
     for (lc, load_case) in manifest.load_cases.iter().enumerate() {
         let dims = load_case_dims(&manifest, load_case);
         let per_lc: u64 = dims.iter().product();
@@ -123,10 +130,21 @@ pub fn build_slice(manifest: Manifest, ids: std::ops::Range<u64>) -> Plan {
                 rest /= dims[d];
             }
             for id in lo..hi {
+                let sampled = match (&manifest.sampling, &design) {
+                    (Some(s), Some(d)) => {
+                        let g = manifest.grid.len();
+                        let pos = &idx[g..g + s.axes.len()];
+                        if at.as_ref().is_none_or(|(p, _)| p != pos) {
+                            at = Some((pos.to_vec(), s.at(pos)));
+                        }
+                        at.as_ref().map(|(_, s)| (s, d))
+                    }
+                    _ => None,
+                };
                 cases.push(Case {
                     id,
                     load_case: lc,
-                    scene: scene_at(&manifest, lc, &idx, design.as_ref()),
+                    scene: scene_at(&manifest, lc, &idx, sampled),
                 });
                 // Odometer increment, last axis fastest.
                 for d in (0..dims.len()).rev() {
@@ -151,7 +169,12 @@ pub fn shard_ids(total: u64, index: u64, count: u64) -> std::ops::Range<u64> {
     at(index.saturating_sub(1))..at(index)
 }
 
-fn scene_at(m: &Manifest, lc: usize, idx: &[usize], design: Option<&Design>) -> Scene {
+fn scene_at(
+    m: &Manifest,
+    lc: usize,
+    idx: &[usize],
+    sampled: Option<(&crate::manifest::Sampling, &Design)>,
+) -> Scene {
     let mut half = m.arch.half_angle_deg;
     let mut form = m.arch.form();
     let mut lambda = None;
@@ -178,8 +201,8 @@ fn scene_at(m: &Manifest, lc: usize, idx: &[usize], design: Option<&Design>) -> 
         }
     }
     let find = case.map_or(m.find, |c| c.find);
-    if let (Some(s), Some(design)) = (&m.sampling, design) {
-        let row = idx.get(m.grid.len()).map_or(0, |&r| r as u64);
+    if let Some((s, design)) = sampled {
+        let row = idx.last().map_or(0, |&r| r as u64);
         for (p, v) in s.params.iter().zip(s.values(design, row)) {
             match p.name {
                 ParamName::K => k = v,
@@ -319,6 +342,14 @@ pub fn describe(m: &Manifest) -> String {
                 "uncertain {}: {}\n",
                 p.name.as_str(),
                 p.distribution.describe()
+            ));
+        }
+        for a in &u.axes {
+            let (first, last) = (a.values[0], a.values[a.values.len() - 1]);
+            s.push_str(&format!(
+                "axis {}: {} values from {first} to {last} (each grid point its own distribution)\n",
+                u.axis_name(a),
+                a.values.len()
             ));
         }
         if let Some(c) = u.correlation {

@@ -243,6 +243,43 @@ fn sobol_indices_of_the_margin_match_a_brute_force_variance_decomposition() {
 }
 
 #[test]
+fn a_distribution_parameter_given_as_an_axis_gives_each_point_its_own_distribution() {
+    // Three scatters of μ over two thicknesses: the point (K = 1.2, sd = 0.05) is the same
+    // study as a run with that one distribution, to the bit.
+    let text = "name: scatters\ngrid:\n  k: {values: [1.15, 1.2]}\nuncertain:\n  mu: {distribution: truncated_normal, mean: 0.4, sd: {values: [0.02, 0.05, 0.1]}, from: 0.1, to: 0.8}\nsamples: {n: 512, seed: 3}\nfind: probability\n";
+    let (_, rows) = run("scatters", text, None);
+    let one_text = "name: one\ngrid:\n  k: {values: [1.2]}\nuncertain:\n  mu: {distribution: truncated_normal, mean: 0.4, sd: 0.05, from: 0.1, to: 0.8}\nsamples: {n: 512, seed: 3}\nfind: probability\n";
+    let (_, one_rows) = run("scatters-one", one_text, None);
+    // Points run K outer, sd inner: (1.2, 0.05) is point 4.
+    let grid = |p: u64| {
+        rows.iter()
+            .filter(|r| r.point == p && r.quantity == "grid")
+            .map(|r| (r.parameter.clone(), r.value))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(
+        grid(4),
+        vec![("k".to_string(), 1.2), ("mu.sd".to_string(), 0.05)]
+    );
+    for q in ["probability", "exact_probability"] {
+        let a = one(&rows, 4, q, "");
+        let b = one(&one_rows, 0, q, "");
+        assert_eq!(a.value.to_bits(), b.value.to_bits(), "{q}: {a:?} {b:?}");
+    }
+    // A wider scatter of μ fails more often at the thick arch (μ below μ_min).
+    let p = |point| one(&rows, point, "exact_probability", "").value;
+    assert!(p(3) < p(4) && p(4) < p(5), "{} {} {}", p(3), p(4), p(5));
+    for point in 0..6 {
+        let s = one(&rows, point, "probability", "");
+        let x = p(point);
+        assert!(
+            s.lo.unwrap() <= x && x <= s.hi.unwrap(),
+            "point {point}: {s:?} vs {x}"
+        );
+    }
+}
+
+#[test]
 fn the_samples_are_the_same_for_any_thread_count() {
     let text = "name: jobs\nload_cases:\n  - {name: wind, kind: horizontal, lambda: 0.2}\nuncertain:\n  k: {distribution: beta, alpha: 2, beta: 3, from: 1.15, to: 1.45}\n  mu: {distribution: lognormal, mean: 0.5, sd: 0.1}\n  correlation: {between: [k, mu], value: 0.4}\nsamples: {n: 300, method: lhs, seed: 9}\nfind: probability\n";
     let (a, ra) = run("jobs-1", text, Some(1));
@@ -264,6 +301,18 @@ fn the_samples_are_the_same_for_any_thread_count() {
 
 /// Each bad manifest, and words its error must hold.
 const BAD: &[(&str, &[&str])] = &[
+    (
+        "uncertain:\n  k: {distribution: uniform, from: 1.1, to: 1.3}\n  mu: {distribution: truncated_normal, mean: 0.4, sd: {values: [0.05, -0.1]}, from: 0.1, to: 0.8}\nfind: probability\n",
+        &["uncertain.mu.sd", "-0.1", "> 0"],
+    ),
+    (
+        "uncertain:\n  k: {distribution: uniform, from: 1.1, to: {values: [1.3, 120]}}\n  mu: {distribution: uniform, from: 0.3, to: 0.5}\nfind: probability\n",
+        &["uncertain.k", "120", "(1, 100]"],
+    ),
+    (
+        "uncertain:\n  k: {distribution: uniform, from: 1.1, to: 1.3}\n  mu: {distribution: uniform, from: 0.3, to: {from: 0.5, to: 0.9}}\nfind: probability\n",
+        &["uncertain.mu.to", "{values: [...]}"],
+    ),
     (
         "uncertain:\n  mu: {distribution: normal, mean: 0.4, sd: -0.1}\nfind: probability\ngrid:\n  k: {values: [1.2]}\n",
         &["uncertain.mu.sd", "-0.1", "> 0"],

@@ -22,7 +22,8 @@ pub use types::{
     LoadKind, Manifest, SceneSpec,
 };
 pub use uncertain::{
-    Correlation, DEFAULT_BOOTSTRAP, DEFAULT_SAMPLES, ParamName, Question, Sampling, UncertainParam,
+    Correlation, DEFAULT_BOOTSTRAP, DEFAULT_SAMPLES, DistributionAxis, ParamName, Question,
+    Sampling, UncertainParam,
 };
 pub use validate::{
     MAX_AXIS_STEPS, MAX_BOOTSTRAP, MAX_GENERAL_VOUSSOIRS, MAX_K, MAX_NAME_CHARS, MAX_SAMPLES,

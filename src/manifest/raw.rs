@@ -188,19 +188,30 @@ pub(super) struct RawManifest {
     pub(super) samples: Option<Spanned<RawSamples>>,
 }
 
+/// A parameter of a distribution as written: a number, or an axis of values (each grid point
+/// then has its own distribution).
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub(super) enum RawParam {
+    /// One value.
+    Value(Number),
+    /// `{values: [...]}` or `{from, to, steps}`.
+    Axis(RawAxis),
+}
+
 /// One uncertain parameter as written: a distribution by name and its parameters.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct RawDistribution {
     pub(super) distribution: Spanned<String>,
-    pub(super) mean: Option<Spanned<f64>>,
-    pub(super) sd: Option<Spanned<f64>>,
-    pub(super) median: Option<Spanned<f64>>,
-    pub(super) cov: Option<Spanned<f64>>,
-    pub(super) from: Option<Spanned<f64>>,
-    pub(super) to: Option<Spanned<f64>>,
-    pub(super) alpha: Option<Spanned<f64>>,
-    pub(super) beta: Option<Spanned<f64>>,
+    pub(super) mean: Option<Spanned<RawParam>>,
+    pub(super) sd: Option<Spanned<RawParam>>,
+    pub(super) median: Option<Spanned<RawParam>>,
+    pub(super) cov: Option<Spanned<RawParam>>,
+    pub(super) from: Option<Spanned<RawParam>>,
+    pub(super) to: Option<Spanned<RawParam>>,
+    pub(super) alpha: Option<Spanned<RawParam>>,
+    pub(super) beta: Option<Spanned<RawParam>>,
     pub(super) values: Option<Vec<Spanned<Number>>>,
     pub(super) weights: Option<Vec<Spanned<f64>>>,
 }

@@ -200,6 +200,103 @@ pub struct Correlation {
     pub value: f64,
 }
 
+/// A parameter of a distribution given as an axis: each grid point has its own distribution
+/// (three scatters of μ, a thickness distribution about each nominal thickness).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DistributionAxis {
+    /// Index of the uncertain parameter in [`Sampling::params`].
+    pub param: usize,
+    /// The distribution's parameter: `mean`, `sd`, `median`, `cov`, `from`, `to`, `alpha`
+    /// or `beta`.
+    pub field: &'static str,
+    /// Its values, in the order they are run.
+    pub values: Vec<f64>,
+}
+
+/// `d` with one of its parameters set to `v`, as the manifest would give it: a lognormal
+/// keeps its other written parameter (σ of ln for `median`, the median for `cov`, the
+/// standard deviation for `mean`, the mean for `sd`).
+pub fn with_field(d: &Distribution, field: &str, v: f64) -> Distribution {
+    use Distribution as D;
+    match (d.clone(), field) {
+        (D::Normal { sd, .. }, "mean") => D::Normal { mean: v, sd },
+        (D::Normal { mean, .. }, "sd") => D::Normal { mean, sd: v },
+        (D::LogNormal { sigma, .. }, "median") => D::LogNormal { mu: v.ln(), sigma },
+        (D::LogNormal { mu, .. }, "cov") => D::LogNormal {
+            mu,
+            sigma: (1.0 + v * v).ln().sqrt(),
+        },
+        (D::LogNormal { .. }, "mean") => Distribution::lognormal_from_mean_sd(v, d.sd()),
+        (D::LogNormal { .. }, "sd") => Distribution::lognormal_from_mean_sd(d.mean(), v),
+        (D::Uniform { to, .. }, "from") => D::Uniform { from: v, to },
+        (D::Uniform { from, .. }, "to") => D::Uniform { from, to: v },
+        (D::TruncatedNormal { sd, from, to, .. }, "mean") => D::TruncatedNormal {
+            mean: v,
+            sd,
+            from,
+            to,
+        },
+        (D::TruncatedNormal { mean, from, to, .. }, "sd") => D::TruncatedNormal {
+            mean,
+            sd: v,
+            from,
+            to,
+        },
+        (D::TruncatedNormal { mean, sd, to, .. }, "from") => D::TruncatedNormal {
+            mean,
+            sd,
+            from: v,
+            to,
+        },
+        (D::TruncatedNormal { mean, sd, from, .. }, "to") => D::TruncatedNormal {
+            mean,
+            sd,
+            from,
+            to: v,
+        },
+        (D::Beta { beta, from, to, .. }, "alpha") => D::Beta {
+            alpha: v,
+            beta,
+            from,
+            to,
+        },
+        (
+            D::Beta {
+                alpha, from, to, ..
+            },
+            "beta",
+        ) => D::Beta {
+            alpha,
+            beta: v,
+            from,
+            to,
+        },
+        (
+            D::Beta {
+                alpha, beta, to, ..
+            },
+            "from",
+        ) => D::Beta {
+            alpha,
+            beta,
+            from: v,
+            to,
+        },
+        (
+            D::Beta {
+                alpha, beta, from, ..
+            },
+            "to",
+        ) => D::Beta {
+            alpha,
+            beta,
+            from,
+            to: v,
+        },
+        (other, _) => other,
+    }
+}
+
 /// Default number of samples.
 pub const DEFAULT_SAMPLES: u64 = 4096;
 /// Default number of bootstrap resamples of the Sobol indices.
@@ -224,6 +321,10 @@ pub struct Sampling {
     pub seed: u64,
     /// Bootstrap resamples of the Sobol indices' intervals.
     pub bootstrap: u64,
+    /// Parameters of distributions given as axes, outermost first: the grid points of the
+    /// study run over them inside its grid axes.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub axes: Vec<DistributionAxis>,
 }
 
 fn ser_method<S: serde::Serializer>(m: &Method, s: S) -> Result<S::Ok, S::Error> {
@@ -269,6 +370,43 @@ impl Sampling {
             .zip(&u)
             .map(|(p, &u)| p.distribution.quantile(u))
             .collect()
+    }
+
+    /// The sampling at one position of its distribution axes (`at[i]` indexes
+    /// `axes[i].values`): every distribution set, no axes left.
+    pub fn at(&self, at: &[usize]) -> Sampling {
+        let mut s = Sampling {
+            axes: Vec::new(),
+            ..self.clone()
+        };
+        for (a, &i) in self.axes.iter().zip(at) {
+            let p = &mut s.params[a.param];
+            p.distribution = with_field(&p.distribution, a.field, a.values[i]);
+        }
+        s
+    }
+
+    /// The name of a distribution axis, `mu.sd`.
+    pub fn axis_name(&self, a: &DistributionAxis) -> String {
+        format!("{}.{}", self.params[a.param].name.as_str(), a.field)
+    }
+
+    /// The positions of the distribution axes at index `point` of their own odometer (the
+    /// last axis fastest); a grid point's index modulo [`Sampling::axis_points`].
+    pub fn axis_position(&self, point: u64) -> Vec<usize> {
+        let mut rest = point;
+        let mut at = vec![0; self.axes.len()];
+        for (i, a) in self.axes.iter().enumerate().rev() {
+            let n = a.values.len() as u64;
+            at[i] = (rest % n) as usize;
+            rest /= n;
+        }
+        at
+    }
+
+    /// The number of positions of the distribution axes.
+    pub fn axis_points(&self) -> u64 {
+        self.axes.iter().map(|a| a.values.len() as u64).product()
     }
 
     /// The uncertain parameter `name`, if it is one.

@@ -129,6 +129,36 @@ pub struct SamplingView {
     pub seed: u64,
     /// Bootstrap resamples.
     pub bootstrap: u64,
+    /// Parameters of distributions given as axes.
+    #[serde(default)]
+    pub axes: Vec<DistributionAxisView>,
+}
+
+/// A distribution's parameter given as an axis, in the resolved manifest.
+#[derive(Debug, Clone, Deserialize)]
+pub struct DistributionAxisView {
+    /// Index of the uncertain parameter.
+    pub param: usize,
+    /// `mean`, `sd`, …
+    pub field: String,
+    /// Its values.
+    pub values: Vec<f64>,
+}
+
+impl SamplingView {
+    /// The grid points of a load case: the grid's, times the positions of the distribution
+    /// axes.
+    pub fn points(&self, m: &ManifestView) -> u64 {
+        m.grid
+            .iter()
+            .map(|a| a.values.len() as u64)
+            .product::<u64>()
+            * self
+                .axes
+                .iter()
+                .map(|a| a.values.len() as u64)
+                .product::<u64>()
+    }
 }
 
 /// A correlation of the resolved manifest.
@@ -462,7 +492,7 @@ fn read_samples(layout: &RunLayout, m: &ManifestView, s: &SamplingView) -> Resul
     } else {
         s.n
     };
-    let points: u64 = m.grid.iter().map(|a| a.values.len() as u64).product();
+    let points = s.points(m);
     let mut out = Vec::new();
     for (i, lc) in m.load_cases.iter().enumerate() {
         let first = i as u64 * points * per_point;

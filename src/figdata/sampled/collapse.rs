@@ -82,7 +82,8 @@ pub fn curves(m: &Manifest, s: &Sampling) -> Vec<CurvePoint> {
         .grid
         .iter()
         .map(|a| a.values.len() as u64)
-        .product::<u64>();
+        .product::<u64>()
+        * s.axis_points();
     let mut out = Vec::new();
     for (i, lc) in m.load_cases.iter().enumerate() {
         let first = i as u64 * points * rows;

@@ -59,7 +59,12 @@ struct Layout {
 impl Layout {
     fn of(m: &Manifest, s: &Sampling) -> Self {
         Layout {
-            points: m.grid.iter().map(|a| a.values.len() as u64).product(),
+            points: m
+                .grid
+                .iter()
+                .map(|a| a.values.len() as u64)
+                .product::<u64>()
+                * s.axis_points(),
             rows: s.rows(),
         }
     }
@@ -77,6 +82,10 @@ impl Layout {
 pub fn run(m: &Manifest, s: &Sampling, layout: &RunLayout) -> Result<SampledSummary> {
     let lay = Layout::of(m, s);
     let design = s.design();
+    // The sampling of each grid point: its own distributions where a parameter is an axis.
+    let at_point: Vec<Sampling> = (0..lay.points)
+        .map(|p| s.at(&s.axis_position(p % s.axis_points())))
+        .collect();
     let mut groups: Vec<Group> = (0..m.load_cases.len())
         .flat_map(|lc| (0..lay.points).map(move |p| (lc, p)))
         .map(|(lc, p)| Group::new(lc, p, s))
@@ -98,7 +107,7 @@ pub fn run(m: &Manifest, s: &Sampling, layout: &RunLayout) -> Result<SampledSumm
             );
             let (lc, point, row) = lay.locate(a.case_id);
             let g = &mut groups[lc * lay.points as usize + point as usize];
-            let values = s.values(&design, row);
+            let values = at_point[point as usize].values(&design, row);
             let out = g.add(row, a, &case.scene);
             frame.push(m, (a, lc, point, row), &values, &out);
         }
@@ -123,8 +132,8 @@ pub fn run(m: &Manifest, s: &Sampling, layout: &RunLayout) -> Result<SampledSumm
         let Some(case) = base.cases.first() else {
             continue;
         };
-        rows.extend(grid_rows(m, lc.name.as_str(), g.point, &lay));
-        rows.extend(g.estimates(&lc.name, s, &case.scene));
+        rows.extend(grid_rows(m, s, lc.name.as_str(), g.point));
+        rows.extend(g.estimates(&lc.name, &at_point[g.point as usize], &case.scene));
     }
     if s.question == Question::Probability {
         // The convergence of each load case at its point whose exact probability is nearest
@@ -153,6 +162,7 @@ pub fn run(m: &Manifest, s: &Sampling, layout: &RunLayout) -> Result<SampledSumm
             };
             let base = plan::build_slice(m.clone(), g.first_id(&lay)..g.first_id(&lay) + 1);
             if let Some(case) = base.cases.first() {
+                let s = &at_point[g.point as usize];
                 let conv = convergence::rows(s, &case.scene, &lc.name, g, &rows);
                 rows.extend(conv);
             }
@@ -178,10 +188,21 @@ impl Group {
 }
 
 /// The grid values of a point, one `grid` row per axis.
-fn grid_rows(m: &Manifest, load_case: &str, point: u64, lay: &Layout) -> Vec<EstimateRow> {
-    let _ = lay;
+fn grid_rows(m: &Manifest, s: &Sampling, load_case: &str, point: u64) -> Vec<EstimateRow> {
     let mut rest = point;
     let mut out = Vec::new();
+    for a in s.axes.iter().rev() {
+        let n = a.values.len() as u64;
+        let v = a.values[(rest % n) as usize];
+        rest /= n;
+        out.push(EstimateRow::value(
+            load_case,
+            point,
+            "grid",
+            &s.axis_name(a),
+            v,
+        ));
+    }
     for a in m.grid.iter().rev() {
         let n = a.values.len() as u64;
         let v = a.values[(rest % n) as usize];

@@ -1,10 +1,10 @@
 //! The distributions of the `uncertain:` block, each checked as written: its name, its own
 //! keys and their values, and its support against the values its parameter may take.
 
-use super::MAX_K;
 use super::{Ctx, fmt_num};
+use super::{MAX_AXIS_STEPS, MAX_K};
 use crate::manifest::error::ManifestError;
-use crate::manifest::raw::RawDistribution;
+use crate::manifest::raw::{RawAxis, RawDistribution, RawParam};
 use crate::manifest::types::ArchOptions;
 use crate::manifest::uncertain::ParamName;
 use crate::model::t_over_r_from_k;
@@ -59,14 +59,91 @@ pub(super) fn allowed(name: ParamName, arch: &ArchOptions, alpha_lo: f64) -> All
     }
 }
 
-fn num(v: &Option<Spanned<f64>>) -> Option<f64> {
-    v.as_ref().map(|s| s.value)
+/// The values of an axis of a distribution's parameter (`{values: [...]}` or
+/// `{from, to, steps}`), in their order; `key` names it in messages.
+fn param_axis(ax: &RawAxis, at: Location, key: &str, cx: &Ctx) -> Result<Vec<f64>, ManifestError> {
+    let values = match (&ax.values, &ax.from, &ax.to, &ax.steps, &ax.also) {
+        (Some(v), None, None, None, None) if !v.is_empty() => {
+            v.iter().map(|x| x.value.0).collect::<Vec<f64>>()
+        }
+        (None, Some(f), Some(t), Some(n), None)
+            if (1..=MAX_AXIS_STEPS).contains(&n.value)
+                && f.value.0.is_finite()
+                && t.value.0.is_finite() =>
+        {
+            super::grid::decimal_range(f.value.0, t.value.0, n.value as usize)
+        }
+        _ => {
+            return Err(cx.err(
+                Some(at),
+                key,
+                format!(
+                    "a distribution's parameter is a number, or an axis of values \
+                     {{values: [...]}} or {{from, to, steps}} (finite ends, 1 to \
+                     {MAX_AXIS_STEPS} steps): each grid point then has its own distribution"
+                ),
+            ));
+        }
+    };
+    if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+        return Err(cx.err(
+            Some(at),
+            key,
+            format!(
+                "value {} is not allowed: a distribution's parameter is finite",
+                fmt_num(*v)
+            ),
+        ));
+    }
+    let mut sorted = values.clone();
+    sorted.sort_by(f64::total_cmp);
+    if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
+        return Err(cx.err(
+            Some(at),
+            key,
+            format!("value {} is listed twice", fmt_num(w[0])),
+        ));
+    }
+    Ok(values)
+}
+
+/// The parameters of a distribution given as axes, with their values: (field, values).
+pub(super) fn distribution_axes(
+    name: ParamName,
+    d: &Spanned<RawDistribution>,
+    cx: &Ctx,
+) -> Result<Vec<(&'static str, Vec<f64>)>, ManifestError> {
+    let r = &d.value;
+    let fields: [(&'static str, &Option<Spanned<RawParam>>); 8] = [
+        ("mean", &r.mean),
+        ("sd", &r.sd),
+        ("median", &r.median),
+        ("cov", &r.cov),
+        ("from", &r.from),
+        ("to", &r.to),
+        ("alpha", &r.alpha),
+        ("beta", &r.beta),
+    ];
+    let mut out = Vec::new();
+    for (field, v) in fields {
+        if let Some(Spanned {
+            value: RawParam::Axis(ax),
+            referenced,
+            ..
+        }) = v
+        {
+            let key = format!("uncertain.{}.{field}", name.as_str());
+            out.push((field, param_axis(ax, *referenced, &key, cx)?));
+        }
+    }
+    Ok(out)
 }
 
 /// The distribution as written, with its parameters checked.
 pub(super) fn distribution(
     name: ParamName,
     d: &Spanned<RawDistribution>,
+    over: Option<(&str, f64)>,
     cx: &Ctx,
 ) -> Result<Distribution, ManifestError> {
     let r = &d.value;
@@ -97,6 +174,7 @@ pub(super) fn distribution(
         base: &base,
         kind,
         keys,
+        over,
         cx,
     };
     let (need, positive, finite) = (
@@ -107,10 +185,15 @@ pub(super) fn distribution(
     let range = |from: f64, to: f64| c.range(from, to);
     Ok(match kind {
         "normal" => Distribution::Normal {
-            mean: finite("mean", need("mean", num(&r.mean))?)?,
-            sd: positive("sd", need("sd", num(&r.sd))?)?,
+            mean: finite("mean", need("mean", c.num("mean", &r.mean))?)?,
+            sd: positive("sd", need("sd", c.num("sd", &r.sd))?)?,
         },
-        "lognormal" => match (num(&r.median), num(&r.cov), num(&r.mean), num(&r.sd)) {
+        "lognormal" => match (
+            c.num("median", &r.median),
+            c.num("cov", &r.cov),
+            c.num("mean", &r.mean),
+            c.num("sd", &r.sd),
+        ) {
             (Some(m), Some(c), None, None) => {
                 Distribution::lognormal_from_median_cov(positive("median", m)?, positive("cov", c)?)
             }
@@ -127,17 +210,17 @@ pub(super) fn distribution(
             }
         },
         "uniform" => {
-            let from = finite("from", need("from", num(&r.from))?)?;
-            let to = finite("to", need("to", num(&r.to))?)?;
+            let from = finite("from", need("from", c.num("from", &r.from))?)?;
+            let to = finite("to", need("to", c.num("to", &r.to))?)?;
             let (from, to) = range(from, to)?;
             Distribution::Uniform { from, to }
         }
         "truncated_normal" => truncated_normal(&c)?,
         "beta" => {
-            let alpha = positive("alpha", need("alpha", num(&r.alpha))?)?;
-            let beta = positive("beta", need("beta", num(&r.beta))?)?;
-            let from = finite("from", num(&r.from).unwrap_or(0.0))?;
-            let to = finite("to", num(&r.to).unwrap_or(1.0))?;
+            let alpha = positive("alpha", need("alpha", c.num("alpha", &r.alpha))?)?;
+            let beta = positive("beta", need("beta", c.num("beta", &r.beta))?)?;
+            let from = finite("from", c.num("from", &r.from).unwrap_or(0.0))?;
+            let to = finite("to", c.num("to", &r.to).unwrap_or(1.0))?;
             let (from, to) = range(from, to)?;
             Distribution::Beta {
                 alpha,
@@ -156,10 +239,29 @@ struct Checker<'a> {
     base: &'a str,
     kind: &'a str,
     keys: &'a [&'a str],
+    /// A parameter given as an axis, at one of its values.
+    over: Option<(&'a str, f64)>,
     cx: &'a Ctx<'a>,
 }
 
 impl Checker<'_> {
+    /// The value of a parameter: the override, the number written, or an axis's first value.
+    fn num(&self, field: &str, v: &Option<Spanned<RawParam>>) -> Option<f64> {
+        if let Some((f, x)) = self.over
+            && f == field
+        {
+            return Some(x);
+        }
+        match &v.as_ref()?.value {
+            RawParam::Value(n) => Some(n.0),
+            RawParam::Axis(ax) => match (&ax.values, &ax.from) {
+                (Some(vals), _) => vals.first().map(|x| x.value.0),
+                (None, Some(f)) => Some(f.value.0),
+                _ => None,
+            },
+        }
+    }
+
     fn need(&self, key: &str, v: Option<f64>) -> Result<f64, ManifestError> {
         v.ok_or_else(|| {
             self.cx.err(
@@ -214,8 +316,8 @@ impl Checker<'_> {
 /// A truncated normal: `mean`, `sd` and at least one bound, keeping some of the mass.
 fn truncated_normal(c: &Checker) -> Result<Distribution, ManifestError> {
     let r = &c.d.value;
-    let mean = c.finite("mean", c.need("mean", num(&r.mean))?)?;
-    let sd = c.positive("sd", c.need("sd", num(&r.sd))?)?;
+    let mean = c.finite("mean", c.need("mean", c.num("mean", &r.mean))?)?;
+    let sd = c.positive("sd", c.need("sd", c.num("sd", &r.sd))?)?;
     if r.from.is_none() && r.to.is_none() {
         return Err(c.cx.err(
             Some(c.d.referenced),
@@ -224,8 +326,8 @@ fn truncated_normal(c: &Checker) -> Result<Distribution, ManifestError> {
              truncation)",
         ));
     }
-    let from = num(&r.from).unwrap_or(f64::NEG_INFINITY);
-    let to = num(&r.to).unwrap_or(f64::INFINITY);
+    let from = c.num("from", &r.from).unwrap_or(f64::NEG_INFINITY);
+    let to = c.num("to", &r.to).unwrap_or(f64::INFINITY);
     let (from, to) = c.range(from, to)?;
     // A truncation that keeps almost none of the normal's mass is a mistake.
     let z = |x: f64| (x - mean) / sd;

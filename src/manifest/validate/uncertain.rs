@@ -2,13 +2,16 @@
 //! against the parameter it describes (its support must lie in the values the parameter may
 //! take), the correlation, the sample design, and how the study's load cases fit the question.
 
-use super::distributions::{allowed, check_support, check_voussoir_counts, distribution};
+use super::distributions::{
+    allowed, check_support, check_voussoir_counts, distribution, distribution_axes,
+};
 use super::{Ctx, fmt_num};
 use crate::manifest::error::ManifestError;
 use crate::manifest::raw::{RawDistribution, RawManifest, RawUncertain};
 use crate::manifest::types::{ArchOptions, AxisName, GridAxis, LoadCase, LoadKind};
 use crate::manifest::uncertain::{
-    Correlation, DEFAULT_BOOTSTRAP, DEFAULT_SAMPLES, ParamName, Question, Sampling, UncertainParam,
+    Correlation, DEFAULT_BOOTSTRAP, DEFAULT_SAMPLES, DistributionAxis, ParamName, Question,
+    Sampling, UncertainParam,
 };
 use crate::sampling::{Distribution, MAX_DIMS, Method};
 use crate::scene::Find;
@@ -106,16 +109,33 @@ pub(super) fn validate(
     check_fits_study(raw, question, arch, load_cases, &list, cx)?;
     // Positions lie within the smallest half-angle an uncertain α takes.
     let alpha_lo = match list.iter().find(|(n, _)| *n == ParamName::HalfAngleDeg) {
-        Some((_, d)) => distribution(ParamName::HalfAngleDeg, d, cx)?.support().0,
+        Some((_, d)) => {
+            distribution(ParamName::HalfAngleDeg, d, None, cx)?
+                .support()
+                .0
+        }
         None => arch.half_angle_deg,
     };
     let mut params = Vec::new();
+    let mut axes = Vec::new();
     for (name, d) in &list {
         let key = format!("uncertain.{}", name.as_str());
-        let dist = distribution(*name, d, cx)?;
+        let dist = distribution(*name, d, None, cx)?;
         check_support(&dist, &allowed(*name, arch, alpha_lo), (d, &key), cx)?;
         if *name == ParamName::Voussoirs {
             check_voussoir_counts(&dist, d, cx)?;
+        }
+        // Each value of a parameter given as an axis makes a distribution of its own.
+        for (field, values) in distribution_axes(*name, d, cx)? {
+            for &v in &values {
+                let at = distribution(*name, d, Some((field, v)), cx)?;
+                check_support(&at, &allowed(*name, arch, alpha_lo), (d, &key), cx)?;
+            }
+            axes.push(DistributionAxis {
+                param: params.len(),
+                field,
+                values,
+            });
         }
         params.push(UncertainParam {
             name: *name,
@@ -146,6 +166,7 @@ pub(super) fn validate(
             method,
             seed,
             bootstrap,
+            axes,
         },
         shadow,
     })

@@ -38,11 +38,24 @@ pub(super) fn against_axis(
     if points.len() < 2 {
         return None;
     }
-    let axis = e.grid(points[0]).last()?.0.clone();
-    let lines = lines_of(e, &points);
+    // The abscissa is the axis with the most values (the innermost of those tied); one line
+    // per value of the others.
+    let names: Vec<String> = e.grid(points[0]).into_iter().map(|g| g.0).collect();
+    let count = |i: usize| {
+        let mut v: Vec<u64> = points
+            .iter()
+            .filter_map(|&p| e.grid(p).get(i).map(|g| g.1.to_bits()))
+            .collect();
+        v.sort_unstable();
+        v.dedup();
+        v.len()
+    };
+    let x_index = (0..names.len()).max_by_key(|&i| (count(i), i))?;
+    let axis = names[x_index].clone();
+    let lines = lines_of(e, &points, x_index);
     let mut curves = Vec::new();
     for ((key, pts), color) in lines.iter().take(MAX_CURVES).zip(COLORS) {
-        let x_of = |p: u64| e.grid(p).last().map_or(f64::NAN, |g| g.1);
+        let x_of = |p: u64| e.grid(p).get(x_index).map_or(f64::NAN, |g| g.1);
         let mut pts_xy = Vec::new();
         let mut band = Vec::new();
         let mut exact = Vec::new();
@@ -123,13 +136,13 @@ pub(super) fn against_axis(
 
 /// The points of each line of an against-axis figure: one line per value of the axes other
 /// than the innermost, labelled by them.
-fn lines_of(e: &Estimates, points: &[u64]) -> Vec<(String, Vec<u64>)> {
+fn lines_of(e: &Estimates, points: &[u64], x_index: usize) -> Vec<(String, Vec<u64>)> {
     let mut lines: Vec<(String, Vec<u64>)> = Vec::new();
     for &p in points {
         let g = e.grid(p);
-        let others: Vec<String> = g[..g.len() - 1]
-            .iter()
-            .map(|(a, v)| value_words(a, *v))
+        let others: Vec<String> = (g.iter().enumerate())
+            .filter(|(i, _)| *i != x_index)
+            .map(|(_, (a, v))| value_words(a, *v))
             .collect();
         let key = others.join(", ");
         match lines.iter_mut().find(|(k, _)| *k == key) {

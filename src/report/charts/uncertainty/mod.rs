@@ -106,8 +106,11 @@ pub fn symbol(name: &str) -> &'static str {
 }
 
 /// An axis in words, for an axis title.
-pub fn axis_words(name: &str) -> &'static str {
-    match name {
+pub fn axis_words(name: &str) -> String {
+    if let Some((param, field)) = name.split_once('.') {
+        return format!("{field} of the distribution of {}", symbol(param));
+    }
+    let words = match name {
         "k" => "thickness ratio K = R/r",
         "t_over_r" => "thickness t/R_c",
         "mu" => "friction coefficient μ",
@@ -116,12 +119,17 @@ pub fn axis_words(name: &str) -> &'static str {
         "at_deg" => "load position θ (° from the crown)",
         "at_x" => "load position x/L",
         _ => "value",
-    }
+    };
+    words.to_string()
 }
 
-/// A grid value in words: `K = 1.2`, `θ = 22.5°`.
+/// A grid value in words: `K = 1.2`, `θ = 22.5°`, `sd of μ = 0.05` (an axis of a
+/// distribution's parameter).
 pub fn value_words(name: &str, v: f64) -> String {
     let v = crate::report::format::given(v);
+    if let Some((param, field)) = name.split_once('.') {
+        return format!("{field} of {} = {v}", symbol(param));
+    }
     match name {
         "half_angle_deg" => format!("α = {v}°"),
         "at_deg" => format!("θ = {v}°"),
