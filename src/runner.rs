@@ -428,6 +428,8 @@ pub(crate) fn analyse_in_chunks(
         out.engine_ms += ms(t);
         let t = Instant::now();
         out.written.push(&plan, &rows, pool)?;
+        drop(rows);
+        memory::release_freed_memory();
         out.store_ms += ms(t);
     }
     progress.end(Stage::Analyse);

@@ -40,6 +40,20 @@ pub const LOAD_FACTOR_BYTES_PER_CASE: u64 = 256;
 /// peaks at 545 MB (2.14 GB when it compared whole tables).
 pub const VERIFY_BYTES_PER_CASE: u64 = LOAD_FACTOR_BYTES_PER_CASE;
 
+/// Returns the memory freed by a chunk's rows to the operating system. The rows of a chunk
+/// (a load factor's hinges, sliding joints and work terms) are many small allocations made
+/// on every worker thread; glibc keeps what they free in each thread's heap, fragmented, so
+/// that without this the peak memory of a run of load factors creeps up chunk after chunk
+/// (measured: 664 MB at 5·10⁵ cases, 851 MB at 10⁶, 960 MB at 2·10⁶).
+pub fn release_freed_memory() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: malloc_trim only returns free pages of glibc's heaps to the kernel; it reads
+    // and writes no memory of this program's.
+    unsafe {
+        libc::malloc_trim(0);
+    }
+}
+
 /// The memory this process may use, in bytes: the smaller of the available memory
 /// (/proc/meminfo MemAvailable) and the address-space limit (`ulimit -v`), when known.
 pub fn available_memory() -> Option<u64> {
