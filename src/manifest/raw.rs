@@ -196,7 +196,7 @@ pub(super) enum RawParam {
     /// One value.
     Value(Number),
     /// `{values: [...]}` or `{from, to, steps}`.
-    Axis(RawAxis),
+    Axis(Box<RawAxis>),
 }
 
 /// One uncertain parameter as written: a distribution by name and its parameters.

@@ -116,32 +116,7 @@ pub(super) fn validate(
         }
         None => arch.half_angle_deg,
     };
-    let mut params = Vec::new();
-    let mut axes = Vec::new();
-    for (name, d) in &list {
-        let key = format!("uncertain.{}", name.as_str());
-        let dist = distribution(*name, d, None, cx)?;
-        check_support(&dist, &allowed(*name, arch, alpha_lo), (d, &key), cx)?;
-        if *name == ParamName::Voussoirs {
-            check_voussoir_counts(&dist, d, cx)?;
-        }
-        // Each value of a parameter given as an axis makes a distribution of its own.
-        for (field, values) in distribution_axes(*name, d, cx)? {
-            for &v in &values {
-                let at = distribution(*name, d, Some((field, v)), cx)?;
-                check_support(&at, &allowed(*name, arch, alpha_lo), (d, &key), cx)?;
-            }
-            axes.push(DistributionAxis {
-                param: params.len(),
-                field,
-                values,
-            });
-        }
-        params.push(UncertainParam {
-            name: *name,
-            distribution: dist,
-        });
-    }
+    let (params, axes) = params_of(&list, arch, alpha_lo, cx)?;
     check_thickness_and_friction(raw, question, &list, cx)?;
     let correlation = match &u.value.correlation {
         None => None,
@@ -170,6 +145,43 @@ pub(super) fn validate(
         },
         shadow,
     })
+}
+
+/// The distribution of each uncertain parameter, checked against the values it may take,
+/// and the parameters of distributions given as axes.
+fn params_of(
+    list: &[(ParamName, &Spanned<RawDistribution>)],
+    arch: &ArchOptions,
+    alpha_lo: f64,
+    cx: &Ctx,
+) -> Result<(Vec<UncertainParam>, Vec<DistributionAxis>), ManifestError> {
+    let mut params = Vec::new();
+    let mut axes = Vec::new();
+    for (name, d) in list {
+        let key = format!("uncertain.{}", name.as_str());
+        let dist = distribution(*name, d, None, cx)?;
+        check_support(&dist, &allowed(*name, arch, alpha_lo), (d, &key), cx)?;
+        if *name == ParamName::Voussoirs {
+            check_voussoir_counts(&dist, d, cx)?;
+        }
+        // Each value of a parameter given as an axis makes a distribution of its own.
+        for (field, values) in distribution_axes(*name, d, cx)? {
+            for &v in &values {
+                let at = distribution(*name, d, Some((field, v)), cx)?;
+                check_support(&at, &allowed(*name, arch, alpha_lo), (d, &key), cx)?;
+            }
+            axes.push(DistributionAxis {
+                param: params.len(),
+                field,
+                values,
+            });
+        }
+        params.push(UncertainParam {
+            name: *name,
+            distribution: dist,
+        });
+    }
+    Ok((params, axes))
 }
 
 /// A parameter is uncertain or a grid axis, not both; K is given one way.

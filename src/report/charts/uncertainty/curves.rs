@@ -124,7 +124,7 @@ pub(super) fn against_axis(
             title: format!("P(collapse) against {axis}{}", lc.title_suffix),
             panels: vec![CurvePanel {
                 title: String::new(),
-                x_desc: axis_words(&axis).into(),
+                x_desc: axis_words(&axis),
                 y_desc: "probability of collapse".into(),
                 curves,
                 log: (false, false),
