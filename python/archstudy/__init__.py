@@ -472,6 +472,8 @@ _TABLES = {
     "boundaries": "boundaries.parquet",
     "bifurcations": "bifurcations.parquet",
     "states": "states.parquet",
+    "samples": "samples.parquet",
+    "estimates": "estimates.parquet",
 }
 
 
@@ -479,8 +481,9 @@ class Run:
     """A finished run directory, as ``archstudy run`` writes it.
 
     ``results``, ``boundaries``, ``bifurcations`` and ``states`` are its tables as
-    :class:`Table` (Arrow data), ``info`` its run.json, ``dir`` its path. In Jupyter a run
-    shows its name, its case counts and its figures (``_repr_html_``).
+    :class:`Table` (Arrow data), and for a study of uncertain parameters ``samples`` and
+    ``estimates``; ``info`` is its run.json, ``dir`` its path. In Jupyter a run shows its
+    name, its case counts and its figures (``_repr_html_``).
     """
 
     def __init__(self, run_dir: str | os.PathLike[str]) -> None:
@@ -498,12 +501,17 @@ class Run:
         return str(self.info["name"])
 
     def table(self, name: str) -> Table:
-        """A stored table by name: ``results``, ``boundaries``, ``bifurcations`` or
-        ``states``."""
+        """A stored table by name: ``results``, ``boundaries``, ``bifurcations``,
+        ``states``, and for a sampling study ``samples`` and ``estimates``."""
         if name not in _TABLES:
             raise ValueError(
                 f"invalid value '{name}' for 'name': one of {', '.join(_TABLES)}")
-        return Table(_archstudy.read_table(str(self.dir / _TABLES[name])))
+        path = self.dir / _TABLES[name]
+        if not path.is_file():
+            raise ValueError(
+                f"invalid value '{name}' for 'name': this run has no {_TABLES[name]} "
+                "(samples and estimates belong to studies of uncertain parameters)")
+        return Table(_archstudy.read_table(str(path)))
 
     @property
     def results(self) -> Table:
@@ -525,9 +533,25 @@ class Run:
         """states.parquet: the states the report draws."""
         return self.table("states")
 
+    @property
+    def samples(self) -> Table:
+        """samples.parquet (a sampling study): every sample's values and answer."""
+        return self.table("samples")
+
+    @property
+    def estimates(self) -> Table:
+        """estimates.parquet (a sampling study): probabilities, fragility curves,
+        quantiles and Sobol indices with their intervals."""
+        return self.table("estimates")
+
     def figures(self) -> list[pathlib.Path]:
         """The SVG figures of the run (plots/*.svg), in name order."""
         return sorted((self.dir / "plots").glob("*.svg"))
+
+    def _find(self) -> str:
+        """What the study computes: its find, or the question of a sampling study."""
+        m = self.info.get("manifest", {})
+        return str((m.get("sampling") or {}).get("question") or m.get("find"))
 
     def __repr__(self) -> str:
         c = self.info.get("cases", {})
@@ -539,7 +563,7 @@ class Run:
         parts = [
             f"<h3>archstudy run <code>{html.escape(self.name)}</code></h3>",
             f"<p>{c.get('total')} cases ({c.get('ok')} ok, {c.get('error')} failed); "
-            f"find <code>{html.escape(str(self.info.get('manifest', {}).get('find')))}</code>; "
+            f"find <code>{html.escape(self._find())}</code>; "
             f"directory <code>{html.escape(str(self.dir))}</code></p>",
         ]
         for f in self.figures()[:6]:

@@ -143,3 +143,29 @@ def test_ctrl_c_stops_within_a_second_and_leaves_nothing(tmp_path, what):
     assert "KeyboardInterrupt" in err, err
     assert took < 1.0, f"stopped {took:.2f} s after Ctrl-C"
     assert list(out.iterdir()) == [], "nothing is left in the output directory"
+
+
+def test_a_sampling_run_gives_its_samples_and_estimates(tmp_path):
+    manifest = {
+        "name": "sampled",
+        "uncertain": {
+            "k": {"distribution": "uniform", "from": 1.08, "to": 1.2},
+            "mu": {"distribution": "uniform", "from": 0.3, "to": 0.5},
+        },
+        "samples": {"n": 128, "seed": 1},
+        "find": "probability",
+    }
+    run = archstudy.run(manifest, out=tmp_path, jobs=2)
+    samples = pa.table(run.samples)
+    assert samples.num_rows == 128
+    assert set(samples.column_names) >= {"k", "mu", "stands", "mechanism"}
+    est = pa.table(run.estimates).to_pylist()
+    p = next(r for r in est if r["quantity"] == "probability")
+    exact = next(r for r in est if r["quantity"] == "exact_probability")
+    assert p["lo"] <= exact["value"] <= p["hi"]
+    assert "probability" in run._repr_html_()
+
+
+def test_a_grid_run_has_no_samples(three_runs):
+    with pytest.raises(ValueError, match="has no samples.parquet"):
+        three_runs[0].samples
