@@ -189,31 +189,18 @@ impl Group {
 
 /// The grid values of a point, one `grid` row per axis.
 fn grid_rows(m: &Manifest, s: &Sampling, load_case: &str, point: u64) -> Vec<EstimateRow> {
+    // The grid axes, then the distribution axes inside them: the point's odometer.
+    let axes: Vec<(String, &[f64])> = (m.grid.iter())
+        .map(|a| (a.name.as_str().to_string(), &a.values[..]))
+        .chain(s.axes.iter().map(|a| (s.axis_name(a), &a.values[..])))
+        .collect();
     let mut rest = point;
     let mut out = Vec::new();
-    for a in s.axes.iter().rev() {
-        let n = a.values.len() as u64;
-        let v = a.values[(rest % n) as usize];
+    for (name, values) in axes.iter().rev() {
+        let n = values.len() as u64;
+        let v = values[(rest % n) as usize];
         rest /= n;
-        out.push(EstimateRow::value(
-            load_case,
-            point,
-            "grid",
-            &s.axis_name(a),
-            v,
-        ));
-    }
-    for a in m.grid.iter().rev() {
-        let n = a.values.len() as u64;
-        let v = a.values[(rest % n) as usize];
-        rest /= n;
-        out.push(EstimateRow::value(
-            load_case,
-            point,
-            "grid",
-            a.name.as_str(),
-            v,
-        ));
+        out.push(EstimateRow::value(load_case, point, "grid", name, v));
     }
     out.reverse();
     out
