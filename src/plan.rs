@@ -46,7 +46,7 @@ pub struct Plan {
 /// A plan too large to run.
 #[derive(Debug, thiserror::Error)]
 #[error(
-    "the study asks for {requested} cases, more than the {MAX_CASES} one run holds in memory: run it in shards, `archstudy run STUDY --shard I/N` with N ≥ {}, then `archstudy merge`, or reduce the steps of the grid axes",
+    "the study asks for {requested} cases, more than the {MAX_CASES} one run holds in memory: run it in shards, `archstudy run STUDY --shard I/N` with N ≥ {}, then `archstudy merge`, or reduce the steps of the grid axes (or the samples of a study of uncertain parameters)",
     requested.div_ceil(u128::from(MAX_CASES))
 )]
 pub struct PlanTooLarge {

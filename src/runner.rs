@@ -125,7 +125,14 @@ pub fn load_runnable(path: &Path) -> Result<(Manifest, Vec<u8>)> {
         return Err(manifest::ManifestError {
             path: path.to_path_buf(),
             position: None,
-            key: Some("grid".into()),
+            key: Some(
+                if m.sampling.is_some() {
+                    "samples"
+                } else {
+                    "grid"
+                }
+                .into(),
+            ),
             message,
         }
         .into());

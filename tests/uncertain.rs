@@ -438,6 +438,25 @@ fn every_bad_sampling_input_is_refused_with_the_key_and_the_value() {
 }
 
 #[test]
+fn a_lognormal_load_factor_and_a_discrete_friction_with_infinity_are_sampled() {
+    // Supports unbounded above are allowed where the parameter is (λ, μ): the samples are
+    // finite; a discrete μ may be inf. The probability is of not standing at the sampled λ.
+    let text = "name: lam\nload_cases:\n  - {name: p, kind: point, at_deg: 30}\nuncertain:\n  lambda: {distribution: lognormal, median: 0.3, cov: 0.5}\n  k: {distribution: uniform, from: 1.15, to: 1.4}\n  mu: {distribution: discrete, values: [0.4, 0.6, inf]}\nsamples: {n: 200, method: lhs}\nfind: probability\n";
+    let (out, rows) = run("lognormal-lambda", text, None);
+    let p = one(&rows, 0, "probability", "");
+    assert!(p.value > 0.0 && p.value < 1.0, "{p:?}");
+    let df = archstudy::store::read_parquet(&out.join("samples.parquet")).unwrap();
+    let lambda = archstudy::store::f64_column(&df, "lambda").unwrap();
+    assert!(
+        lambda
+            .iter()
+            .all(|v| v.is_some_and(|v| v.is_finite() && v > 0.0))
+    );
+    let mu = archstudy::store::f64_column(&df, "mu").unwrap();
+    assert!(mu.iter().any(|v| *v == Some(f64::INFINITY)));
+}
+
+#[test]
 fn verify_re_derives_the_samples_and_the_estimates_and_catches_a_forged_probability() {
     let text = "name: forged\nuncertain:\n  k: {distribution: uniform, from: 1.08, to: 1.2}\n  mu: {distribution: uniform, from: 0.3, to: 0.5}\nsamples: {n: 256, seed: 2}\nfind: probability\n";
     let (out, rows) = run("verify-sampled", text, None);

@@ -169,7 +169,8 @@ pub fn check_memory_at(cases: u128, per_case: u64, available: Option<u64>) -> Re
         "{head}: run it in shards of at most {fits} cases, `archstudy run STUDY --shard I/N` \
          with N ≥ {shards} (one process or cluster task per shard, then `archstudy merge` on a \
          machine with that memory; `archstudy slurm STUDY --shards N` writes the job array), \
-         or reduce the steps of the grid axes"
+         or reduce the steps of the grid axes (or the samples of a study of uncertain \
+         parameters)"
     ))
 }
 

@@ -470,8 +470,9 @@ pub(super) fn check_support(
             (v > allowed.lo || (allowed.lo_inclusive && v == allowed.lo))
                 && (v < allowed.hi || (allowed.hi_inclusive && v == allowed.hi))
         }),
-        // Continuous: the samples never hit an end of the support, which may close the range.
-        _ => lo >= allowed.lo && hi <= allowed.hi && (hi.is_finite() || allowed.hi_inclusive),
+        // Continuous: the samples never hit an end of the support (an infinite one least of
+        // all), which may close the range.
+        _ => lo >= allowed.lo && hi <= allowed.hi,
     };
     if inside {
         return Ok(());
