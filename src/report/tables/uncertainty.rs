@@ -110,11 +110,13 @@ fn point_rows(s: &SamplingView, e: &Estimates, p: u64, on: &str) -> Vec<KeyResul
     for m in ["rotational", "mixed", "sliding", "none"] {
         if let Some(r) = e.one(p, quantity, m).filter(|r| r.value > 0.0) {
             let close = if s.question == "fragility" { "" } else { ")" };
-            out.push(row(
-                format!("{what} {m} mechanism{close}{on}"),
-                with_interval(r),
-                quantity,
-            ));
+            let quantity_text = if m == "none" {
+                let what = what.trim_end_matches(" by a");
+                format!("{what} with Hʳ and Hˢ empty{close}{on}")
+            } else {
+                format!("{what} {m} mechanism{close}{on}")
+            };
+            out.push(row(quantity_text, with_interval(r), quantity));
         }
     }
     for level in ["0.05", "0.5", "0.95"] {

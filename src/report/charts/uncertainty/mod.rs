@@ -258,6 +258,13 @@ fn sample_map(data: &RunData, lc: &LoadCaseFigure) -> Option<FigureSpec> {
          mechanism at collapse: a sample below it does not stand."
             .to_string()
     };
+    let curve_text = match mu_min {
+        Some(m) if !curves.is_empty() => format!(
+            "{curve_text} Left of the dashed line μ_min = {} no thickness stands.",
+            crate::report::format::sig(m, 4)
+        ),
+        _ => curve_text,
+    };
     Some(FigureSpec {
         stem: format!("samples{}", lc.stem_suffix),
         title: format!("Samples over the (μ, K) plane{}", lc.title_suffix),
