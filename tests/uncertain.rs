@@ -302,6 +302,10 @@ fn the_samples_are_the_same_for_any_thread_count() {
 /// Each bad manifest, and words its error must hold.
 const BAD: &[(&str, &[&str])] = &[
     (
+        "arch: {shape: pointed, eccentricity: 0.6, half_angle_deg: 90}\nuncertain:\n  k: {distribution: uniform, from: 1.05, to: {values: [1.3, 3.0]}}\n  mu: {distribution: uniform, from: 0.3, to: 0.6}\nfind: probability\n",
+        &["key `uncertain.k`", "2.333"],
+    ),
+    (
         "uncertain:\n  k: {distribution: uniform, from: 1.1, to: 1.3}\n  mu: {distribution: truncated_normal, mean: 0.4, sd: {values: [0.05, -0.1]}, from: 0.1, to: 0.8}\nfind: probability\n",
         &["uncertain.mu.sd", "-0.1", "> 0"],
     ),

@@ -111,11 +111,13 @@ pub(super) fn manifest(raw: RawManifest, path: &Path) -> Result<Manifest, Manife
         Some(v) => uncertain::as_checked(&v.sampling, &load_cases),
         None => load_cases.clone(),
     };
-    load_checks::check_loads(&raw, &arch, &checked, &checked_lcs, cx)?;
+    load_checks::check_loads(&raw, &arch, &checked, &checked_lcs, cx)
+        .map_err(|e| as_uncertain(e, shadow, &grid))?;
     let scenes = validate_scenes(raw.scenes.as_deref().unwrap_or(&[]), cx)?;
     let boundary_tolerance = boundary_tolerance(raw.boundaries.as_ref(), cx)?;
     let figure_width = figure_width(raw.figures.as_ref(), cx)?;
-    limits::check_limits(&raw, &arch, &checked, &load_cases, &scenes, cx)?;
+    limits::check_limits(&raw, &arch, &checked, &load_cases, &scenes, cx)
+        .map_err(|e| as_uncertain(e, shadow, &grid))?;
     if let Some(v) = &sampled {
         // Checked as the state or load-factor studies they resemble; each sample is then
         // analysed with the find its question asks for.
@@ -139,6 +141,23 @@ pub(super) fn manifest(raw: RawManifest, path: &Path) -> Result<Manifest, Manife
         figure_width,
         sampling: sampled.map(|v| v.sampling),
     })
+}
+
+/// An error the checks of the loads or the limits found on an axis that stands for an
+/// uncertain parameter, keyed by that parameter (`uncertain.k`, not `grid.k`).
+fn as_uncertain(
+    mut e: ManifestError,
+    shadow: &[super::types::GridAxis],
+    grid: &[super::types::GridAxis],
+) -> ManifestError {
+    if let Some(key) = &e.key
+        && let Some(name) = key.strip_prefix("grid.")
+        && shadow.iter().any(|a| a.name.as_str() == name)
+        && !grid.iter().any(|a| a.name.as_str() == name)
+    {
+        e.key = Some(format!("uncertain.{name}"));
+    }
+    e
 }
 
 /// The column width of the paper figures: `single` or `double` (the default).

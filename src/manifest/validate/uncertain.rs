@@ -11,7 +11,7 @@ use crate::manifest::raw::{RawDistribution, RawManifest, RawUncertain};
 use crate::manifest::types::{ArchOptions, AxisName, GridAxis, LoadCase, LoadKind};
 use crate::manifest::uncertain::{
     Correlation, DEFAULT_BOOTSTRAP, DEFAULT_SAMPLES, DistributionAxis, ParamName, Question,
-    Sampling, UncertainParam,
+    Sampling, UncertainParam, with_field,
 };
 use crate::sampling::{Distribution, MAX_DIMS, Method};
 use crate::scene::Find;
@@ -131,7 +131,7 @@ pub(super) fn validate(
             _ => Find::LoadFactor,
         };
     }
-    let shadow = shadow_axes(&params);
+    let shadow = shadow_axes(&params, &axes);
     Ok(Validated {
         sampling: Sampling {
             question,
@@ -548,10 +548,11 @@ fn samples(
 
 /// An axis for each uncertain parameter that a grid axis could span, holding the extreme
 /// values its distribution takes (for the checks of the loads and the arch only).
-fn shadow_axes(params: &[UncertainParam]) -> Vec<GridAxis> {
+fn shadow_axes(params: &[UncertainParam], axes: &[DistributionAxis]) -> Vec<GridAxis> {
     params
         .iter()
-        .filter_map(|p| {
+        .enumerate()
+        .filter_map(|(i, p)| {
             let name = match p.name {
                 ParamName::K => AxisName::K,
                 ParamName::TOverR => AxisName::TOverR,
@@ -562,13 +563,23 @@ fn shadow_axes(params: &[UncertainParam]) -> Vec<GridAxis> {
                 ParamName::AtX => AxisName::AtX,
                 ParamName::Eccentricity | ParamName::Lambda => return None,
             };
-            let values = match &p.distribution {
-                Distribution::Discrete { values, .. } => values.clone(),
-                d => {
-                    let (lo, hi) = (d.quantile(1e-12), d.quantile(1.0 - 1e-12));
-                    if lo < hi { vec![lo, hi] } else { vec![lo] }
-                }
-            };
+            // The distribution as written, and each of its variants along an axis of one of
+            // its parameters.
+            let variants = std::iter::once(p.distribution.clone()).chain(
+                (axes.iter().filter(|a| a.param == i)).flat_map(|a| {
+                    a.values
+                        .iter()
+                        .map(|&v| with_field(&p.distribution, a.field, v))
+                }),
+            );
+            let mut values: Vec<f64> = variants
+                .flat_map(|d| match d {
+                    Distribution::Discrete { values, .. } => values,
+                    d => vec![d.quantile(1e-12), d.quantile(1.0 - 1e-12)],
+                })
+                .collect();
+            values.sort_by(f64::total_cmp);
+            values.dedup();
             Some(GridAxis { name, values })
         })
         .collect()
