@@ -176,8 +176,6 @@ fn scene_at(
     sampled: Option<(&crate::manifest::Sampling, &Design)>,
 ) -> Scene {
     let mut half = m.arch.half_angle_deg;
-    let mut form = m.arch.form();
-    let mut lambda = None;
     let mut at_deg = None;
     let mut at_x = None;
     let mut joints = m.arch.voussoirs;
@@ -200,36 +198,45 @@ fn scene_at(
             AxisName::AtX => at_x = Some(v),
         }
     }
-    let find = case.map_or(m.find, |c| c.find);
-    if let Some((s, design)) = sampled {
-        let row = idx.last().map_or(0, |&r| r as u64);
-        for (p, v) in s.params.iter().zip(s.values(design, row)) {
-            match p.name {
-                ParamName::K => k = v,
-                ParamName::TOverR => k = k_from_t_over_r(v),
-                ParamName::Mu => mu = v,
-                ParamName::HalfAngleDeg => half = v,
-                ParamName::Eccentricity => form.shape = Shape::Pointed { eccentricity: v },
-                ParamName::Voussoirs => joints = discretisation(v),
-                ParamName::AtDeg => at_deg = Some(v),
-                ParamName::AtX => at_x = Some(v),
-                ParamName::Lambda => lambda = Some(v),
-            }
-        }
-        // A sample at the closed end of a continuous support rounds onto it: K = 1 is no arch.
-        k = k.max(1f64.next_up());
-    }
     // Every value was validated with the manifest, so the constructors cannot fail.
-    let arch = Arch::from_valid(k, half, m.arch.weight, joints);
-    let friction = Friction::new(mu).unwrap_or(Friction::INFINITE);
-    Scene {
-        arch,
-        friction,
-        find,
-        form,
+    let scene = Scene {
+        arch: Arch::from_valid(k, half, m.arch.weight, joints),
+        friction: Friction::new(mu).unwrap_or(Friction::INFINITE),
+        find: case.map_or(m.find, |c| c.find),
+        form: m.arch.form(),
         load: case.map_or(Load::SelfWeight, |c| c.load(at_deg, at_x)),
-        lambda: lambda.or(case.and_then(|c| c.lambda)).unwrap_or(0.0),
+        lambda: case.and_then(|c| c.lambda).unwrap_or(0.0),
+    };
+    match sampled {
+        Some((s, design)) => {
+            let row = idx.last().map_or(0, |&r| r as u64);
+            with_sample(scene, s, &s.values(design, row))
+        }
+        None => scene,
     }
+}
+
+/// `scene` at the values of one sample of `s` (in `s.params` order): the scene of a case of a
+/// sampling study, and of the replicates its convergence study draws. A sample at the closed
+/// end of a continuous support of K rounds onto it, and is moved off (K = 1 is no arch).
+pub fn with_sample(mut scene: Scene, s: &crate::manifest::Sampling, values: &[f64]) -> Scene {
+    let a = scene.arch;
+    let (mut k, mut half, mut joints) = (a.k, a.half_angle_deg(), a.joints);
+    for (p, &v) in s.params.iter().zip(values) {
+        match p.name {
+            ParamName::K => k = v,
+            ParamName::TOverR => k = k_from_t_over_r(v),
+            ParamName::Mu => scene.friction = Friction::new(v).unwrap_or(Friction::INFINITE),
+            ParamName::HalfAngleDeg => half = v,
+            ParamName::Eccentricity => scene.form.shape = Shape::Pointed { eccentricity: v },
+            ParamName::Voussoirs => joints = discretisation(v),
+            ParamName::AtDeg => scene.load = Load::Point { at_deg: v },
+            ParamName::AtX => scene.load = Load::PointX { at_x: v },
+            ParamName::Lambda => scene.lambda = v,
+        }
+    }
+    scene.arch = Arch::from_valid(k.max(1f64.next_up()), half, a.weight, joints);
+    scene
 }
 
 /// The discretisation of a voussoir count (+inf: the continuum).

@@ -7,7 +7,6 @@
 use super::reduce::Group;
 use crate::analysis::types::Regime;
 use crate::manifest::Sampling;
-use crate::model::Friction;
 use crate::sampling::{Design, Method};
 use crate::scene::{self, Find, Scene};
 use crate::store::EstimateRow;
@@ -127,21 +126,7 @@ pub fn rows(
 /// Whether the arch of sample `row` stands (the scene's thickness and friction replaced by
 /// the sample's).
 fn stands(s: &Sampling, design: &Design, row: u64, base: &Scene) -> bool {
-    let mut scene = *base;
-    for (p, v) in s.params.iter().zip(s.values(design, row)) {
-        match p.name {
-            crate::manifest::ParamName::K => scene.arch = scene.arch.with_k(v.max(1f64.next_up())),
-            crate::manifest::ParamName::TOverR => {
-                scene.arch = scene
-                    .arch
-                    .with_k(crate::model::k_from_t_over_r(v).max(1f64.next_up()))
-            }
-            crate::manifest::ParamName::Mu => {
-                scene.friction = Friction::new(v).unwrap_or(Friction::INFINITE)
-            }
-            _ => {}
-        }
-    }
+    let scene = crate::plan::with_sample(*base, s, &s.values(design, row));
     scene::solve_static(&scene).regime == Some(Regime::Stable)
 }
 

@@ -160,8 +160,10 @@ pub struct Group {
     /// The mechanism of every answered λ_max (fragility), by [`MECHANISMS`].
     pub at_limit: [u64; 4],
     /// The output of every row (λ_max or the margin; NaN where none), in row order, for the
-    /// fragility and sensitivity questions.
+    /// fragility and sensitivity questions (empty for a probability).
     pub outputs: Vec<f64>,
+    /// Whether the outputs are kept.
+    keeps_outputs: bool,
     /// (n, failures among the first n rows) at n = 2, 4, 8, … (the run's own convergence).
     pub prefix: Vec<(u64, u64)>,
     /// The rows per base sample of a sensitivity design (d + 2), whose A block alone is
@@ -186,6 +188,7 @@ impl Group {
             } else {
                 Vec::new()
             },
+            keeps_outputs: keep,
             prefix: Vec::new(),
             stride: (s.question == Question::Sensitivity).then(|| s.params.len() as u64 + 2),
         }
@@ -194,7 +197,7 @@ impl Group {
     /// Adds row `row` (rows arrive in order) and returns its answer.
     pub fn add(&mut self, row: u64, r: &Read, scene: &Scene) -> Answer {
         let a = answer(r, scene);
-        if self.outputs.capacity() > 0 {
+        if self.keeps_outputs {
             self.outputs
                 .push(a.lambda_max.or(a.margin).unwrap_or(f64::NAN));
         }

@@ -95,16 +95,21 @@ fn param_axis(ax: &RawAxis, at: Location, key: &str, cx: &Ctx) -> Result<Vec<f64
             ),
         ));
     }
-    let mut sorted = values.clone();
-    sorted.sort_by(f64::total_cmp);
-    if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
+    if let Some(v) = repeated(&values) {
         return Err(cx.err(
             Some(at),
             key,
-            format!("value {} is listed twice", fmt_num(w[0])),
+            format!("value {} is listed twice", fmt_num(v)),
         ));
     }
     Ok(values)
+}
+
+/// A value that stands twice in `values`, if one does.
+fn repeated(values: &[f64]) -> Option<f64> {
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    sorted.windows(2).find(|w| w[0] == w[1]).map(|w| w[0])
 }
 
 /// The parameters of a distribution given as axes, with their values: (field, values).
@@ -408,15 +413,13 @@ fn discrete(
             ),
         ));
     }
-    let mut sorted = values.clone();
-    sorted.sort_by(f64::total_cmp);
-    if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
+    if let Some(v) = repeated(&values) {
         return Err(cx.err(
             Some(at),
             &format!("{base}.values"),
             format!(
                 "value {} is listed twice: each value once, with its weight",
-                fmt_num(w[0])
+                fmt_num(v)
             ),
         ));
     }

@@ -124,11 +124,11 @@ pub(super) fn validate(
     };
     let (n, method, seed, bootstrap) = samples(raw, question, cx)?;
     for lc in load_cases.iter_mut() {
-        // Probability asks for the state at the given λ; the others find λ_max, or (the
-        // self-weight margin) the collapse thickness, which the plan sets on each scene.
-        lc.find = match (question, lc.kind.is_live()) {
-            (Question::Probability, _) | (Question::Sensitivity, false) => Find::State,
-            _ => Find::LoadFactor,
+        // The checks of the loads and the grid see a state or load-factor study: the
+        // thickness find of the self-weight margin finds K, which a sampling study gives.
+        lc.find = match question.scene_find(lc.kind) {
+            Find::Thickness => Find::State,
+            f => f,
         };
     }
     let shadow = shadow_axes(&params, &axes);
