@@ -41,6 +41,7 @@ fn main() -> Result<()> {
                 f.modes.status.as_str()
             ),
             drawing: drawing(&geom, field, 0.08),
+            window: None,
         };
         let path = out.join(format!("{}.png", f.template.id));
         render_mechanism(&path, (800, 520), &fig)?;
@@ -102,6 +103,7 @@ fn main() -> Result<()> {
                     m.work.map_or(f64::NAN, |w| w.work_residual)
                 ),
                 drawing: drawing(&geom, field, 0.08),
+                window: None,
             };
             let path = out.join(format!("{name}-{i}-{kind}.png"));
             render_mechanism(&path, (800, 520), &fig)?;

@@ -17,6 +17,7 @@ pub mod boundaries;
 pub mod citation;
 pub mod engine;
 pub mod error;
+pub mod explore;
 pub mod figdata;
 pub mod manifest;
 pub mod merge;

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 /// The top-level modules of the library, lowest first. A module may use the modules before
 /// it, never one after it (docs/architecture.md says what each owns).
-const LAYERS: [&str; 26] = [
+const LAYERS: [&str; 27] = [
     "error",
     "progress",
     "provenance",
@@ -31,6 +31,7 @@ const LAYERS: [&str; 26] = [
     "slurm",
     "archive",
     "verify",
+    "explore",
     "app",
     "lib",
 ];

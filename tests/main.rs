@@ -10,6 +10,7 @@ mod citation;
 mod common;
 mod damaged;
 mod disk_full;
+mod explore;
 mod gap;
 mod given_values;
 mod hardening;

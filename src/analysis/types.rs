@@ -98,6 +98,17 @@ impl MechanismKind {
         }
     }
 
+    /// Parses the name written by [`MechanismKind::as_str`].
+    pub fn parse(s: &str) -> Option<Self> {
+        [
+            MechanismKind::Rotational,
+            MechanismKind::Mixed,
+            MechanismKind::Sliding,
+        ]
+        .into_iter()
+        .find(|m| m.as_str() == s)
+    }
+
     /// Classifies a set of active hinges and sliding joints.
     pub fn from_counts(hinges: usize, sliding: usize) -> Option<Self> {
         match (hinges > 0, sliding > 0) {

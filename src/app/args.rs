@@ -36,6 +36,26 @@ pub enum Command {
     Merge(MergeArgs),
     /// Write Slurm batch scripts for a sharded run: a job array and a merge job after it.
     Slurm(SlurmArgs),
+    /// Serve a page on this machine to explore one arch live (and a finished run's cases).
+    Explore(ExploreArgs),
+}
+
+/// `archstudy explore`.
+#[derive(Debug, Args)]
+pub struct ExploreArgs {
+    /// A run directory: the page opens on its regime map (or λ map, or influence line), and a
+    /// click on it shows that case.
+    pub run_dir: Option<PathBuf>,
+    /// The port to listen on (0: any free port; the address is printed).
+    #[arg(long, default_value_t = 8000)]
+    pub port: u16,
+    /// The address to listen on. Anything but a loopback address lets other machines use the
+    /// server, with a warning.
+    #[arg(long, default_value = "127.0.0.1")]
+    pub host: String,
+    /// Open the page in the default browser.
+    #[arg(long)]
+    pub open: bool,
 }
 
 /// `archstudy merge`.

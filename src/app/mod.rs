@@ -10,7 +10,7 @@ pub use args::{Cli, Command};
 use crate::error::UsageError;
 use crate::{archive, report, runner, scene, verify};
 use anyhow::Result;
-use args::{ArchiveArgs, CheckArgs, ReportArgs, RunArgs, SolveArgs, VerifyArgs};
+use args::{ArchiveArgs, CheckArgs, ExploreArgs, ReportArgs, RunArgs, SolveArgs, VerifyArgs};
 use std::io::Write;
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -43,6 +43,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Verify(args) => check_archive(&args),
         Command::Merge(args) => cluster::merge(&args),
         Command::Slurm(args) => cluster::slurm(&args),
+        Command::Explore(args) => explore(&args),
     }
 }
 
@@ -154,4 +155,60 @@ fn check_archive(args: &VerifyArgs) -> Result<ExitCode> {
     } else {
         ExitCode::from(1)
     })
+}
+
+fn explore(args: &ExploreArgs) -> Result<ExitCode> {
+    let loopback = match args.host.trim_start_matches('[').trim_end_matches(']') {
+        "localhost" => true,
+        h => h
+            .parse::<std::net::IpAddr>()
+            .is_ok_and(|ip| ip.is_loopback()),
+    };
+    if !loopback {
+        eprintln!(
+            "warning: listening on {}: other machines that reach it can use this server \
+             (it is read-only, but every request runs analyses on this machine)",
+            args.host
+        );
+    }
+    let server = crate::explore::start(&crate::explore::ExploreOptions {
+        run_dir: args.run_dir.clone(),
+        host: args.host.clone(),
+        port: args.port,
+    })
+    .map_err(|e| {
+        if args.port != 0 && format!("{e:#}").contains("in use") {
+            e.context(UsageError {
+                option: "--port",
+                value: args.port.to_string(),
+                allowed: "a free port: give another with --port, or --port 0 for any free one"
+                    .into(),
+            })
+        } else {
+            e
+        }
+    })?;
+    print_out(&format!(
+        "archstudy explore: serving {} (Ctrl-C to stop)\n",
+        server.url()
+    ))?;
+    if args.open {
+        let opener = if cfg!(target_os = "macos") {
+            "open"
+        } else {
+            "xdg-open"
+        };
+        if std::process::Command::new(opener)
+            .arg(server.url())
+            .spawn()
+            .is_err()
+        {
+            eprintln!(
+                "warning: could not start {opener}; open {} yourself",
+                server.url()
+            );
+        }
+    }
+    server.wait()?;
+    Ok(ExitCode::SUCCESS)
 }

@@ -26,6 +26,32 @@ pub struct DomainCurves {
     pub h_max_s: Samples,
 }
 
+/// The series names of the six bounds, as curves.parquet stores them.
+pub const DOMAIN_SERIES: [&str; 6] = [
+    "h_min_r_extrados",
+    "h_max_r_extrados",
+    "h_min_r_intrados",
+    "h_max_r_intrados",
+    "h_min_s",
+    "h_max_s",
+];
+
+impl DomainCurves {
+    /// One bound by its series name in curves.parquet (`h_min_r_extrados`, …, `h_max_s`);
+    /// empty for another name.
+    pub fn series(&self, name: &str) -> Samples {
+        match name {
+            "h_min_r_extrados" => self.h_min_r_extrados.clone(),
+            "h_max_r_extrados" => self.h_max_r_extrados.clone(),
+            "h_min_r_intrados" => self.h_min_r_intrados.clone(),
+            "h_max_r_intrados" => self.h_max_r_intrados.clone(),
+            "h_min_s" => self.h_min_s.clone(),
+            "h_max_s" => self.h_max_s.clone(),
+            _ => Samples::new(),
+        }
+    }
+}
+
 /// The joint angles (radians) at which a figure samples the right half: every joint of a
 /// discrete arch, or 361 points of the continuum.
 pub fn sample_angles(sym: &SymmetricCircular) -> Vec<f64> {

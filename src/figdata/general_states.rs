@@ -438,6 +438,31 @@ pub(super) fn chosen_cases<'a>(
     out
 }
 
+/// The collapse mechanism of a drawn limit or collapse state (its stored hinges and sliding
+/// joints) under the paper's non-associative rule, with the arch model it moves on: the
+/// mode of the state's own kind (`row.mechanism`) when the pattern has one, else its first
+/// mode. `None` when the row has no active joints or the pattern no mode.
+pub fn mechanism_of_state(
+    row: &StateRow,
+) -> Option<(ArchModel, crate::analysis::kinematics::VelocityField)> {
+    let model = general::model_of_state(row).ok()?;
+    let joints = stored_pattern(&model, row);
+    if joints.is_empty() {
+        return None;
+    }
+    let modes = mechanism_modes(&model, &joints, FlowRule::NonAssociative, true).ok()?;
+    let kind = row
+        .mechanism
+        .as_deref()
+        .and_then(crate::analysis::MechanismKind::parse);
+    let mut fields = modes.fields;
+    let pick = fields
+        .iter()
+        .position(|f| kind.is_none_or(|k| f.kind() == Some(k)))
+        .unwrap_or(0);
+    (pick < fields.len()).then(|| (model, fields.swap_remove(pick)))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

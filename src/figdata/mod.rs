@@ -12,6 +12,7 @@ pub mod load_factors;
 pub mod mechanisms;
 mod reference;
 pub mod sampled;
+pub use general_states::mechanism_of_state;
 pub use reference::find_of_quantity;
 
 use crate::analysis::symmetric;
@@ -287,7 +288,8 @@ fn bifurcation_state(
     Ok(row)
 }
 
-fn joint_lists(
+/// The stored lists of a set of hinges and sliding joints.
+pub fn joint_lists(
     hinges: &[crate::analysis::Hinge],
     sl: &[crate::analysis::SlidingJoint],
 ) -> JointLists {
@@ -324,12 +326,9 @@ fn scene_state(
     );
     let c = curves::domain_curves(&arch, friction);
     let fig = domains_figure(&id);
-    out.push(&fig, "h_min_r_extrados", &c.h_min_r_extrados);
-    out.push(&fig, "h_max_r_extrados", &c.h_max_r_extrados);
-    out.push(&fig, "h_min_r_intrados", &c.h_min_r_intrados);
-    out.push(&fig, "h_max_r_intrados", &c.h_max_r_intrados);
-    out.push(&fig, "h_min_s", &c.h_min_s);
-    out.push(&fig, "h_max_s", &c.h_max_s);
+    for name in curves::DOMAIN_SERIES {
+        out.push(&fig, name, &c.series(name));
+    }
     let mut row = blank_state(manifest, at.lc, at.group, id.clone());
     row.source = "scene".into();
     row.state = "no_equilibrium".into();

@@ -57,6 +57,9 @@ pub struct DomainsChart {
     pub h_s: Option<(f64, f64)>,
     /// True for a discrete arch: bounds exist at the joints only (drawn as markers).
     pub discrete: bool,
+    /// Crown thrusts marked across the figure (e.g. those of the states drawn beside it),
+    /// each with its label.
+    pub marks: Vec<(f64, String)>,
 }
 
 const R_ALPHA: f64 = 0.16;
@@ -103,6 +106,7 @@ impl Figure for DomainsChart {
         self.draw_bands(&mut chart, ctx, w)?;
         draw_mesh(&mut chart, ctx, w)?;
         self.draw_curves(&mut chart, ctx, w)?;
+        self.draw_marks(root, &chart, ctx, w)?;
         self.draw_brackets(root, &chart, ctx, w)
     }
 }
@@ -135,6 +139,38 @@ impl DomainsChart {
                     ))?;
                 }
             }
+        }
+        Ok(())
+    }
+
+    /// The marked thrusts: dashed black lines across, each labelled at its left end.
+    fn draw_marks<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        chart: &Chart<DB>,
+        ctx: &PlotContext,
+        ((x0, x1), (y0, y1)): Window,
+    ) -> DrawResult<(), DB> {
+        let font = ctx.font(12.5).pos(Pos::new(HPos::Left, VPos::Bottom));
+        for (h, label) in &self.marks {
+            if !(h.is_finite() && (y0..=y1).contains(h)) {
+                continue;
+            }
+            let (a, b) = (
+                chart.backend_coord(&(x0, *h)),
+                chart.backend_coord(&(x1, *h)),
+            );
+            root.draw(&plotters::element::DashedPathElement::new(
+                vec![a, b],
+                ctx.upx(5.0),
+                ctx.upx(3.0),
+                palette::INK.stroke_width(ctx.upx(1.4)),
+            ))?;
+            root.draw(&Text::new(
+                label.clone(),
+                (a.0 + ctx.px(6.0), a.1 - ctx.px(3.0)),
+                font.clone(),
+            ))?;
         }
         Ok(())
     }

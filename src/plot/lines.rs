@@ -131,6 +131,7 @@ fn draw_panel<DB: DrawingBackend>(
         .x_label_area_size(ctx.px(48.0))
         .y_label_area_size(ctx.px(66.0))
         .build_cartesian_2d(x0..x1, y0..y1)?;
+    super::frames::record(&chart, (x0, x1), (y0, y1), p.log_y);
     super::draw_xy_axes(
         root,
         &mut chart,

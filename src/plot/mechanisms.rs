@@ -34,6 +34,10 @@ pub struct MechanismFigure {
     pub subtitle: String,
     /// The geometry to draw.
     pub drawing: MechanismDrawing,
+    /// The window (x_min, x_max, y_min, y_max, over r) to fit in the panel; `None`: the
+    /// drawing's own bounds. Frames of an animation share one window, so that the arch
+    /// keeps its scale while the blocks move.
+    pub window: Option<[f64; 4]>,
 }
 
 /// Colours of the figure.
@@ -130,7 +134,7 @@ fn draw<DB: DrawingBackend>(
             .max(0.11 * h),
     };
     let d = &fig.drawing;
-    let mut b = d.bounds();
+    let mut b = fig.window.unwrap_or_else(|| d.bounds());
     // Room for the ground hatching below the springings and for the arrows.
     let pad = 0.06 * (b[1] - b[0]).max(b[3] - b[2]);
     b = [b[0] - pad, b[1] + pad, b[2] - pad, b[3] + 0.5 * pad];
@@ -471,6 +475,7 @@ mod tests {
                 title: f.template.id.to_string(),
                 subtitle: f.template.description.to_string(),
                 drawing: drawing(&geom, &f.modes.fields[0], 0.08),
+                window: None,
             };
             for ext in ["png", "svg"] {
                 let path = dir.path().join(format!("{}.{ext}", f.template.id));
@@ -489,6 +494,7 @@ mod tests {
             title: String::new(),
             subtitle: String::new(),
             drawing: drawing(&geom, &f.modes.fields[0], 0.08),
+            window: None,
         };
         let path = Path::new("/nonexistent-dir/x.png");
         let err = render_mechanism(path, (100, 80), &fig).unwrap_err();

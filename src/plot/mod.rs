@@ -14,6 +14,7 @@
 pub mod accuracy;
 pub mod critical;
 pub mod domains;
+pub mod frames;
 pub mod lambda_map;
 pub mod lines;
 pub mod mechanisms;

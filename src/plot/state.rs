@@ -6,6 +6,7 @@ use super::style::{self, LegendItem, Mark, palette};
 use super::{Figure, PlotContext, Window, XyChart as Chart};
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
+use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
@@ -125,6 +126,13 @@ pub struct StateDrawing {
     pub line_of_thrust: Vec<Xy>,
     /// Its points on the joints between voussoirs.
     pub line_on_joints: Vec<Xy>,
+    /// What the line of thrust is, for the legend (`line of thrust` when empty).
+    pub line_label: String,
+    /// A second line of thrust of the same arch (e.g. the maximum-thrust state beside the
+    /// minimum-thrust one), drawn dashed; empty when there is none.
+    pub other_line: Vec<Xy>,
+    /// What the second line is, for the legend.
+    pub other_line_label: String,
     /// Hinges.
     pub hinges: Vec<DrawnHinge>,
     /// Sliding joints.
@@ -227,12 +235,13 @@ impl StateDrawing {
         let mut y = ctx.px(10.0);
         if ctx.titles {
             let title_font = ctx.font(17.0).pos(Pos::new(HPos::Center, VPos::Top));
-            upper.draw(&Text::new(
-                self.title.clone(),
-                (w as i32 / 2, y),
-                title_font,
-            ))?;
-            y = ctx.px(36.0);
+            // A title wider than the figure (a long arch description) wraps at spaces.
+            let room = f64::from(w) - 2.0 * f64::from(ctx.px(8.0));
+            for line in super::style::wrap(&title_font, &self.title, room) {
+                upper.draw(&Text::new(line, (w as i32 / 2, y), title_font.clone()))?;
+                y += ctx.px(22.0);
+            }
+            y += ctx.px(4.0);
         }
         let sub_font = ctx.font(13.5).pos(Pos::new(HPos::Center, VPos::Top));
         // A line wider than the figure (a single-column paper file) wraps at spaces.
@@ -372,6 +381,16 @@ impl StateDrawing {
         ctx: &PlotContext,
         ((x0, x1), (y0, y1)): Window,
     ) -> DrawResult<(), DB> {
+        if self.other_line.len() >= 2 {
+            for piece in style::clip_polyline(&self.other_line, (x0, x1), (y0, y1)) {
+                chart.plotting_area().draw(&DashedPathElement::new(
+                    piece,
+                    ctx.upx(7.0),
+                    ctx.upx(4.0),
+                    palette::BLUE.stroke_width(ctx.upx(2.0)),
+                ))?;
+            }
+        }
         if self.line_of_thrust.len() >= 2 {
             for piece in style::clip_polyline(&self.line_of_thrust, (x0, x1), (y0, y1)) {
                 chart.plotting_area().draw(&PathElement::new(
@@ -493,8 +512,13 @@ impl StateDrawing {
     fn legend(&self) -> Vec<LegendItem> {
         let mut items = Vec::new();
         if self.line_of_thrust.len() >= 2 {
+            let label = if self.line_label.is_empty() {
+                "line of thrust"
+            } else {
+                self.line_label.as_str()
+            };
             items.push(LegendItem::new(
-                "line of thrust",
+                label,
                 Mark::Line {
                     color: palette::RED,
                     width: 2.4,
@@ -507,6 +531,16 @@ impl StateDrawing {
                     Mark::Ring(palette::RED),
                 ));
             }
+        }
+        if self.other_line.len() >= 2 {
+            items.push(LegendItem::new(
+                self.other_line_label.as_str(),
+                Mark::Line {
+                    color: palette::BLUE,
+                    width: 2.0,
+                    dashed: true,
+                },
+            ));
         }
         if !self.hinges.is_empty() {
             items.push(LegendItem::new(

@@ -9,6 +9,7 @@ pub mod checks;
 pub mod convergence;
 pub mod data;
 pub mod format;
+pub mod live;
 pub mod paper;
 pub mod reduce;
 pub mod tables;

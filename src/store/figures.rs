@@ -472,16 +472,20 @@ pub struct BifurcationGroup {
 
 /// Reads the arch group and load of every row of bifurcations.parquet, in table order.
 pub fn read_bifurcation_groups(path: &Path) -> Result<Vec<BifurcationGroup>> {
-    let df = read_parquet(path)?;
+    Ok(bifurcation_groups_of_frame(&read_parquet(path)?))
+}
+
+/// The arch group and load of every row of a bifurcations frame, in table order.
+pub fn bifurcation_groups_of_frame(df: &polars::prelude::DataFrame) -> Vec<BifurcationGroup> {
     let has = |name: &str| df.column(name).is_ok();
-    let half = f64_or_null(&df, "half_angle_deg");
-    let nv = f64_or_null(&df, "voussoirs");
-    let at = f64_or_null(&df, "at_deg");
-    let at_x = f64_or_null(&df, "at_x");
-    let lf = f64_or_null(&df, "load_factor");
+    let half = f64_or_null(df, "half_angle_deg");
+    let nv = f64_or_null(df, "voussoirs");
+    let at = f64_or_null(df, "at_deg");
+    let at_x = f64_or_null(df, "at_x");
+    let lf = f64_or_null(df, "load_factor");
     let has_voussoirs = has("voussoirs");
-    let axis = str_or_null(&df, "axis");
-    Ok((0..df.height())
+    let axis = str_or_null(df, "axis");
+    (0..df.height())
         .map(|i| BifurcationGroup {
             half_angle_deg: half[i],
             voussoirs: has_voussoirs.then(|| nv[i].map(|v| v as u32)),
@@ -490,7 +494,7 @@ pub fn read_bifurcation_groups(path: &Path) -> Result<Vec<BifurcationGroup>> {
             load_factor: lf[i],
             axis: axis[i].clone(),
         })
-        .collect())
+        .collect()
 }
 
 /// The arch of one row of results.parquet or boundaries.parquet: its half-angle and voussoir

@@ -17,14 +17,15 @@ pub use cases::{
 pub use estimates::{EstimateRow, estimates_frame, read_estimates};
 pub use figures::{
     BifurcationGroup, CurvePoint, LoadFactorCase, MechanismRow, ReferenceRow, RowArch, StateRow,
-    curves_frame, mechanisms_frame, read_bifurcation_groups, read_curves, read_load_factor_cases,
-    read_load_factor_cases_in_blocks, read_mechanisms, read_reference, read_row_arches,
-    read_states, reference_frame, states_frame,
+    bifurcation_groups_of_frame, curves_frame, mechanisms_frame, read_bifurcation_groups,
+    read_curves, read_load_factor_cases, read_load_factor_cases_in_blocks, read_mechanisms,
+    read_reference, read_row_arches, read_states, reference_frame, states_frame,
 };
 pub use results::{BLOCK_ROWS, filled_by, results_frame, scenes_frame};
 pub use rows::{
-    BifurcationRow, BoundaryRow, JointLists, ResultRow, read_bifurcations, read_boundaries,
-    read_results, read_results_in_blocks, read_results_rows,
+    BifurcationRow, BoundaryRow, JointLists, ResultRow, bifurcations_of_frame, boundaries_of_frame,
+    read_bifurcations, read_boundaries, read_results, read_results_in_blocks, read_results_rows,
+    results_of_frame,
 };
 pub use schema::column_doc;
 pub use table::{

@@ -242,14 +242,14 @@ const RESULT_ROW_COLUMNS: [&str; 26] = [
 /// Reads results.parquet (the columns of [`ResultRow`] only).
 pub fn read_results(path: &Path) -> Result<Vec<ResultRow>> {
     let df = read_parquet_columns(path, &RESULT_ROW_COLUMNS)?;
-    rows_of_frame(&df, path)
+    results_of_frame(&df, path)
 }
 
 /// Reads the rows `offset .. offset + len` of results.parquet (the columns of [`ResultRow`]
 /// only; only the row groups that hold them are decoded).
 pub fn read_results_rows(path: &Path, (offset, len): (usize, usize)) -> Result<Vec<ResultRow>> {
     let df = super::read_parquet_rows(path, &RESULT_ROW_COLUMNS, Some((offset, len)))?;
-    rows_of_frame(&df, path)
+    results_of_frame(&df, path)
 }
 
 /// Reads results.parquet (the columns of [`ResultRow`] only) `block` rows at a time, in
@@ -261,11 +261,13 @@ pub fn read_results_in_blocks(
     mut each: impl FnMut(usize, Vec<ResultRow>) -> Result<()>,
 ) -> Result<()> {
     super::read_parquet_in_blocks(path, &RESULT_ROW_COLUMNS, block, |offset, df| {
-        each(offset, rows_of_frame(df, path)?)
+        each(offset, results_of_frame(df, path)?)
     })
 }
 
-fn rows_of_frame(df: &polars::prelude::DataFrame, path: &Path) -> Result<Vec<ResultRow>> {
+/// The result rows of a results frame (its columns of [`ResultRow`]); `path` names where it
+/// came from in errors.
+pub fn results_of_frame(df: &polars::prelude::DataFrame, path: &Path) -> Result<Vec<ResultRow>> {
     let cx = || format!("in {}", path.display());
     // An answer column the study's finds do not fill is not stored: all null.
     let absent = |name: &str| df.column(name).is_err() && filled_by(name).is_some();
@@ -350,10 +352,17 @@ fn window_lists(
 
 /// Reads boundaries.parquet.
 pub fn read_boundaries(path: &Path) -> Result<Vec<BoundaryRow>> {
-    let df = read_parquet(path)?;
+    boundaries_of_frame(&read_parquet(path)?, path)
+}
+
+/// The rows of a boundaries frame; `path` names where it came from in errors.
+pub fn boundaries_of_frame(
+    df: &polars::prelude::DataFrame,
+    path: &Path,
+) -> Result<Vec<BoundaryRow>> {
     let cx = || format!("in {}", path.display());
-    let f = |name: &str| f64_column(&df, name).with_context(cx);
-    let s = |name: &str| str_column(&df, name).with_context(cx);
+    let f = |name: &str| f64_column(df, name).with_context(cx);
+    let s = |name: &str| str_column(df, name).with_context(cx);
     let load_case = required(s("load_case")?, "load_case", path)?;
     let mu = required(f("mu")?, "mu", path)?;
     let k = required(f("k")?, "k", path)?;
@@ -361,10 +370,10 @@ pub fn read_boundaries(path: &Path) -> Result<Vec<BoundaryRow>> {
     let low = required(s("regime_low")?, "regime_low", path)?;
     let high = required(s("regime_high")?, "regime_high", path)?;
     let axis = required(s("axis")?, "axis", path)?;
-    let on = bool_column(&df, "on_collapse_curve").with_context(cx)?;
+    let on = bool_column(df, "on_collapse_curve").with_context(cx)?;
     let mech = s("mechanism")?;
     let (thrust, moment) = (f("thrust_over_half_weight")?, f("crown_moment")?);
-    let joints = joint_lists(&df).with_context(cx)?;
+    let joints = joint_lists(df).with_context(cx)?;
     Ok(joints
         .into_iter()
         .enumerate()
@@ -387,10 +396,17 @@ pub fn read_boundaries(path: &Path) -> Result<Vec<BoundaryRow>> {
 
 /// Reads bifurcations.parquet.
 pub fn read_bifurcations(path: &Path) -> Result<Vec<BifurcationRow>> {
-    let df = read_parquet(path)?;
+    bifurcations_of_frame(&read_parquet(path)?, path)
+}
+
+/// The rows of a bifurcations frame; `path` names where it came from in errors.
+pub fn bifurcations_of_frame(
+    df: &polars::prelude::DataFrame,
+    path: &Path,
+) -> Result<Vec<BifurcationRow>> {
     let cx = || format!("in {}", path.display());
-    let f = |name: &str| f64_column(&df, name).with_context(cx);
-    let s = |name: &str| str_column(&df, name).with_context(cx);
+    let f = |name: &str| f64_column(df, name).with_context(cx);
+    let s = |name: &str| str_column(df, name).with_context(cx);
     let load_case = required(s("load_case")?, "load_case", path)?;
     let mu = required(f("mu")?, "mu", path)?;
     let k = required(f("k")?, "k", path)?;
@@ -398,7 +414,7 @@ pub fn read_bifurcations(path: &Path) -> Result<Vec<BifurcationRow>> {
     let a = required(s("mechanism_a")?, "mechanism_a", path)?;
     let b = required(s("mechanism_b")?, "mechanism_b", path)?;
     let (thrust, moment) = (f("thrust_over_half_weight")?, f("crown_moment")?);
-    let joints = joint_lists(&df).with_context(cx)?;
+    let joints = joint_lists(df).with_context(cx)?;
     Ok(joints
         .into_iter()
         .enumerate()

@@ -224,6 +224,7 @@ impl RegimeMap {
             .x_label_area_size(ctx.px(50.0))
             .y_label_area_size(ctx.px(72.0))
             .build_cartesian_2d(mu0..mu1, k0..k1)?;
+        super::frames::record(&chart, (mu0, mu1), (k0, k1), false);
         self.draw_regions(&mut chart, ctx, window)?;
         super::draw_mu_k_mesh(&mut chart, ctx, window, true)?;
         self.draw_strip(root, &chart, ctx, window)?;

@@ -7,10 +7,15 @@ use crate::report::data::RunData;
 use crate::report::format::{given, short};
 use crate::store::StateRow;
 
-/// The thrust-domains figure of a scene.
+/// The thrust-domains figure of a scene, from the curves stored for it.
 pub fn figure(data: &RunData, s: &StateRow) -> FigureSpec {
     let fig = figdata::domains_figure(&s.state_id);
-    let c = |series: &str| data.curve(&fig, series);
+    figure_of(s, |series| data.curve(&fig, series))
+}
+
+/// The thrust-domains figure of a scene whose Fig. 2 curves `c` gives by series name
+/// (`h_min_r_extrados`, …, `h_max_s`, as curves.parquet names them).
+pub fn figure_of(s: &StateRow, c: impl Fn(&str) -> Vec<(f64, f64)>) -> FigureSpec {
     let curve = |label: &str, series: &str, family, upper| BoundCurve {
         label: label.into(),
         points: c(series),
@@ -93,6 +98,7 @@ pub fn figure(data: &RunData, s: &StateRow) -> FigureSpec {
             h_r: interval(s.thrust_r_min, s.thrust_r_max, r_exists),
             h_s: interval(s.thrust_s_min, s.thrust_s_max, s_exists),
             discrete: s.voussoirs.is_some(),
+            marks: Vec::new(),
         }),
     }
 }

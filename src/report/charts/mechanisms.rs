@@ -39,6 +39,7 @@ pub fn figure(data: &RunData, s: &StateRow) -> Option<FigureSpec> {
                     short(m.work_loads)
                 ),
                 drawing,
+                window: None,
             })
         })
         .collect();

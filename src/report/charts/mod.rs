@@ -125,12 +125,11 @@ pub struct LoadCaseFigure<'a> {
     pub title_suffix: String,
 }
 
-/// All figures of a run, in report order.
-pub fn build(data: &RunData) -> Vec<FigureSpec> {
-    let mut out = Vec::new();
+/// The load cases of a run as its figures name them, in manifest order.
+pub fn load_case_figures(data: &RunData) -> Vec<LoadCaseFigure<'_>> {
     let multi = data.manifest.load_cases.len() > 1;
-    for lc in &data.manifest.load_cases {
-        let lc = LoadCaseFigure {
+    (data.manifest.load_cases.iter())
+        .map(|lc| LoadCaseFigure {
             name: &lc.name,
             stem_suffix: if multi {
                 format!("-{}", safe(&lc.name))
@@ -142,7 +141,14 @@ pub fn build(data: &RunData) -> Vec<FigureSpec> {
             } else {
                 String::new()
             },
-        };
+        })
+        .collect()
+}
+
+/// All figures of a run, in report order.
+pub fn build(data: &RunData) -> Vec<FigureSpec> {
+    let mut out = Vec::new();
+    for lc in load_case_figures(data) {
         if data.manifest.sampling.is_some() {
             out.extend(uncertainty::figures(data, &lc));
             continue;

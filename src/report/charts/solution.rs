@@ -5,8 +5,10 @@
 //! sliding joints); any other find draws the scene's state of largest margin when it stands,
 //! else the arch alone with a note that no equilibrium exists.
 
-use super::FigureSpec;
 use super::state::figure_with_lines;
+use super::{Chart, FigureSpec};
+use crate::analysis::MechanismKind;
+use crate::analysis::symmetric::ThrustState;
 use crate::figdata::{self, general};
 use crate::plot::Format;
 use crate::scene::{Find, Outcome, Solution};
@@ -98,6 +100,55 @@ pub fn figure(sol: &Solution) -> Result<FigureSpec> {
     let row = state_row(sol);
     let (line, on_joints) = figdata::lines_of_state(&row)?.unwrap_or_default();
     Ok(figure_with_lines(&row, line, on_joints, false))
+}
+
+/// The drawing of a standing scene of a circular arch with radial joints under self-weight
+/// (`sol`, its `state` answer) with the lines of thrust of its minimum-thrust state `lo` and
+/// its maximum-thrust state `hi` ([`crate::analysis::symmetric::thrust`]), each with its
+/// hinges and sliding joints. A state whose crown moment is not fixed (a thrust set by
+/// sliding alone) has no unique line: its line is not drawn and the subtitle says so.
+pub fn thrust_states_figure(
+    sol: &Solution,
+    lo: &ThrustState,
+    hi: &ThrustState,
+) -> Result<FigureSpec> {
+    let row_of = |s: &ThrustState, name: &str| {
+        let mut row = state_row(sol);
+        row.state = name.into();
+        row.thrust_over_half_weight = finite(s.thrust_over_half_weight);
+        row.crown_moment = finite(s.crown_moment);
+        row.crown_shear = Some(0.0);
+        row.joints = figdata::joint_lists(&s.hinges, &s.sliding_joints);
+        row.mechanism = MechanismKind::from_counts(s.hinges.len(), s.sliding_joints.len())
+            .map(|m| m.as_str().to_string());
+        row
+    };
+    let (row_lo, row_hi) = (row_of(lo, "minimum_thrust"), row_of(hi, "maximum_thrust"));
+    let (line_lo, joints_lo) = figdata::lines_of_state(&row_lo)?.unwrap_or_default();
+    let (line_hi, _) = figdata::lines_of_state(&row_hi)?.unwrap_or_default();
+    let mut spec = figure_with_lines(&row_lo, line_lo, joints_lo, false);
+    let h = |s: &ThrustState| crate::report::format::short(s.thrust_over_half_weight);
+    if let Chart::State(d) = &mut spec.chart {
+        d.title = format!(
+            "Minimum- and maximum-thrust states, K = {}, μ = {}",
+            crate::report::format::given(row_lo.k),
+            super::mu_text(row_lo.mu)
+        );
+        d.line_label = format!("minimum-thrust line, H/W_half = {}", h(lo));
+        d.other_line_label = format!("maximum-thrust line, H/W_half = {}", h(hi));
+        if line_hi.is_empty() {
+            d.subtitle.push(format!(
+                "The maximum thrust H/W_half = {} is set by sliding alone: its line of thrust is not unique and is not drawn.",
+                h(hi)
+            ));
+        }
+        d.other_line = line_hi;
+        let g = super::state::geometry::of_state(&row_hi);
+        d.hinges.extend(g.hinges);
+        d.sliding.extend(g.sliding);
+    }
+    spec.title = "Minimum- and maximum-thrust states".into();
+    Ok(spec)
 }
 
 /// The drawing of a solution's state as the text of an SVG file.

@@ -64,6 +64,9 @@ pub fn figure_with_lines(
             supports: geometry.supports,
             line_of_thrust: line,
             line_on_joints: on_joints,
+            line_label: String::new(),
+            other_line: Vec::new(),
+            other_line_label: String::new(),
             hinges: geometry.hinges,
             sliding: geometry.sliding,
             load: geometry.load,
@@ -94,8 +97,10 @@ pub fn arch_text(s: &StateRow) -> String {
     }
     if s.load != "self_weight" {
         let at = match (s.at_x, s.at_deg) {
-            (Some(x), _) => format!(" at x/L = {}", given(x)),
-            (None, Some(a)) => format!(" at {}°", position_deg(a)),
+            // x/L as given; one computed from the angle (every digit of a float) yields to it.
+            (Some(x), None) => format!(" at x/L = {}", given(x)),
+            (Some(x), Some(_)) if given(x).len() <= 8 => format!(" at x/L = {}", given(x)),
+            (_, Some(a)) => format!(" at {}°", position_deg(a)),
             (None, None) => String::new(),
         };
         let lambda = s
