@@ -365,3 +365,45 @@ fn the_command_prints_its_address_and_warns_off_loopback() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("/no/such/run"));
 }
+
+#[test]
+fn a_click_on_an_influence_line_gives_the_case_under_it() {
+    let dir = scratch("explore-influence");
+    let run = run_study(
+        &dir,
+        "influence.yaml",
+        "name: influence\narch: {shape: pointed, eccentricity: 0.2}\ngrid:\n  at_x: {values: [0.1, 0.25, 0.4, 0.6, 0.75, 0.9]}\n  k: {values: [1.3]}\n  mu: {values: [0.5]}\nload_cases:\n  - {name: point, kind: point}\nfind: load_factor\n",
+    );
+    let s = server(Some(&run));
+    let (status, v) = get_json(&s, "/api/run");
+    assert_eq!(status, 200, "{v}");
+    assert_eq!(v["figure"]["kind"], "lines", "{v}");
+    let frames = v["figure"]["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 2, "λ against the angle and against x/L");
+    for id in 0..6_u64 {
+        let (_, c) = get_json(&s, &format!("/api/run/case?case={id}"));
+        let lambda = c["stored"]["load_factor"].as_f64().unwrap();
+        let at_x = c["solution"]["at_x"].as_f64().unwrap();
+        // The panel against x/L: the point (x/L, λ_max) of the case is that case.
+        let y = if frames[1]["log_y"].as_bool().unwrap() {
+            lambda.log10()
+        } else {
+            lambda
+        };
+        let (status, hit) = get_json(&s, &format!("/api/run/case?panel=1&x={at_x}&y={y}"));
+        assert_eq!(status, 200, "{hit}");
+        assert_eq!(
+            hit["case_id"].as_u64(),
+            Some(id),
+            "x/L = {at_x}, λ = {lambda}"
+        );
+        // Its scene, solved again, has the stored λ_max.
+        let again = hit["solution"]["load_factor"].as_f64().unwrap();
+        assert!(
+            (again - lambda).abs() <= 1e-9 * lambda.max(1.0),
+            "{again} vs {lambda}"
+        );
+    }
+    s.stop();
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -125,10 +125,12 @@ async function update() {
     showScene(v);
     ui.lastScene = params.toString();
     scheduleMechanism(params);
-    if (archKey(params) !== ui.mapKey) drawMap();
-    else if (!placeMarker()) {
+    if (archKey(params) !== ui.mapKey) {
+      if (!inWindow()) clearWindow();
+      drawMap();
+    } else if (!placeMarker()) {
       // The scene left the map: draw the map around it.
-      for (const id of ["map-k-from", "map-k-to", "map-mu-from", "map-mu-to"]) $(id).value = "";
+      clearWindow();
       drawMap();
     }
   } catch (e) {
@@ -245,13 +247,29 @@ function valueAt(f, p) {
   return { x, y: f.log_y ? Math.pow(10, y) : y };
 }
 
+function sceneKMu() {
+  const v = parseFloat($("k-number").value);
+  const k = $("thickness-by").value === "t_over_r" ? kFromT(v) : v;
+  const mu = $("mu-inf").checked ? Infinity : parseFloat($("mu-number").value);
+  return { k, mu };
+}
+
+// True when the map window typed in the inputs holds the scene (or none is typed).
+function inWindow() {
+  const w = ["map-k-from", "map-k-to", "map-mu-from", "map-mu-to"].map((id) => parseFloat($(id).value));
+  if (w.some((x) => !Number.isFinite(x))) return true;
+  const { k, mu } = sceneKMu();
+  return k >= w[0] && k <= w[1] && (!Number.isFinite(mu) || (mu >= w[2] && mu <= w[3]));
+}
+
+function clearWindow() {
+  for (const id of ["map-k-from", "map-k-to", "map-mu-from", "map-mu-to"]) $(id).value = "";
+}
+
 function placeMarker() {
   const f = ui.mapFrame, m = $("map-marker");
   const svg = $("map-fig").querySelector("svg");
-  const byT = $("thickness-by").value === "t_over_r";
-  const v = parseFloat($("k-number").value);
-  const k = byT ? kFromT(v) : v;
-  const mu = $("mu-inf").checked ? Infinity : parseFloat($("mu-number").value);
+  const { k, mu } = sceneKMu();
   if (!f || !svg) { m.hidden = true; return true; }
   if (!Number.isFinite(mu) || mu < f.x[0] || mu > f.x[1] || k < f.y[0] || k > f.y[1]) { m.hidden = true; return !Number.isFinite(mu); }
   const rect = svg.getBoundingClientRect();
@@ -371,10 +389,7 @@ function wire() {
   $("map-fig").addEventListener("click", mapClick);
   $("run-fig").addEventListener("click", runClick);
   $("map-redraw").addEventListener("click", () => { ui.mapKey = null; schedule(); });
-  $("map-centre").addEventListener("click", () => {
-    for (const id of ["map-k-from", "map-k-to", "map-mu-from", "map-mu-to"]) $(id).value = "";
-    ui.mapKey = null; schedule();
-  });
+  $("map-centre").addEventListener("click", () => { clearWindow(); ui.mapKey = null; schedule(); });
   $("play").addEventListener("click", () => {
     ui.playing = !ui.playing;
     $("play").textContent = ui.playing ? "pause" : "play";
