@@ -142,6 +142,9 @@ fn the_scene_answer_is_the_librarys_and_its_figures_are_drawn() {
     );
     assert_eq!(status, 200, "{v}");
     assert!(v["svg"]["domains"].is_null());
+    // μ_min at this K: the friction find at a μ just above it stands on its sliding rows.
+    let mu_min = v["mu_min_at_k"].as_f64().unwrap();
+    assert!(mu_min > 0.0 && mu_min <= v["finds"]["friction"]["mu_crit"].as_f64().unwrap() + 1e-9);
     assert!(v["finds"]["load_factor"]["load_factor"].as_f64().unwrap() > 0.05);
     // The mechanism moves through its frames, from rest.
     let (status, m) = get_json(&s, "/api/mechanism?k=1.1&mu=0.35");

@@ -4,8 +4,9 @@
 //! values with their mechanisms, and the frames of the collapse mechanism in motion.
 
 use super::query::QueryError;
+use crate::analysis::forms::ArchModel;
 use crate::analysis::kinematics::drawing;
-use crate::analysis::symmetric;
+use crate::analysis::{general, symmetric};
 use crate::figdata;
 use crate::manifest::{SceneOptionError, SceneOptions};
 use crate::model::Load;
@@ -41,6 +42,10 @@ pub struct SceneView {
     pub limit: Option<Solution>,
     /// True when the scene stands.
     pub stands: bool,
+    /// μ_min at the scene's K on the general route (other forms and live loads, where Hˢ
+    /// depends on K): below it the sliding conditions alone fail. `None` on the symmetric
+    /// route, whose μ_min (independent of K) is the `thresholds` find's.
+    pub mu_min_at_k: Option<f64>,
 }
 
 fn with_find(options: &SceneOptions, find: Find) -> Result<Scene, QueryError> {
@@ -89,12 +94,28 @@ pub fn scene_view(options: &SceneOptions) -> Result<SceneView, QueryError> {
         .iter()
         .find(|s| s.find == limit_find && s.outcome == Some(Outcome::Found))
         .cloned();
+    let mu_min_at_k = if live || !scene.form.is_circular_radial() {
+        let settings = general::Settings {
+            lambda: scene.lambda,
+            ..general::Settings::default()
+        };
+        ArchModel::new(scene.arch, scene.form, scene.load)
+            .ok()
+            .and_then(|m| {
+                general::sliding_threshold(&m, &settings)
+                    .found()
+                    .map(|s| s.mu)
+            })
+    } else {
+        None
+    };
     Ok(SceneView {
         scene,
         state,
         finds,
         limit,
         stands,
+        mu_min_at_k,
     })
 }
 
@@ -238,6 +259,7 @@ impl SceneView {
             "limit": self.limit,
             "drawn": self.drawn_text(),
             "drawn_joints": self.drawn_joints(),
+            "mu_min_at_k": self.mu_min_at_k,
         })
     }
 }

@@ -152,6 +152,9 @@ function criticalRows(v) {
   if (f.thickness) add("K_c(μ)", f.thickness, f.thickness.k_crit);
   if (f.friction) add("μ_c(K)", f.friction, f.friction.mu_crit);
   if (f.load_factor) add("λ_max", f.load_factor, f.load_factor.load_factor_unbounded ? Infinity : f.load_factor.load_factor);
+  if (v.mu_min_at_k !== null && v.mu_min_at_k !== undefined) {
+    rows.push({ name: "μ_min(K) (the sliding conditions alone fail below)", value: v.mu_min_at_k, mech: "sliding", gap: "—" });
+  }
   if (f.thresholds) {
     const t = f.thresholds;
     rows.push({ name: "K_c at μ = ∞", value: t.k_c_rotational, mech: "rotational", gap: "—" });
