@@ -57,6 +57,21 @@ function watch(p) {
   return p;
 }
 
+// The page pixel of (μ, K) on the map in `selector`, through the plotting frame the page
+// holds (`ui[key]`, or its first panel).
+function pixelOf(p, selector, key, target) {
+  return p.evaluate(({ selector, key, mu, k }) => {
+    const f = Array.isArray(ui[key]) ? ui[key][0] : ui[key];
+    const svg = document.querySelector(`${selector} svg`);
+    const r = svg.getBoundingClientRect();
+    const s = r.width / svg.viewBox.baseVal.width;
+    return {
+      x: r.left + s * (f.left + (mu - f.x[0]) / (f.x[1] - f.x[0]) * (f.right - f.left)),
+      y: r.top + s * (f.bottom - (k - f.y[0]) / (f.y[1] - f.y[0]) * (f.bottom - f.top)),
+    };
+  }, { selector, key, ...target });
+}
+
 const regimeOf = (p) => p.locator("#regime").getAttribute("data-regime");
 async function settled(p) {
   // No request in flight or pending, and the figure of the last answer placed.
@@ -123,16 +138,8 @@ try {
 
   // A click on the map moves the scene to the (μ, K) under the pointer.
   const target = { mu: 0.5, k: 1.25 };
-  const at = await p.evaluate(({ mu, k }) => {
-    const f = ui.mapFrame;
-    const svg = document.querySelector("#map-fig svg");
-    const r = svg.getBoundingClientRect();
-    const s = r.width / svg.viewBox.baseVal.width;
-    return {
-      x: r.left + s * (f.left + (mu - f.x[0]) / (f.x[1] - f.x[0]) * (f.right - f.left)),
-      y: r.top + s * (f.bottom - (k - f.y[0]) / (f.y[1] - f.y[0]) * (f.bottom - f.top)),
-    };
-  }, target);
+  await p.locator("#map-fig").scrollIntoViewIfNeeded();
+  const at = await pixelOf(p, "#map-fig", "mapFrame", target);
   await p.mouse.click(at.x, at.y);
   await settled(p);
   const [mu2, k2] = [+(await p.inputValue("#mu-number")), +(await p.inputValue("#k-number"))];
@@ -166,17 +173,8 @@ try {
   await settled(p);
   const target = { mu: 0.44, k: 1.23 };
   await p.locator("#run-fig").scrollIntoViewIfNeeded();
-  const at2 = await p.evaluate(({ mu, k }) => {
-    const f = ui.runFrames[0];
-    const svg = document.querySelector("#run-fig svg");
-    const r = svg.getBoundingClientRect();
-    const s = r.width / svg.viewBox.baseVal.width;
-    return {
-      x: r.left + s * (f.left + (mu - f.x[0]) / (f.x[1] - f.x[0]) * (f.right - f.left)),
-      y: r.top + s * (f.bottom - (k - f.y[0]) / (f.y[1] - f.y[0]) * (f.bottom - f.top)),
-    };
-  }, target);
-  await p.mouse.click(at2.x, at2.y);
+  const at = await pixelOf(p, "#run-fig", "runFrames", target);
+  await p.mouse.click(at.x, at.y);
   await p.waitForFunction(() => document.getElementById("case-info").dataset.caseId !== undefined, null, { timeout: 30000 });
   await settled(p);
   const info = await p.locator("#case-info").evaluate((e) => ({ ...e.dataset, text: e.textContent }));
