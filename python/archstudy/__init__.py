@@ -16,6 +16,7 @@ Python objects.
 
 from __future__ import annotations
 
+import csv
 import html
 import json
 import math
@@ -548,6 +549,16 @@ class Run:
         """The SVG figures of the run (plots/*.svg), in name order."""
         return sorted((self.dir / "plots").glob("*.svg"))
 
+    def key_results(self) -> list[dict[str, str]]:
+        """The report's key results (tables/key-results.csv), one dict per row keyed by the
+        column names (``quantity``, ``value``, ``paper``, ``difference``, ``stored in``), as
+        printed; empty when the run has no such table."""
+        path = self.dir / "tables" / "key-results.csv"
+        if not path.is_file():
+            return []
+        with path.open(encoding="utf-8", newline="") as f:
+            return [dict(row) for row in csv.DictReader(f)]
+
     def _find(self) -> str:
         """What the study computes: its find, or the question of a sampling study."""
         m = self.info.get("manifest", {})
@@ -566,10 +577,25 @@ class Run:
             f"find <code>{html.escape(self._find())}</code>; "
             f"directory <code>{html.escape(str(self.dir))}</code></p>",
         ]
+        rows = self.key_results()
+        if rows:
+            columns = [c for c in ("quantity", "value", "paper", "difference") if c in rows[0]]
+            head = "".join(f"<th>{html.escape(c)}</th>" for c in columns)
+            body = "".join(
+                "<tr>" + "".join(f"<td>{html.escape(r.get(c) or '')}</td>" for c in columns)
+                + "</tr>" for r in rows[:_KEY_RESULT_ROWS])
+            more = (f"<p>{len(rows) - _KEY_RESULT_ROWS} more in "
+                    "<code>tables/key-results.csv</code></p>"
+                    if len(rows) > _KEY_RESULT_ROWS else "")
+            parts.append(f"<h4>Key results</h4><table><tr>{head}</tr>{body}</table>{more}")
         for f in self.figures()[:6]:
             parts.append(f"<figure><figcaption>{html.escape(f.stem)}</figcaption>"
                          f"{f.read_text(encoding='utf-8')}</figure>")
         return "\n".join(parts)
+
+
+# Key results shown in a notebook (the rest stay in the table).
+_KEY_RESULT_ROWS = 12
 
 
 def _yaml_numbers(value: Any) -> Any:

@@ -87,6 +87,27 @@ def test_every_table_reads_in_pyarrow_pandas_and_polars(three_runs):
     assert set(r["regime"]) <= {"stable", "rotational", "mixed", "sliding", "none"}
     assert "<h3>archstudy run <code>small</code></h3>" in run._repr_html_()
     assert "<svg" in run._repr_html_()
+    # The key results: those the report prints, each value the one stored where it says.
+    keys = run.key_results()
+    assert keys and {"quantity", "value", "stored in"} <= set(keys[0])
+    stored_rows = {name: data(run.dir / name).to_pylist()
+                   for name in ("boundaries.parquet", "bifurcations.parquet")}
+    checked = 0
+    for row in keys:
+        where = row["stored in"].split()  # FILE row N COLUMN
+        if where[0] in stored_rows and where[-1] in ("mu", "k", "t_over_r"):
+            stored = stored_rows[where[0]][int(where[2])][where[-1]]
+            # Printed to 10 decimals.
+            assert abs(float(row["value"]) - stored) <= 1e-9 * max(1.0, abs(stored)), row
+            checked += 1
+    assert checked >= 4, keys
+    assert "<h4>Key results</h4>" in run._repr_html_()
+    assert row_html(keys[0]["quantity"]) in run._repr_html_()
+
+
+def row_html(text: str) -> str:
+    import html
+    return f"<td>{html.escape(text)}</td>"
 
 
 def test_a_bad_manifest_raises_manifest_error_with_its_position(tmp_path):

@@ -192,8 +192,13 @@ function showScene(v) {
     for (const c of ["sliding joint", fmt(j.angle_deg), j.sense]) tr.insertCell().textContent = c;
   }
   $("state-fig").innerHTML = v.svg.state;
-  $("domains-view").hidden = !v.svg.domains;
   if (v.svg.domains) $("domains-fig").innerHTML = v.svg.domains;
+  else {
+    const note = document.createElement("p");
+    note.className = "hint";
+    note.textContent = "Fig. 2 (Hʳ and Hˢ against the joint angle) is the closed form of a circular arch with radial joints under self-weight; this arch or load has no such curves. Its regime and critical values above come from the general route.";
+    $("domains-fig").replaceChildren(note);
+  }
   $("timing").textContent = `answered in ${v.elapsed_ms.toFixed(1)} ms`;
 }
 
