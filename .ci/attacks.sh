@@ -64,4 +64,10 @@ done
 expect2 "--t-over-r" "$bin" solve --t-over-r 1e-300
 expect2 "at most 100" "$bin" solve --k 1e300 --mu 0.4
 expect2 "--voussoirs" timeout 20 "$bin" solve --load horizontal --find load-factor --voussoirs 1000000
+# explore: a port out of range, a missing run directory, a run directory that is a FIFO's
+# parent without run.json, and a host that is no address: refused before serving.
+expect2 "--port" timeout 20 "$bin" explore --port 70000
+expect2 "/no/such/run" timeout 20 "$bin" explore /no/such/run --port 0
+expect2 "run.json" timeout 20 "$bin" explore "$scratch/run-fifo" --port 0
+expect2 "--host" timeout 20 "$bin" explore --host "no such host" --port 0
 exit "$fail"

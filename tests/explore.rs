@@ -364,6 +364,15 @@ fn the_command_prints_its_address_and_warns_off_loopback() {
         "{line}"
     );
     assert!(String::from_utf8_lossy(&out.stderr).contains("warning: listening on 0.0.0.0"));
+    // A port in use and a host that is no address are refused by name, before serving.
+    let taken = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let port = taken.local_addr().unwrap().port().to_string();
+    let o = archstudy(&["explore", "--port", &port]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("'--port'"));
+    let o = archstudy(&["explore", "--port", "0", "--host", "no such host"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("'--host'"));
     let o = archstudy(&["explore", "/no/such/run"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("/no/such/run"));

@@ -158,12 +158,31 @@ fn check_archive(args: &VerifyArgs) -> Result<ExitCode> {
 }
 
 fn explore(args: &ExploreArgs) -> Result<ExitCode> {
-    let loopback = match args.host.trim_start_matches('[').trim_end_matches(']') {
-        "localhost" => true,
-        h => h
-            .parse::<std::net::IpAddr>()
-            .is_ok_and(|ip| ip.is_loopback()),
-    };
+    let server = crate::explore::start(&crate::explore::ExploreOptions {
+        run_dir: args.run_dir.clone(),
+        host: args.host.clone(),
+        port: args.port,
+    })
+    .map_err(|e| match e.downcast::<crate::explore::ListenError>() {
+        Ok(l) if l.port_at_fault() => anyhow::Error::new(UsageError::new(
+            "--port",
+            args.port,
+            format!(
+                "a free port this user may take ({}); --port 0 takes any free one",
+                l.reason
+            ),
+        )),
+        Ok(l) => anyhow::Error::new(UsageError::new(
+            "--host",
+            &args.host,
+            format!(
+                "an address of this machine, e.g. 127.0.0.1 or 0.0.0.0 ({})",
+                l.reason
+            ),
+        )),
+        Err(e) => e,
+    })?;
+    let loopback = server.addr().ip().is_loopback();
     if !loopback {
         eprintln!(
             "warning: listening on {}: other machines that reach it can use this server \
@@ -171,23 +190,6 @@ fn explore(args: &ExploreArgs) -> Result<ExitCode> {
             args.host
         );
     }
-    let server = crate::explore::start(&crate::explore::ExploreOptions {
-        run_dir: args.run_dir.clone(),
-        host: args.host.clone(),
-        port: args.port,
-    })
-    .map_err(|e| {
-        if args.port != 0 && format!("{e:#}").contains("in use") {
-            e.context(UsageError {
-                option: "--port",
-                value: args.port.to_string(),
-                allowed: "a free port: give another with --port, or --port 0 for any free one"
-                    .into(),
-            })
-        } else {
-            e
-        }
-    })?;
     print_out(&format!(
         "archstudy explore: serving {} (Ctrl-C to stop)\n",
         server.url()

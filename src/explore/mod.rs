@@ -73,6 +73,32 @@ pub(crate) struct App {
     pub work: Semaphore,
 }
 
+/// The address could not be listened on: a host that names no address of this machine, a
+/// port in use or not allowed.
+#[derive(Debug, thiserror::Error)]
+#[error("cannot listen on {host}:{port}: {reason}")]
+pub struct ListenError {
+    /// The host given.
+    pub host: String,
+    /// The port given.
+    pub port: u16,
+    /// What went wrong, as the system says.
+    pub kind: std::io::ErrorKind,
+    /// The system's message.
+    pub reason: String,
+}
+
+impl ListenError {
+    /// True when the port is at fault (in use, or one this user may not take), false when
+    /// the host is.
+    pub fn port_at_fault(&self) -> bool {
+        matches!(
+            self.kind,
+            std::io::ErrorKind::AddrInUse | std::io::ErrorKind::PermissionDenied
+        )
+    }
+}
+
 /// A running explorer.
 pub struct Explorer {
     addr: SocketAddr,
@@ -125,7 +151,12 @@ pub fn start(opts: &ExploreOptions) -> Result<Explorer> {
     let host = opts.host.trim_start_matches('[').trim_end_matches(']');
     let listener = runtime
         .block_on(tokio::net::TcpListener::bind((host, opts.port)))
-        .with_context(|| format!("cannot listen on {}:{}", opts.host, opts.port))?;
+        .map_err(|e| ListenError {
+            host: opts.host.clone(),
+            port: opts.port,
+            kind: e.kind(),
+            reason: e.to_string(),
+        })?;
     let addr = listener.local_addr()?;
     let accept = runtime.spawn(accept_loop(listener, app));
     Ok(Explorer {

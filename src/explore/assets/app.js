@@ -9,7 +9,7 @@ const SCENE_KEYS = ["k", "t_over_r", "mu", "half_angle", "weight", "voussoirs", 
 const MAP_KEYS = ["k_from", "k_to", "mu_from", "mu_to"];
 
 const ui = {
-  inflight: false, pending: false, mapKey: null, mapFrame: null, frames: [], frame: 0,
+  inflight: false, pending: false, mapKey: null, mapSeq: 0, mapFrame: null, frames: [], frame: 0,
   playing: true, timer: null, mechTimer: null, runFrames: [], lastScene: null,
 };
 
@@ -295,9 +295,12 @@ function placeMarker() {
 async function drawMap() {
   const params = mapParams();
   ui.mapKey = archKey(sceneParams());
+  // Only the latest map asked for is placed, whatever order the answers come in.
+  const seq = ++ui.mapSeq;
   $("map-info").textContent = "drawing the map…";
   try {
     const m = await ask("/api/map", params);
+    if (seq !== ui.mapSeq) return;
     const marker = $("map-marker");
     $("map-fig").innerHTML = m.svg;
     $("map-fig").appendChild(marker);
@@ -308,6 +311,7 @@ async function drawMap() {
     $("map-info").textContent = `${m.points} points, ${m.collapse.length} collapse points and ${m.bifurcations.length} bifurcations located, in ${m.elapsed_ms.toFixed(0)} ms`;
     placeMarker();
   } catch (e) {
+    if (seq !== ui.mapSeq) return;
     $("map-info").textContent = `no map: ${e.message}`;
   }
 }
