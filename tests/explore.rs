@@ -25,7 +25,8 @@ fn request(s: &Explorer, method: &str, target: &str) -> (u16, Vec<u8>) {
     let mut c = TcpStream::connect(s.addr()).unwrap();
     write!(
         c,
-        "{method} {target} HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n"
+        "{method} {target} HTTP/1.1\r\nHost: {}\r\nConnection: close\r\n\r\n",
+        s.addr()
     )
     .unwrap();
     let mut raw = Vec::new();
@@ -317,6 +318,33 @@ fn no_file_outside_the_run_directory_is_served() {
 fn the_server_is_read_only_and_bounds_its_requests() {
     let s = server(None);
     assert_eq!(request(&s, "POST", "/api/scene").0, 405);
+    // A page elsewhere whose name is rebound to this machine is not answered.
+    let mut c = TcpStream::connect(s.addr()).unwrap();
+    write!(
+        c,
+        "GET /api/run HTTP/1.1\r\nHost: attacker.example:{}\r\nConnection: close\r\n\r\n",
+        s.addr().port()
+    )
+    .unwrap();
+    let mut raw = String::new();
+    c.read_to_string(&mut raw).unwrap();
+    assert!(raw.starts_with("HTTP/1.1 421"), "{raw}");
+    // Windows too narrow to draw, or a μ too large for a window around it, are refused by
+    // the parameter given (the scene's μ when no window was).
+    let (status, v) = get_json(&s, "/api/map?k=1.2&mu=0.4&mu_from=0&mu_to=1e-10");
+    assert_eq!(
+        (status, v["parameter"].as_str()),
+        (400, Some("mu_from")),
+        "{v}"
+    );
+    let (status, v) = get_json(&s, "/api/map?k=1.2&mu=0.4&k_from=1.2&k_to=1.2000000001");
+    assert_eq!(
+        (status, v["parameter"].as_str()),
+        (400, Some("k_from")),
+        "{v}"
+    );
+    let (status, v) = get_json(&s, "/api/map?k=1.2&mu=1e17");
+    assert_eq!((status, v["parameter"].as_str()), (400, Some("mu")), "{v}");
     assert_eq!(request(&s, "DELETE", "/").0, 405);
     let (status, body) = request(&s, "HEAD", "/");
     assert_eq!((status, body.len()), (200, 0));

@@ -47,6 +47,9 @@ use tokio::sync::Semaphore;
 
 /// Analyses that run at once; further requests wait for one to finish.
 pub const MAX_CONCURRENT_WORK: usize = 8;
+/// How long a request waits for its analysis before it is answered 503 (the analysis itself
+/// cannot be stopped midway and runs to its end).
+pub const WORK_BUDGET: Duration = Duration::from_secs(20);
 /// Connections served at once; further connections wait to be accepted.
 pub const MAX_CONNECTIONS: usize = 512;
 /// The longest request target (path and query), bytes.
@@ -70,7 +73,23 @@ pub(crate) struct App {
     /// The run directory opened, if any.
     pub run: Option<run_view::RunView>,
     /// Permits for analyses.
-    pub work: Semaphore,
+    pub work: Arc<Semaphore>,
+    /// The Host header values taken when listening on loopback (`None`: any, for a server
+    /// that was asked to listen on another address).
+    pub hosts: Option<Vec<String>>,
+}
+
+impl App {
+    /// True when a request's Host header names this server: on loopback, `localhost`,
+    /// `127.0.0.1` or `[::1]` with the port listened on, so that a page elsewhere whose name
+    /// is rebound to this machine cannot read it.
+    fn host_allowed(&self, host: Option<&hyper::header::HeaderValue>) -> bool {
+        match (&self.hosts, host.and_then(|h| h.to_str().ok())) {
+            (None, _) => true,
+            (Some(hosts), Some(h)) => hosts.iter().any(|a| a.eq_ignore_ascii_case(h)),
+            (Some(_), None) => false,
+        }
+    }
 }
 
 /// The address could not be listened on: a host that names no address of this machine, a
@@ -137,10 +156,7 @@ pub fn start(opts: &ExploreOptions) -> Result<Explorer> {
         Some(d) => Some(run_view::RunView::open(d)?),
         None => None,
     };
-    let app = Arc::new(App {
-        run,
-        work: Semaphore::new(MAX_CONCURRENT_WORK),
-    });
+
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
         .thread_name("explore")
@@ -158,6 +174,18 @@ pub fn start(opts: &ExploreOptions) -> Result<Explorer> {
             reason: e.to_string(),
         })?;
     let addr = listener.local_addr()?;
+    let port = addr.port();
+    let hosts = addr.ip().is_loopback().then(|| {
+        ["localhost", "127.0.0.1", "[::1]"]
+            .iter()
+            .map(|h| format!("{h}:{port}"))
+            .collect()
+    });
+    let app = Arc::new(App {
+        run,
+        work: Arc::new(Semaphore::new(MAX_CONCURRENT_WORK)),
+        hosts,
+    });
     let accept = runtime.spawn(accept_loop(listener, app));
     Ok(Explorer {
         addr,
@@ -229,7 +257,13 @@ async fn answer(
     app: Arc<App>,
 ) -> Result<Response<Full<Bytes>>, Infallible> {
     let head = req.method() == Method::HEAD;
-    let reply = if req.method() != Method::GET && !head {
+    let reply = if !app.host_allowed(req.headers().get(hyper::header::HOST)) {
+        Reply::error(
+            StatusCode::MISDIRECTED_REQUEST,
+            "this server answers requests for its own address only (the Host header names \
+             another: a page that rebinds its name to this machine)",
+        )
+    } else if req.method() != Method::GET && !head {
         Reply::error(
             StatusCode::METHOD_NOT_ALLOWED,
             "the explorer is read-only: GET and HEAD only",
@@ -257,15 +291,40 @@ async fn routed(path: String, query: String, app: Arc<App>) -> Reply {
     if !path.starts_with("/api/") && !path.starts_with("/run/") {
         return Reply::error(StatusCode::NOT_FOUND, &format!("no page at {path}"));
     }
-    let Ok(_permit) = app.work.acquire().await else {
-        return Reply::error(StatusCode::SERVICE_UNAVAILABLE, "the server is stopping");
+    // Files and the run's description need no analysis: they never wait behind one.
+    let analysis = !(path.starts_with("/run/") || path == "/api/run" || path == "/api/study");
+    let permit = if analysis {
+        match app.work.clone().acquire_owned().await {
+            Ok(p) => Some(p),
+            Err(_) => {
+                return Reply::error(StatusCode::SERVICE_UNAVAILABLE, "the server is stopping");
+            }
+        }
+    } else {
+        None
     };
     let worker = app.clone();
-    match tokio::task::spawn_blocking(move || routes::route(&path, &query, &worker)).await {
-        Ok(r) => r,
-        Err(_) => Reply::error(
+    let task = tokio::task::spawn_blocking(move || {
+        let reply = routes::route(&path, &query, &worker);
+        // The permit is held until the analysis ends, answered in time or not: at most
+        // MAX_CONCURRENT_WORK analyses ever run at once.
+        drop(permit);
+        reply
+    });
+    match tokio::time::timeout(WORK_BUDGET, task).await {
+        Ok(Ok(r)) => r,
+        Ok(Err(_)) => Reply::error(
             StatusCode::INTERNAL_SERVER_ERROR,
             "the analysis of this request failed (a panic)",
+        ),
+        Err(_) => Reply::error(
+            StatusCode::SERVICE_UNAVAILABLE,
+            &format!(
+                "this scene takes longer than {} s to analyse here (the analysis goes on \
+                 until it ends, holding one of {MAX_CONCURRENT_WORK} workers); ask \
+                 `archstudy solve` for it",
+                WORK_BUDGET.as_secs()
+            ),
         ),
     }
 }

@@ -15,6 +15,12 @@ pub const MAX_MAP_POINTS: u64 = 2500;
 /// The most grid points of a regime map of any other scene (the general route: a linear
 /// programme per point).
 pub const MAX_GENERAL_MAP_POINTS: u64 = 441;
+/// The narrowest window of a map along K or μ: below it the grid's values are not distinct
+/// enough to draw.
+pub const MIN_MAP_SPAN: f64 = 1e-4;
+/// The largest μ of a map window (beyond it friction no longer changes the regimes; μ = ∞
+/// is the scene's own control).
+pub const MAX_MAP_MU: f64 = 1000.0;
 /// The most steps along either axis of a map.
 pub const MAX_MAP_STEPS: i64 = 201;
 
@@ -65,18 +71,32 @@ impl MapWindow {
             ),
             mu_steps: count(q, "mu_steps", steps)?,
         };
-        if !(w.k.0 > 1.0 && w.k.0 < w.k.1 && w.k.1 <= MAX_K) {
+        // A window the query did not give is the scene's: a bad one blames the scene's value.
+        let given = |a: &str, b: &str| q.get(a).is_some() || q.get(b).is_some();
+        if !(w.k.0 > 1.0 && w.k.1 - w.k.0 >= MIN_MAP_SPAN && w.k.1 <= MAX_K) {
+            let (name, value) = if given("k_from", "k_to") {
+                ("k_from", format!("{} (k_to {})", w.k.0, w.k.1))
+            } else {
+                ("k", k.to_string())
+            };
             return Err(QueryError::new(
-                "k_from",
-                &format!("{} (k_to {})", w.k.0, w.k.1),
-                format!("1 < k_from < k_to ≤ {MAX_K}"),
+                name,
+                &value,
+                format!("a map window 1 < k_from < k_to ≤ {MAX_K}, at least {MIN_MAP_SPAN} wide"),
             ));
         }
-        if !(w.mu.0 >= 0.0 && w.mu.0 < w.mu.1) {
+        if !(w.mu.0 >= 0.0 && w.mu.1 - w.mu.0 >= MIN_MAP_SPAN && w.mu.1 <= MAX_MAP_MU) {
+            let (name, value) = if given("mu_from", "mu_to") {
+                ("mu_from", format!("{} (mu_to {})", w.mu.0, w.mu.1))
+            } else {
+                ("mu", mu.to_string())
+            };
             return Err(QueryError::new(
-                "mu_from",
-                &format!("{} (mu_to {})", w.mu.0, w.mu.1),
-                "0 ≤ mu_from < mu_to, both finite",
+                name,
+                &value,
+                format!(
+                    "a map window 0 ≤ mu_from < mu_to ≤ {MAX_MAP_MU}, at least {MIN_MAP_SPAN} wide"
+                ),
             ));
         }
         if w.k_steps * w.mu_steps > cap {

@@ -90,10 +90,15 @@ pub fn scene_view(options: &SceneOptions) -> Result<SceneView, QueryError> {
     } else {
         Find::Thickness
     };
-    let limit = finds
-        .iter()
-        .find(|s| s.find == limit_find && s.outcome == Some(Outcome::Found))
-        .cloned();
+    // Under a live load that no λ ≥ 0 lets stand, the limit on the scene's path is the
+    // thickness at the scene's λ.
+    let found = |f: Find| {
+        finds
+            .iter()
+            .find(|s| s.find == f && s.outcome == Some(Outcome::Found))
+            .cloned()
+    };
+    let limit = found(limit_find).or_else(|| found(Find::Thickness));
     let mu_min_at_k = if live || !scene.form.is_circular_radial() {
         let settings = general::Settings {
             lambda: scene.lambda,
@@ -159,7 +164,6 @@ impl SceneView {
 
     /// What the state figure draws, in words.
     pub fn drawn_text(&self) -> String {
-        let live = self.scene.load != Load::SelfWeight;
         match (&self.limit, self.stands) {
             (_, true)
                 if self.scene.load == Load::SelfWeight && self.scene.form.is_circular_radial() =>
@@ -167,7 +171,7 @@ impl SceneView {
                 "the minimum- and maximum-thrust states of the scene".into()
             }
             (_, true) => "the scene's state of largest margin".into(),
-            (Some(l), false) if live => format!(
+            (Some(l), false) if l.find == Find::LoadFactor => format!(
                 "the scene does not stand: its collapse state at λ_max = {}",
                 fmt(l.load_factor)
             ),
@@ -216,6 +220,11 @@ impl SceneView {
         let kind = field.kind().map_or("collapse", |k| k.as_str());
         let title = match limit.find {
             Find::LoadFactor => format!("{kind} mechanism at λ_max = {}", fmt(limit.load_factor)),
+            _ if limit.lambda.is_some() => format!(
+                "{kind} mechanism at K_c = {} (λ = {})",
+                fmt(limit.k_crit),
+                fmt(limit.lambda)
+            ),
             _ => format!("{kind} mechanism at K_c = {}", fmt(limit.k_crit)),
         };
         let subtitle = format!(

@@ -92,8 +92,9 @@ function syncControls() {
 
 async function ask(path, params) {
   const r = await fetch(`${path}?${params.toString()}`);
-  const body = await r.json();
-  if (!r.ok) throw new Error(body.error || `${r.status}`);
+  let body = null;
+  try { body = JSON.parse(await r.text()); } catch (e) { body = null; }
+  if (!r.ok || body === null) throw new Error((body && body.error) || `the server answered ${r.status} ${r.statusText}`);
   return body;
 }
 
@@ -279,7 +280,9 @@ function placeMarker() {
   const svg = $("map-fig").querySelector("svg");
   const { k, mu } = sceneKMu();
   if (!f || !svg) { m.hidden = true; return true; }
-  if (!Number.isFinite(mu) || mu < f.x[0] || mu > f.x[1] || k < f.y[0] || k > f.y[1]) { m.hidden = true; return !Number.isFinite(mu); }
+  const kInside = k >= f.y[0] && k <= f.y[1];
+  // μ = ∞ has no place on the map: the map is kept while K stays inside it.
+  if (!Number.isFinite(mu) || mu < f.x[0] || mu > f.x[1] || !kInside) { m.hidden = true; return !Number.isFinite(mu) && kInside; }
   const rect = svg.getBoundingClientRect();
   const box = $("map-fig").getBoundingClientRect();
   const vbw = svg.viewBox.baseVal.width || +svg.getAttribute("width");
@@ -312,7 +315,7 @@ async function drawMap() {
     placeMarker();
   } catch (e) {
     if (seq !== ui.mapSeq) return;
-    $("map-info").textContent = `no map: ${e.message}`;
+    $("map-info").textContent = `no map: ${e.message} (change the window and redraw)`;
   }
 }
 
