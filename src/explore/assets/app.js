@@ -193,6 +193,8 @@ function showScene(v) {
     for (const c of ["sliding joint", fmt(j.angle_deg), j.sense]) tr.insertCell().textContent = c;
   }
   $("state-fig").innerHTML = v.svg.state;
+  // No downloads of a figure the arch does not have.
+  $("domains-caption").hidden = !v.svg.domains;
   if (v.svg.domains) $("domains-fig").innerHTML = v.svg.domains;
   else {
     const note = document.createElement("p");
