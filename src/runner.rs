@@ -62,9 +62,7 @@ pub fn remove_partial_output_on_interrupt() -> Result<()> {
     Ok(())
 }
 
-/// Largest manifest file read, in bytes: a study manifest is a few hundred bytes; anything
-/// over this (or a device such as /dev/zero) is refused before it is read.
-pub const MAX_MANIFEST_BYTES: u64 = 1 << 20;
+pub use crate::manifest::MAX_MANIFEST_BYTES;
 
 /// Reads a manifest file of at most [`MAX_MANIFEST_BYTES`].
 fn read_manifest(path: &Path) -> Result<Vec<u8>, manifest::ManifestError> {

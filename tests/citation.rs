@@ -68,6 +68,61 @@ fn the_run_directory_carries_an_ro_crate_of_every_file() {
     assert_eq!(dataset["datePublished"], run_json["finished_at"]);
 }
 
+/// Every file of the run directory (but the crate itself) with its size, walked.
+fn sizes_on_disk(dir: &std::path::Path, rel: &str, out: &mut BTreeMap<String, u64>) {
+    for e in std::fs::read_dir(dir.join(rel)).unwrap() {
+        let p = e.unwrap().path();
+        let name = p.file_name().unwrap().to_string_lossy().to_string();
+        let r = if rel.is_empty() {
+            name
+        } else {
+            format!("{rel}/{name}")
+        };
+        if p.is_dir() {
+            sizes_on_disk(dir, &r, out);
+        } else if r != "ro-crate-metadata.json" {
+            out.insert(r, std::fs::metadata(&p).unwrap().len());
+        }
+    }
+}
+
+/// The files the crate lists, with their sizes.
+fn sizes_in_crate(run: &std::path::Path) -> BTreeMap<String, u64> {
+    let text = std::fs::read_to_string(run.join("ro-crate-metadata.json")).unwrap();
+    let c: serde_json::Value = serde_json::from_str(&text).unwrap();
+    c["@graph"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|e| e["@type"] == "File")
+        .map(|e| {
+            let size = e["contentSize"].as_str().unwrap().parse().unwrap();
+            (e["@id"].as_str().unwrap().to_string(), size)
+        })
+        .collect()
+}
+
+#[test]
+fn report_describes_the_files_it_drew_again() {
+    let dir = scratch("citation-report");
+    let run = run_study(&dir, "cited.yaml", STUDY);
+    // A crate whose sizes no longer match, and a report file gone: `report` draws them again.
+    let text = std::fs::read_to_string(run.join("ro-crate-metadata.json")).unwrap();
+    std::fs::write(
+        run.join("ro-crate-metadata.json"),
+        text.replace("\"contentSize\": \"", "\"contentSize\": \"9"),
+    )
+    .unwrap();
+    std::fs::remove_file(run.join("report.md")).unwrap();
+    let o = crate::common::archstudy(&["report", run.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", crate::common::stderr(&o));
+    let mut on_disk = BTreeMap::new();
+    sizes_on_disk(&run, "", &mut on_disk);
+    assert!(on_disk.contains_key("report.md") && on_disk.len() > 10);
+    assert_eq!(sizes_in_crate(&run), on_disk);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 fn walk_count(dir: &std::path::Path) -> usize {
     std::fs::read_dir(dir)
         .unwrap()

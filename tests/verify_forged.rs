@@ -146,15 +146,19 @@ fn forgeries() -> Vec<(&'static str, Forge, &'static str)> {
             "run.json names another build (archstudy",
         ),
         (
-            "version, report drawn again",
+            // The version is a claim no stored value depends on: `report` draws every file
+            // again from it, crate included, and verify notes the other version. Editing it
+            // must not turn a check off: a report forged afterwards is still named.
+            "version, report drawn again, then forged",
             |r| {
                 edit_json(&r.join("run.json"), |v| {
                     v["archstudy_version"] = "0.0.1".into()
                 });
                 let o = archstudy(&["report", r.to_str().unwrap()]);
                 assert!(o.status.success());
+                edit(&r.join("report.html"), |t| t.replacen("<h1>", "<h1>X", 1));
             },
-            "ro-crate-metadata.json is not what this build draws",
+            "report.html",
         ),
         (
             "table hash",

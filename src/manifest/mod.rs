@@ -26,8 +26,8 @@ pub use uncertain::{
     Sampling, UncertainParam,
 };
 pub use validate::{
-    MAX_AXIS_STEPS, MAX_BOOTSTRAP, MAX_GENERAL_VOUSSOIRS, MAX_K, MAX_NAME_CHARS, MAX_SAMPLES,
-    short_number,
+    MAX_AXIS_STEPS, MAX_BOOTSTRAP, MAX_GENERAL_VOUSSOIRS, MAX_K, MAX_MANIFEST_BYTES,
+    MAX_NAME_CHARS, MAX_SAMPLES, short_number,
 };
 
 use raw::RawManifest;

@@ -208,6 +208,13 @@ pub fn render_run(dir: &Path) -> Result<ReportSummary> {
         .with_context(|| format!("cannot read the run directory {}", dir.display()))?;
     let figs = draw_figures(&data, &layout)?;
     write_reports(&data, &figs, &layout)?;
+    // The crate describes every file with its size: drawn again, the figures and reports
+    // have other sizes, and the description is written again last, as a run writes it.
+    let path = layout.manifest();
+    let text = crate::output::read_regular_text(&path, crate::manifest::MAX_MANIFEST_BYTES)
+        .with_context(|| format!("cannot read {}", path.display()))?;
+    let manifest = crate::manifest::parse(&text, &path)?;
+    crate::citation::write_crate_metadata(&layout, &manifest, &data.info)?;
     Ok(ReportSummary {
         figures: figs.specs.len(),
         html: layout.report_html(),

@@ -8,6 +8,10 @@ use super::super::types::{ArchOptions, AxisName, GridAxis, LoadCase, SceneSpec};
 use super::Ctx;
 use crate::model::{Discretisation, k_from_t_over_r};
 
+/// Largest manifest file read, in bytes: a study manifest is a few hundred bytes; anything
+/// over this (or a device such as /dev/zero) is refused before it is read.
+pub const MAX_MANIFEST_BYTES: u64 = 1 << 20;
+
 /// Longest study name, in characters: it names the run directory and its staging sibling,
 /// which must fit the 255-byte file-name limit of common file systems.
 pub const MAX_NAME_CHARS: usize = 100;

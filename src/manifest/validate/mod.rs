@@ -12,7 +12,7 @@ mod loads;
 mod uncertain;
 
 pub use grid::MAX_AXIS_STEPS;
-pub use limits::{MAX_GENERAL_VOUSSOIRS, MAX_K, MAX_NAME_CHARS, short_number};
+pub use limits::{MAX_GENERAL_VOUSSOIRS, MAX_K, MAX_MANIFEST_BYTES, MAX_NAME_CHARS, short_number};
 pub use uncertain::{MAX_BOOTSTRAP, MAX_SAMPLES};
 
 use super::error::ManifestError;
