@@ -117,7 +117,7 @@ fn mechanism(query: &str) -> Answer {
 
 fn map_of(q: &Query) -> Result<(super::map::MapView, FigureSpec), Failure> {
     let options = q.scene_options("state")?;
-    let scene = views::scene_view_scene(&options)?;
+    let scene = views::state_scene(&options)?;
     let window = MapWindow::of_query(q, &scene)?;
     Ok(super::map::regime_map(&options, &scene, &window)?)
 }
@@ -134,7 +134,7 @@ fn map(query: &str) -> Answer {
 fn study(query: &str) -> Answer {
     let q = parse(query, &[&SCENE_PARAMETERS, &MAP_PARAMETERS])?;
     let options = q.scene_options("state")?;
-    let scene = views::scene_view_scene(&options)?;
+    let scene = views::state_scene(&options)?;
     let window = MapWindow::of_query(&q, &scene)?;
     let mut r = Reply::ok(
         "text/yaml; charset=utf-8",

@@ -63,7 +63,7 @@ fn with_find(options: &SceneOptions, find: Find) -> Result<Scene, QueryError> {
 }
 
 /// The `state` scene of `options`.
-pub fn scene_view_scene(options: &SceneOptions) -> Result<Scene, QueryError> {
+pub fn state_scene(options: &SceneOptions) -> Result<Scene, QueryError> {
     with_find(options, Find::State)
 }
 
