@@ -3,7 +3,7 @@
 
 use super::query::{MAP_PARAMETERS, Query, QueryError, SCENE_PARAMETERS};
 use super::study::{MapWindow, manifest_text};
-use super::views::{self, SceneView};
+use super::views::{self, Answers, SceneView};
 use super::{App, Reply};
 use crate::report::charts::FigureSpec;
 use crate::scene::Solution;
@@ -77,14 +77,14 @@ fn parse(query: &str, groups: &[&[&str]]) -> Result<Query, Failure> {
     Ok(Query::parse(query, groups)?)
 }
 
-fn view_of(q: &Query) -> Result<SceneView, Failure> {
-    Ok(views::scene_view(&q.scene_options("state")?)?)
+fn view_of(q: &Query, answers: Answers) -> Result<SceneView, Failure> {
+    Ok(views::scene_view(&q.scene_options("state")?, answers)?)
 }
 
 fn scene(query: &str) -> Answer {
     let q = parse(query, &[&SCENE_PARAMETERS])?;
     let t = std::time::Instant::now();
-    let view = view_of(&q)?;
+    let view = view_of(&q, Answers::All)?;
     let (state, domains) = rayon::join(
         || views::screen_svg(&view.state_figure()?),
         || {
@@ -102,7 +102,7 @@ fn scene(query: &str) -> Answer {
 
 fn mechanism(query: &str) -> Answer {
     let q = parse(query, &[&SCENE_PARAMETERS])?;
-    let view = view_of(&q)?;
+    let view = view_of(&q, Answers::Limit)?;
     let frames = view.mechanism_frames();
     let svgs = frames
         .iter()
@@ -156,15 +156,15 @@ fn figure(query: &str, app: &App) -> Answer {
     };
     let view = q.get("view").unwrap_or("state");
     let spec = match view {
-        "state" => view_of(&q)?.state_figure()?,
-        "domains" => view_of(&q)?.domains_figure().ok_or_else(|| {
+        "state" => view_of(&q, Answers::All)?.state_figure()?,
+        "domains" => view_of(&q, Answers::All)?.domains_figure().ok_or_else(|| {
             QueryError::new(
                 "view",
                 "domains",
                 "Fig. 2 is drawn for a circular arch with radial joints under self-weight",
             )
         })?,
-        "mechanism" => view_of(&q)?
+        "mechanism" => view_of(&q, Answers::Limit)?
             .mechanism_frames()
             .pop()
             .ok_or_else(|| QueryError::new("view", "mechanism", "a scene with a limit state"))?,

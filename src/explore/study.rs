@@ -71,33 +71,19 @@ impl MapWindow {
             ),
             mu_steps: count(q, "mu_steps", steps)?,
         };
-        // A window the query did not give is the scene's: a bad one blames the scene's value.
-        let given = |a: &str, b: &str| q.get(a).is_some() || q.get(b).is_some();
-        if !(w.k.0 > 1.0 && w.k.1 - w.k.0 >= MIN_MAP_SPAN && w.k.1 <= MAX_K) {
-            let (name, value) = if given("k_from", "k_to") {
-                ("k_from", format!("{} (k_to {})", w.k.0, w.k.1))
-            } else {
-                ("k", k.to_string())
-            };
-            return Err(QueryError::new(
-                name,
-                &value,
-                format!("a map window 1 < k_from < k_to ≤ {MAX_K}, at least {MIN_MAP_SPAN} wide"),
+        let k_ok = w.k.0 > 1.0 && w.k.1 - w.k.0 >= MIN_MAP_SPAN && w.k.1 <= MAX_K;
+        if !k_ok {
+            return Err(window_error(
+                q,
+                ("k", k),
+                w.k,
+                format!("1 < k_from < k_to ≤ {MAX_K}"),
             ));
         }
-        if !(w.mu.0 >= 0.0 && w.mu.1 - w.mu.0 >= MIN_MAP_SPAN && w.mu.1 <= MAX_MAP_MU) {
-            let (name, value) = if given("mu_from", "mu_to") {
-                ("mu_from", format!("{} (mu_to {})", w.mu.0, w.mu.1))
-            } else {
-                ("mu", mu.to_string())
-            };
-            return Err(QueryError::new(
-                name,
-                &value,
-                format!(
-                    "a map window 0 ≤ mu_from < mu_to ≤ {MAX_MAP_MU}, at least {MIN_MAP_SPAN} wide"
-                ),
-            ));
+        let mu_ok = w.mu.0 >= 0.0 && w.mu.1 - w.mu.0 >= MIN_MAP_SPAN && w.mu.1 <= MAX_MAP_MU;
+        if !mu_ok {
+            let allowed = format!("0 ≤ mu_from < mu_to ≤ {MAX_MAP_MU}");
+            return Err(window_error(q, ("mu", mu), w.mu, allowed));
         }
         if w.k_steps * w.mu_steps > cap {
             return Err(QueryError::new(
@@ -128,6 +114,24 @@ impl MapWindow {
             .map(|(n, v)| format!("{n}={v}"))
             .collect::<Vec<_>>()
             .join("&")
+    }
+}
+
+/// A map window that cannot be drawn along `axis` (`k` or `mu`, with the scene's value):
+/// named by its `_from` when the query gave the window, else by the scene's value, around
+/// which the window was taken.
+fn window_error(
+    q: &Query,
+    (axis, scene_value): (&str, f64),
+    (from, to): (f64, f64),
+    allowed: String,
+) -> QueryError {
+    let (from_name, to_name) = (format!("{axis}_from"), format!("{axis}_to"));
+    let allowed = format!("a map window {allowed}, at least {MIN_MAP_SPAN} wide");
+    if q.get(&from_name).is_some() || q.get(&to_name).is_some() {
+        QueryError::new(&from_name, &format!("{from} ({to_name} {to})"), allowed)
+    } else {
+        QueryError::new(axis, &scene_value.to_string(), allowed)
     }
 }
 

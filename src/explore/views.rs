@@ -5,8 +5,9 @@
 
 use super::query::QueryError;
 use crate::analysis::forms::ArchModel;
+use crate::analysis::general;
 use crate::analysis::kinematics::drawing;
-use crate::analysis::{general, symmetric};
+use crate::analysis::symmetric::{self, ThrustState};
 use crate::figdata;
 use crate::manifest::{SceneOptionError, SceneOptions};
 use crate::model::Load;
@@ -46,6 +47,19 @@ pub struct SceneView {
     /// depends on K): below it the sliding conditions alone fail. `None` on the symmetric
     /// route, whose μ_min (independent of K) is the `thresholds` find's.
     pub mu_min_at_k: Option<f64>,
+    /// The minimum- and maximum-thrust states of a standing circular arch with radial joints
+    /// under self-weight, drawn in the state figure and marked in Fig. 2 (`None` otherwise,
+    /// and in a [`Answers::Limit`] view).
+    pub thrust: Option<(ThrustState, ThrustState)>,
+}
+
+/// What a view of a scene solves besides its state.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Answers {
+    /// Every critical find, μ_min at K and the extreme-thrust states: what the page shows.
+    All,
+    /// Only the finds that give the limit state (its mechanism, its figure).
+    Limit,
 }
 
 fn with_find(options: &SceneOptions, find: Find) -> Result<Scene, QueryError> {
@@ -67,16 +81,21 @@ pub fn state_scene(options: &SceneOptions) -> Result<Scene, QueryError> {
     with_find(options, Find::State)
 }
 
-/// Solves the scene of `options` and its critical finds.
-pub fn scene_view(options: &SceneOptions) -> Result<SceneView, QueryError> {
+/// Solves the scene of `options` and what `answers` asks of it.
+pub fn scene_view(options: &SceneOptions, answers: Answers) -> Result<SceneView, QueryError> {
     let scene = with_find(options, Find::State)?;
     let state = scene::solve(&scene);
     let stands = state.regime.is_some_and(|r| r.as_str() == "stable");
     let live = scene.load != Load::SelfWeight;
-    let mut finds = vec![Find::Thickness, Find::Friction];
+    let symmetric_route = !live && scene.form.is_circular_radial();
+    let all = answers == Answers::All;
+    let mut finds = vec![Find::Thickness];
+    if all {
+        finds.push(Find::Friction);
+    }
     if live {
         finds.push(Find::LoadFactor);
-    } else if scene.form.is_circular_radial() {
+    } else if all && symmetric_route {
         finds.push(Find::Thresholds);
     }
     // The finds are independent: solved on all cores, in order.
@@ -99,7 +118,7 @@ pub fn scene_view(options: &SceneOptions) -> Result<SceneView, QueryError> {
             .cloned()
     };
     let limit = found(limit_find).or_else(|| found(Find::Thickness));
-    let mu_min_at_k = if live || !scene.form.is_circular_radial() {
+    let mu_min_at_k = if all && !symmetric_route {
         let settings = general::Settings {
             lambda: scene.lambda,
             ..general::Settings::default()
@@ -114,6 +133,11 @@ pub fn scene_view(options: &SceneOptions) -> Result<SceneView, QueryError> {
     } else {
         None
     };
+    let thrust = if all && stands && symmetric_route {
+        symmetric::thrust(&scene.arch, scene.friction)
+    } else {
+        None
+    };
     Ok(SceneView {
         scene,
         state,
@@ -121,6 +145,7 @@ pub fn scene_view(options: &SceneOptions) -> Result<SceneView, QueryError> {
         limit,
         stands,
         mu_min_at_k,
+        thrust,
     })
 }
 
@@ -129,13 +154,10 @@ impl SceneView {
     /// with radial joints under self-weight; the state of largest margin of another
     /// standing scene; else the limit state.
     pub fn state_figure(&self) -> Result<FigureSpec> {
+        if let Some((lo, hi)) = &self.thrust {
+            return solution::thrust_states_figure(&self.state, lo, hi);
+        }
         if self.stands {
-            if self.scene.load == Load::SelfWeight
-                && self.scene.form.is_circular_radial()
-                && let Some((lo, hi)) = symmetric::thrust(&self.scene.arch, self.scene.friction)
-            {
-                return solution::thrust_states_figure(&self.state, &lo, &hi);
-            }
             return solution::figure(&self.state);
         }
         match &self.limit {
@@ -146,11 +168,7 @@ impl SceneView {
 
     /// The hinges and sliding joints drawn in the state figure (those of its states).
     pub fn drawn_joints(&self) -> Value {
-        if self.stands
-            && self.scene.load == Load::SelfWeight
-            && self.scene.form.is_circular_radial()
-            && let Some((lo, hi)) = symmetric::thrust(&self.scene.arch, self.scene.friction)
-        {
+        if let Some((lo, hi)) = &self.thrust {
             return json!({
                 "hinges": lo.hinges.iter().chain(&hi.hinges).collect::<Vec<_>>(),
                 "sliding_joints": lo.sliding_joints.iter().chain(&hi.sliding_joints).collect::<Vec<_>>(),
@@ -165,9 +183,7 @@ impl SceneView {
     /// What the state figure draws, in words.
     pub fn drawn_text(&self) -> String {
         match (&self.limit, self.stands) {
-            (_, true)
-                if self.scene.load == Load::SelfWeight && self.scene.form.is_circular_radial() =>
-            {
+            (_, true) if self.thrust.is_some() => {
                 "the minimum- and maximum-thrust states of the scene".into()
             }
             (_, true) => "the scene's state of largest margin".into(),
@@ -192,8 +208,7 @@ impl SceneView {
         let curves = figdata::curves::domain_curves(&self.scene.arch, self.scene.friction);
         let mut spec = crate::report::charts::domains::figure_of(&row, |s| curves.series(s));
         // The thrusts of the states drawn beside it: the least and the largest admissible.
-        if self.stands
-            && let Some((lo, hi)) = symmetric::thrust(&self.scene.arch, self.scene.friction)
+        if let Some((lo, hi)) = &self.thrust
             && let Chart::Domains(d) = &mut spec.chart
         {
             d.marks = vec![
