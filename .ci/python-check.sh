@@ -29,7 +29,9 @@ echo "-- stubtest"
 "$work/test/bin/python" -m mypy.stubtest archstudy
 
 echo "-- example notebook"
-(cd "$work" && "$work/test/bin/python" - "$OLDPWD/python/examples/notebook.ipynb" <<'PY'
+artefacts="${CI_ARTIFACTS:-$PWD/output/ci-artifacts}"
+mkdir -p "$artefacts"
+(cd "$work" && "$work/test/bin/python" - "$OLDPWD/python/examples/notebook.ipynb" "$artefacts" <<'PY'
 import sys
 import nbclient
 import nbformat
@@ -37,5 +39,22 @@ import nbformat
 nb = nbformat.read(sys.argv[1], as_version=4)
 nbclient.NotebookClient(nb, timeout=600, kernel_name="python3").execute()
 print(f"executed {sum(c.cell_type == 'code' for c in nb.cells)} code cells")
+# Kept to be looked at: the executed notebook, and its displayed outputs as one HTML page.
+out = sys.argv[2]
+nbformat.write(nb, f"{out}/notebook.ipynb")
+parts = []
+for cell in nb.cells:
+    for o in cell.get("outputs", []):
+        data = o.get("data", {})
+        for kind in ("text/html", "image/svg+xml"):
+            if kind in data:
+                parts.append(data[kind])
+                break
+        else:
+            text = data.get("text/plain") or o.get("text") or ""
+            parts.append("<pre>" + text.replace("&", "&amp;").replace("<", "&lt;") + "</pre>")
+with open(f"{out}/notebook-outputs.html", "w", encoding="utf-8") as f:
+    f.write("<!doctype html><meta charset=utf-8><body>" + "<hr>".join(parts) + "</body>")
+print(f"executed notebook and its outputs: {out}/notebook.ipynb, notebook-outputs.html")
 PY
 )
