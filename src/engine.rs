@@ -172,15 +172,18 @@ fn case_by_case(
 ) -> Vec<CaseResult> {
     cases
         .par_iter()
-        .map(|c| {
-            if progress.stopped() {
-                return skipped(c);
-            }
-            let r = checked(c, || solve(&c.scene));
-            progress.advance(1);
-            r
-        })
+        .map(|c| case_row(c, progress, solve))
         .collect()
+}
+
+/// One case solved on its own (skipped once `progress` asked to stop).
+fn case_row(c: &Case, progress: &dyn Progress, solve: fn(&Scene) -> Solution) -> CaseResult {
+    if progress.stopped() {
+        return skipped(c);
+    }
+    let r = checked(c, || solve(&c.scene));
+    progress.advance(1);
+    r
 }
 
 /// The row of a case skipped because the caller asked to stop.
@@ -194,6 +197,11 @@ fn skipped(c: &Case) -> CaseResult {
     }
 }
 
+/// Rows per block of [`solve_scenes_in_blocks`]: few enough that a block's rows (about a
+/// kilobyte each) are still in cache when the caller turns them into a table, enough that
+/// handing a block over costs nothing next to solving it.
+pub const SCENE_BLOCK_ROWS: usize = 1 << 14;
+
 /// Analyses scenes that belong to no study (one row each, ids 0, 1, ... in their order, load
 /// case 0): self-weight `state` scenes of circular arches with radial joints and one weight
 /// model by the separable path, any other batch scene by scene, in parallel on the current
@@ -202,29 +210,57 @@ pub fn solve_scenes(
     scenes: &[scene::Scene],
     progress: &dyn Progress,
 ) -> Result<Vec<CaseResult>, crate::progress::Stopped> {
-    let cases: Vec<Case> = scenes
-        .iter()
-        .enumerate()
-        .map(|(i, s)| Case {
-            id: i as u64,
-            load_case: 0,
-            scene: *s,
-        })
-        .collect();
+    let blocks = solve_scenes_in_blocks(scenes, progress, |rows| rows)?;
+    Ok(blocks.into_iter().flatten().collect())
+}
+
+/// [`solve_scenes`] in blocks of [`SCENE_BLOCK_ROWS`] consecutive scenes, each block's rows
+/// handed to `each` as soon as they are solved and dropped after it (a million rows would
+/// take a gigabyte): `each`'s outputs in scene order. Blocks and the scenes within a block
+/// run in parallel; the domains of a separable batch are solved once for all blocks.
+pub fn solve_scenes_in_blocks<T: Send>(
+    scenes: &[scene::Scene],
+    progress: &dyn Progress,
+    each: impl Fn(Vec<CaseResult>) -> T + Sync,
+) -> Result<Vec<T>, crate::progress::Stopped> {
+    let case = |i: usize, s: &Scene| Case {
+        id: i as u64,
+        load_case: 0,
+        scene: *s,
+    };
     let weight = scenes.first().map(|s| s.arch.weight);
     let separable = scenes
         .iter()
         .all(|s| s.find == Find::State && s.uses_closed_forms() && Some(s.arch.weight) == weight);
-    progress.begin(Stage::Analyse, Some(cases.len() as u64));
-    let rows = match weight {
-        Some(w) if separable => run_separable(&cases, w, progress),
-        _ => case_by_case(&cases, progress, scene::solve),
+    progress.begin(Stage::Analyse, Some(scenes.len() as u64));
+    let domains = match weight {
+        Some(w) if separable => Some(SeparableDomains::solve(scenes.iter(), w)),
+        _ => None,
     };
+    let out = scenes
+        .par_chunks(SCENE_BLOCK_ROWS)
+        .enumerate()
+        .map(|(b, block)| {
+            let first = b * SCENE_BLOCK_ROWS;
+            let rows = block
+                .par_iter()
+                .enumerate()
+                .map(|(j, s)| {
+                    let c = case(first + j, s);
+                    match &domains {
+                        Some(d) => d.row(&c, first + j, progress),
+                        None => case_row(&c, progress, scene::solve),
+                    }
+                })
+                .collect();
+            each(rows)
+        })
+        .collect();
     progress.end(Stage::Analyse);
     if progress.stopped() {
         return Err(crate::progress::Stopped);
     }
-    Ok(rows)
+    Ok(out)
 }
 
 /// Key of the geometry shared by the cases whose domains can be reused.
@@ -245,20 +281,20 @@ struct SeparableKeys {
 }
 
 impl SeparableKeys {
-    fn of(cases: &[Case]) -> Self {
+    fn of<'a>(scenes: impl Iterator<Item = &'a Scene>) -> Self {
         let mut rot: Vec<GeomKey> = Vec::new();
         let mut rot_index: HashMap<GeomKey, usize> = HashMap::new();
         let mut sld: Vec<(GeomKey, u64)> = Vec::new();
         let mut sld_index: HashMap<(GeomKey, u64), usize> = HashMap::new();
-        let mut keyed = Vec::with_capacity(cases.len());
-        for c in cases {
-            let a = &c.scene.arch;
+        let mut keyed = Vec::with_capacity(scenes.size_hint().0);
+        for scene in scenes {
+            let a = &scene.arch;
             let rk = GeomKey {
                 half_angle_deg_bits: a.half_angle_deg().to_bits(),
                 joints: a.joints,
                 k_bits: a.k.to_bits(),
             };
-            let sk = (GeomKey { k_bits: 0, ..rk }, c.scene.friction.mu().to_bits());
+            let sk = (GeomKey { k_bits: 0, ..rk }, scene.friction.mu().to_bits());
             let ri = *rot_index.entry(rk).or_insert_with(|| {
                 rot.push(rk);
                 rot.len() - 1
@@ -301,11 +337,10 @@ fn timed<D>(solve: impl FnOnce() -> D) -> Timed<D> {
 
 /// Every rotational and sliding domain of a separable grid, solved in parallel.
 fn separable_domains(
-    cases: &[Case],
+    sample: Option<crate::model::Arch>,
     weight: crate::model::WeightModel,
     keys: &SeparableKeys,
 ) -> (Vec<Timed<RotationalDomain>>, Vec<Timed<SlidingDomain>>) {
-    let sample = cases.first().map(|c| c.scene.arch);
     let arch_for = |g: &GeomKey, k: f64| {
         crate::model::Arch::from_valid(k, f64::from_bits(g.half_angle_deg_bits), weight, g.joints)
     };
@@ -332,44 +367,75 @@ fn separable_domains(
     (rot, sld)
 }
 
-/// A symmetric self-weight `state` grid: each domain solved once (timed; a panic there marks
-/// the cases that use it as failed), then a comparison per case. A case's solve time is its
-/// own comparison plus its share of both domain solves.
+/// The domains of a symmetric self-weight `state` grid, each solved once (timed; a panic
+/// there marks the cases that use it as failed), and for each case the two it uses.
+struct SeparableDomains {
+    keys: SeparableKeys,
+    rot: Vec<Timed<RotationalDomain>>,
+    sld: Vec<Timed<SlidingDomain>>,
+    rot_uses: Vec<usize>,
+    sld_uses: Vec<usize>,
+}
+
+impl SeparableDomains {
+    /// Every distinct domain of the scenes, solved in parallel.
+    fn solve<'a>(
+        scenes: impl Iterator<Item = &'a Scene> + Clone,
+        weight: crate::model::WeightModel,
+    ) -> Self {
+        let sample = scenes.clone().next().map(|s| s.arch);
+        let keys = SeparableKeys::of(scenes);
+        let (rot, sld) = separable_domains(sample, weight, &keys);
+        let (rot_uses, sld_uses) = keys.uses();
+        SeparableDomains {
+            keys,
+            rot,
+            sld,
+            rot_uses,
+            sld_uses,
+        }
+    }
+
+    /// The row of case number `n` (in the order the domains were keyed): a comparison of its
+    /// two domains. Its solve time is its own comparison plus its share of both domain solves.
+    fn row(&self, c: &Case, n: usize, progress: &dyn Progress) -> CaseResult {
+        if progress.stopped() {
+            return skipped(c);
+        }
+        let (ri, si) = self.keys.cases[n];
+        let r = match (&self.rot[ri], &self.sld[si]) {
+            (Ok((rd, rt)), Ok((sd, st))) => {
+                let start = Instant::now();
+                let mut res = checked(c, || scene::state_from_domains(&c.scene, rd, sd));
+                let own = start.elapsed().as_secs_f64() * 1e6;
+                res.solution.solve_time_us =
+                    own + rt / self.rot_uses[ri] as f64 + st / self.sld_uses[si] as f64;
+                res
+            }
+            (Err(m), _) | (_, Err(m)) => CaseResult {
+                case_id: c.id,
+                load_case: c.load_case,
+                solution: scene::solve_inputs_only(&c.scene),
+                status: Status::Error,
+                message: Some(m.clone()),
+            },
+        };
+        progress.advance(1);
+        r
+    }
+}
+
+/// A symmetric self-weight `state` grid: each domain solved once, then a comparison per case.
 fn run_separable(
     cases: &[Case],
     weight: crate::model::WeightModel,
     progress: &dyn Progress,
 ) -> Vec<CaseResult> {
-    let keys = SeparableKeys::of(cases);
-    let (rot, sld) = separable_domains(cases, weight, &keys);
-    let (rot_uses, sld_uses) = keys.uses();
+    let domains = SeparableDomains::solve(cases.iter().map(|c| &c.scene), weight);
     let results: Vec<CaseResult> = cases
         .par_iter()
-        .zip(keys.cases.par_iter())
-        .map(|(c, &(ri, si))| {
-            if progress.stopped() {
-                return skipped(c);
-            }
-            let r = match (&rot[ri], &sld[si]) {
-                (Ok((rd, rt)), Ok((sd, st))) => {
-                    let start = Instant::now();
-                    let mut res = checked(c, || scene::state_from_domains(&c.scene, rd, sd));
-                    let own = start.elapsed().as_secs_f64() * 1e6;
-                    res.solution.solve_time_us =
-                        own + rt / rot_uses[ri] as f64 + st / sld_uses[si] as f64;
-                    res
-                }
-                (Err(m), _) | (_, Err(m)) => CaseResult {
-                    case_id: c.id,
-                    load_case: c.load_case,
-                    solution: scene::solve_inputs_only(&c.scene),
-                    status: Status::Error,
-                    message: Some(m.clone()),
-                },
-            };
-            progress.advance(1);
-            r
-        })
+        .enumerate()
+        .map(|(n, c)| domains.row(c, n, progress))
         .collect();
     debug_assert!(results.iter().all(|r| r.solution.find == Find::State));
     results
@@ -532,6 +598,36 @@ mod tests {
             assert_eq!(r.solution.regime, one.regime, "scene {i}");
             assert_eq!(r.solution.thrust_r_min, one.thrust_r_min, "scene {i}");
             assert_eq!(r.solution.thrust_s_max, one.thrust_s_max, "scene {i}");
+        }
+    }
+
+    #[test]
+    fn blocks_of_a_batch_come_in_scene_order_and_match_the_whole_batch() {
+        let n = 2 * SCENE_BLOCK_ROWS + 3;
+        let scenes: Vec<Scene> = (0..n)
+            .map(|i| {
+                state(
+                    1.05 + 0.4 * (i % 97) as f64 / 96.0,
+                    0.2 + (i % 89) as f64 / 100.0,
+                )
+            })
+            .collect();
+        let blocks = solve_scenes_in_blocks(&scenes, &Silent, |rows| {
+            let ids: Vec<u64> = rows.iter().map(|r| r.case_id).collect();
+            let regimes: Vec<_> = rows.iter().map(|r| r.solution.regime).collect();
+            (ids, regimes)
+        })
+        .unwrap();
+        assert_eq!(
+            blocks.iter().map(|b| b.0.len()).collect::<Vec<_>>(),
+            [SCENE_BLOCK_ROWS, SCENE_BLOCK_ROWS, 3]
+        );
+        let ids: Vec<u64> = blocks.iter().flat_map(|b| b.0.clone()).collect();
+        assert_eq!(ids, (0..n as u64).collect::<Vec<_>>());
+        for i in (0..n).step_by(1009) {
+            let one = scene::solve(&scenes[i]);
+            let b = &blocks[i / SCENE_BLOCK_ROWS];
+            assert_eq!(b.1[i % SCENE_BLOCK_ROWS], one.regime, "scene {i}");
         }
     }
 

@@ -131,9 +131,9 @@ impl Scene {
     pub fn check(&self) -> Result<(), FormError> {
         if self.find == Find::Thickness {
             let probe = self.arch.with_k(1.0 + 1e-9);
-            ArchModel::new(probe, self.form, self.load).map(|_| ())
+            ArchModel::check(probe, self.form, self.load)
         } else {
-            ArchModel::new(self.arch, self.form, self.load).map(|_| ())
+            ArchModel::check(self.arch, self.form, self.load)
         }
     }
 }

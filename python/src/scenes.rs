@@ -1,6 +1,6 @@
 //! `solve` and `solve_many`: keyword values into [`SceneOptions`], checked by the library,
 //! solved by [`archstudy::scene::solve`] or, many at once, by
-//! [`archstudy::engine::solve_scenes`] with the GIL released.
+//! [`archstudy::engine::solve_scenes_in_blocks`] with the GIL released.
 
 use crate::arg;
 use crate::interrupt::run_stoppable;
@@ -135,13 +135,21 @@ pub fn solve_many(args: &Bound<'_, PyTuple>) -> PyResult<Py<PyAny>> {
         let pool = archstudy::runner::worker_pool(jobs)?.0;
         pool.install(|| {
             let scenes = scenes_of(&base, &cols, n)?;
-            let rows = engine::solve_scenes(&scenes, progress.as_ref())?;
-            let lc = load_case(&base, scenes.first());
-            archstudy::store::scenes_frame(&[lc], &rows)
+            let lc = [load_case(&base, scenes.first())];
+            // Each block's rows become a frame while they are still in cache; the table
+            // reads the frames in turn.
+            let blocks = engine::solve_scenes_in_blocks(&scenes, progress.as_ref(), |rows| {
+                archstudy::store::scenes_frame(&lc, &rows)
+            })?;
+            if blocks.is_empty() {
+                // No scene: the table's columns all the same.
+                return Ok(vec![archstudy::store::scenes_frame(&lc, &[])?]);
+            }
+            blocks.into_iter().collect::<anyhow::Result<Vec<_>>>()
         })
     })?;
     match out {
-        Ok(df) => Table::new(df).into_py(py),
+        Ok(frames) => Table::of_blocks(frames).into_py(py),
         Err(e) if e.is::<archstudy::manifest::SceneOptionError>() => {
             Err(crate::value_error(format!("{e:#}")))
         }
@@ -155,25 +163,26 @@ fn scenes_of(
     cols: &[Option<Vec<f64>>],
     n: usize,
 ) -> anyhow::Result<Vec<Scene>> {
+    // One copy of the options per worker, its numbers set row by row.
     (0..n)
         .into_par_iter()
-        .map(|i| {
-            let v = |j: usize| given(&cols[j], i);
-            SceneOptions {
-                k: v(0),
-                t_over_r: v(1),
-                mu: v(2).unwrap_or(f64::INFINITY),
-                half_angle_deg: v(3).unwrap_or(90.0),
-                voussoirs: v(4).map(|x| x as i64),
-                eccentricity: v(5),
-                at_deg: v(6),
-                at_x: v(7),
-                lambda: v(8),
-                ..base.clone()
-            }
-            .scene()
-            .map_err(|e| anyhow::Error::new(e).context(format!("scene {i}")))
-        })
+        .map_init(
+            || base.clone(),
+            |o, i| {
+                let v = |j: usize| given(&cols[j], i);
+                o.k = v(0);
+                o.t_over_r = v(1);
+                o.mu = v(2).unwrap_or(f64::INFINITY);
+                o.half_angle_deg = v(3).unwrap_or(90.0);
+                o.voussoirs = v(4).map(|x| x as i64);
+                o.eccentricity = v(5);
+                o.at_deg = v(6);
+                o.at_x = v(7);
+                o.lambda = v(8);
+                o.scene()
+                    .map_err(|e| anyhow::Error::new(e).context(format!("scene {i}")))
+            },
+        )
         .collect()
 }
 

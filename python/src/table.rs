@@ -10,31 +10,46 @@ use pyo3::prelude::*;
 use pyo3::types::{PyCFunction, PyCapsule, PyDict, PyTuple};
 use std::ffi::CString;
 
-/// A table of results (one row per scene or case).
+/// A table of results (one row per scene or case): frames of the same columns, one under
+/// the other.
 pub struct Table {
-    df: DataFrame,
+    frames: Vec<DataFrame>,
 }
 
 impl Table {
-    /// A table of a data frame, its columns in one chunk each.
-    pub fn new(mut df: DataFrame) -> Self {
-        df.rechunk_mut();
-        Table { df }
+    /// A table of a data frame, its columns' chunks aligned (one record batch per chunk).
+    pub fn new(df: DataFrame) -> Self {
+        Table::of_blocks(vec![df])
+    }
+
+    /// A table of frames of the same columns (each block's chunks aligned), read as their
+    /// record batches in order: no copy into one frame.
+    pub fn of_blocks(mut frames: Vec<DataFrame>) -> Self {
+        for df in &mut frames {
+            df.align_chunks_par();
+        }
+        Table { frames }
+    }
+
+    /// The number of rows.
+    fn height(&self) -> usize {
+        self.frames.iter().map(DataFrame::height).sum()
     }
 
     /// The table as record batches of plain Arrow types (large strings and lists, never view
     /// types), each a struct array, with the struct's field.
     fn batches(&self) -> (Vec<Box<dyn Array>>, Field) {
-        let fields: Vec<Field> = self
-            .df
-            .columns()
-            .iter()
-            .map(|c| c.field().to_arrow(CompatLevel::oldest()))
-            .collect();
+        let fields: Vec<Field> = self.frames.first().map_or_else(Vec::new, |df| {
+            df.columns()
+                .iter()
+                .map(|c| c.field().to_arrow(CompatLevel::oldest()))
+                .collect()
+        });
         let dtype = ArrowDataType::Struct(fields);
         let batches = self
-            .df
-            .iter_chunks(CompatLevel::oldest(), false)
+            .frames
+            .iter()
+            .flat_map(|df| df.iter_chunks(CompatLevel::oldest(), true))
             .map(|b| {
                 let len = b.height();
                 Box::new(StructArray::new(dtype.clone(), len, b.into_arrays(), None))
@@ -55,13 +70,13 @@ impl Table {
     /// `(rows, column names, stream)`: `stream(requested_schema=None)` returns a new capsule
     /// at each call (the table's own schema; a requested one is not honoured).
     pub fn into_py(self, py: Python<'_>) -> PyResult<Py<PyAny>> {
-        let rows = self.df.height();
-        let names: Vec<String> = self
-            .df
-            .get_column_names()
-            .iter()
-            .map(|s| s.to_string())
-            .collect();
+        let rows = self.height();
+        let names: Vec<String> = self.frames.first().map_or_else(Vec::new, |df| {
+            df.get_column_names()
+                .iter()
+                .map(|s| s.to_string())
+                .collect()
+        });
         let stream = PyCFunction::new_closure(
             py,
             Some(c"__arrow_c_stream__"),

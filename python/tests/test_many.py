@@ -80,6 +80,26 @@ def test_arrays_and_scalars_broadcast_in_c_order():
         one.regime, one.thrust_r_min, one.thrust_s_max)
 
 
+def test_a_batch_of_several_blocks_keeps_its_rows_in_order():
+    # 200 × 200 scenes are solved and handed over in three blocks: the table reads them as
+    # record batches in turn, every row where a single solve puts it.
+    k = np.linspace(1.05, 1.5, 200)
+    mu = np.linspace(0.2, 0.8, 200)
+    t = pa.table(archstudy.solve_many(k=k[:, None], mu=mu[None, :]))
+    assert t.num_rows == 40_000 and len(t.to_batches()) >= 3
+    assert t.column("case_id").to_pylist() == list(range(40_000))
+    assert t.column("k").to_pylist()[::200] == k.tolist()
+    assert t.column("mu").to_pylist()[:200] == mu.tolist()
+    for i in RNG.integers(0, 40_000, 25):
+        r = t.slice(int(i), 1).to_pylist()[0]
+        one = archstudy.solve(k=r["k"], mu=r["mu"])
+        assert (r["regime"], r["thrust_r_min"], r["thrust_s_max"]) == (
+            one.regime, one.thrust_r_min, one.thrust_s_max), i
+    empty = archstudy.solve_many(k=np.array([]), mu=0.5)
+    assert empty.num_rows == 0 and pa.table(empty).num_rows == 0
+    assert empty.column_names == t.column_names
+
+
 def test_the_columns_are_those_of_results_parquet_for_the_find():
     t = archstudy.solve_many(k=[1.2, 1.3], mu=0.4)
     names = t.column_names

@@ -249,6 +249,13 @@ fn frame_in_blocks(
         .par_chunks(block_rows)
         .map(|b| block_frame(load_cases, b, columns))
         .collect::<Result<Vec<DataFrame>>>()?;
+    stacked(blocks)
+}
+
+/// Frames of the same columns one under the other, each block kept as one chunk of every
+/// column (the chunks stay aligned: one Arrow record batch per block); none gives an empty
+/// frame.
+fn stacked(blocks: Vec<DataFrame>) -> Result<DataFrame> {
     let mut blocks = blocks.into_iter();
     let mut df = blocks.next().unwrap_or_default();
     for b in blocks {

@@ -188,6 +188,11 @@ impl ArchModel {
     /// The model of an arch of a given form under a load case; checks that the form exists
     /// at this K and α and that a point load sits at a joint.
     pub fn new(arch: Arch, form: ArchForm, load: Load) -> Result<Self, FormError> {
+        Self::build(arch, form, load, true)
+    }
+
+    /// The model, its half weight computed when `weigh` (else left at 1).
+    fn build(arch: Arch, form: ArchForm, load: Load, weigh: bool) -> Result<Self, FormError> {
         let k = arch.k;
         let alpha = arch.half_angle;
         let e = form.shape.eccentricity();
@@ -231,10 +236,6 @@ impl ArchModel {
             point: None,
             shared_apex: false,
         };
-        m.w_half = match arch.weight {
-            WeightModel::Annular => m.region(&m.support()).0[0],
-            WeightModel::Centreline => (k - 1.0) * rho_c * (alpha - psi_c0),
-        };
         form.check_keystone(arch.joints)
             .map_err(FormError::NoKeystone)?;
         m.point = match load {
@@ -242,7 +243,19 @@ impl ArchModel {
             Load::PointX { at_x } => Some(m.place_point_x(at_x)?),
             Load::SelfWeight | Load::Horizontal => None,
         };
+        if weigh {
+            m.w_half = match arch.weight {
+                WeightModel::Annular => m.region(&m.support()).0[0],
+                WeightModel::Centreline => (k - 1.0) * rho_c * (alpha - psi_c0),
+            };
+        }
         Ok(m)
+    }
+
+    /// Whether the scene has a model: [`ArchModel::new`]'s checks without weighing the arch
+    /// (a batch of a million scenes is checked at a fraction of the cost of building them).
+    pub fn check(arch: Arch, form: ArchForm, load: Load) -> Result<(), FormError> {
+        Self::build(arch, form, load, false).map(|_| ())
     }
 
     /// True when the scene has a point load at the apex of a pointed arch with radial
