@@ -62,16 +62,21 @@ class ManifestError(ValueError):
         line: 1-based line, when known.
         column: 1-based column, when known.
         key: The key at fault (dotted path), when known.
-        message: What is wrong, with the value given and what is allowed.
+        value: The value given (as written in the manifest, quotes dropped), when the
+            error is about a value; for an unknown key, the key.
+        allowed: What is allowed there (all of ``message`` when it names no value).
+        message: What is wrong, with the value given and what is allowed, in one sentence.
     """
 
     def __init__(self, text: str, file: str, line: int | None, column: int | None,
-                 key: str | None, message: str) -> None:
+                 key: str | None, value: str | None, allowed: str, message: str) -> None:
         super().__init__(text)
         self.file = file
         self.line = line
         self.column = column
         self.key = key
+        self.value = value
+        self.allowed = allowed
         self.message = message
 
 
@@ -632,7 +637,8 @@ def run(
         The finished :class:`Run`.
 
     Raises:
-        ManifestError: The manifest is not valid (file, line, column, key, message).
+        ManifestError: The manifest is not valid (file, line, column, key, value, allowed,
+            message).
         ValueError: A bad keyword value.
         KeyboardInterrupt: Ctrl-C; the run stops within a second and leaves no run
             directory behind.
@@ -650,8 +656,8 @@ def run(
     else:
         answer = _archstudy.run(os.fspath(manifest), os.fspath(out), jobs, bool(quiet), argv)
     if answer[0] == "manifest":
-        _, file, line, column, key, message, text = answer
-        raise ManifestError(text, file, line, column, key, message)
+        _, file, line, column, key, (value, allowed, message), text = answer
+        raise ManifestError(text, file, line, column, key, value, allowed, message)
     return Run(answer[1])
 
 

@@ -37,26 +37,27 @@ where
 /// A native function: its positional arguments in, a Python object out.
 type Native = fn(&Bound<'_, PyTuple>) -> PyResult<Py<PyAny>>;
 
-/// The module's functions: name, doc line, body.
+/// The module's functions: name, doc (its first line the text signature that `inspect` and
+/// stubtest read), body.
 const FUNCTIONS: [(&CStr, &CStr, Native); 4] = [
     (
         c"solve",
-        c"solve(k, t_over_r, mu, half_angle, weight, voussoirs, find, shape, eccentricity, joints, keystone, load, at, at_x, lambda_) -> (json, svg)",
+        c"solve(k, t_over_r, mu, half_angle, weight, voussoirs, find, shape, eccentricity, joints, keystone, load, at, at_x, lambda_, /)\n--\n\nOne scene solved: (json, svg), svg a function that draws it.",
         scenes::solve,
     ),
     (
         c"solve_many",
-        c"solve_many(n, numbers, find, weight, shape, joints, keystone, load, jobs) -> (rows, columns, stream)",
+        c"solve_many(n, numbers, find, weight, shape, joints, keystone, load, jobs, /)\n--\n\nMany scenes solved: (rows, columns, stream).",
         scenes::solve_many,
     ),
     (
         c"run",
-        c"run(study, out, jobs, quiet, command_line) -> ('ok', dir) | ('manifest', file, line, column, key, message, text)",
+        c"run(study, out, jobs, quiet, command_line, /)\n--\n\nA study run: ('ok', dir) or ('manifest', file, line, column, key, (value, allowed, message), text).",
         study::run,
     ),
     (
         c"read_table",
-        c"read_table(path) -> (rows, columns, stream)",
+        c"read_table(path, /)\n--\n\nA Parquet table of a run: (rows, columns, stream).",
         study::read_table,
     ),
 ];

@@ -12,7 +12,8 @@ use std::sync::Arc;
 
 /// Runs the manifest at `study` into `out/<name>/`: `(study, out, jobs, quiet,
 /// command_line)` in; `("ok", run_dir)` out, or `("manifest", file, line, column, key,
-/// message, text)` for a manifest that is not valid (the Python layer raises ManifestError).
+/// (value, allowed, message), text)` for a manifest that is not valid (the Python layer
+/// raises ManifestError).
 pub fn run(args: &Bound<'_, PyTuple>) -> PyResult<Py<PyAny>> {
     let py = args.py();
     let study: PathBuf = arg(args, 0)?;
@@ -43,13 +44,14 @@ pub fn run(args: &Bound<'_, PyTuple>) -> PyResult<Py<PyAny>> {
     };
     if let Some(m) = e.downcast_ref::<archstudy::manifest::ManifestError>() {
         let (line, column) = m.position.unzip();
+        let (value, allowed) = m.value_and_allowed();
         let fields = (
             "manifest",
             m.path.display().to_string(),
             line,
             column,
             m.key.clone(),
-            m.message.clone(),
+            (value, allowed, m.message.clone()),
             m.to_string(),
         );
         Ok(fields.into_pyobject(py)?.into_any().unbind())

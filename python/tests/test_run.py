@@ -120,9 +120,16 @@ def test_a_bad_manifest_raises_manifest_error_with_its_position(tmp_path):
     assert err.line == 3 and err.column is not None
     assert err.key is not None and "steps" in err.key
     assert "-3" in err.message
+    assert err.value == "-3" and err.allowed == "steps must be an integer in [1, 100000]"
     assert str(err).startswith(f"{bad}:3:")
-    with pytest.raises(archstudy.ManifestError, match="unknown|not a key|colour"):
+    with pytest.raises(archstudy.ManifestError, match="unknown|not a key|colour") as e:
         archstudy.run({**MANIFEST, "colour": "red"}, out=tmp_path / "out")
+    assert e.value.key == "colour" and e.value.value == "colour"
+    assert e.value.allowed.startswith("one of name, title")
+    with pytest.raises(archstudy.ManifestError) as e:
+        archstudy.run({**MANIFEST, "find": "nope"}, out=tmp_path / "out")
+    assert (e.value.key, e.value.value) == ("find", "nope")
+    assert e.value.allowed.startswith("use state, thickness, friction")
     assert not (tmp_path / "out" / "small").exists()
     with pytest.raises(ValueError, match="'jobs'"):
         archstudy.run(MANIFEST, out=tmp_path / "out", jobs=0)

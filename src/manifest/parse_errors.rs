@@ -69,11 +69,20 @@ pub(super) fn key_at(text: &str, line: u64, column: u64) -> Option<String> {
         .unwrap_or(usize::MAX)
         .saturating_sub(1);
     let from: String = here.chars().skip(before).collect();
-    let word: String = from
+    // A key may be quoted (a manifest written as JSON): `"colour": red`.
+    let quote = from.chars().next().filter(|c| *c == '"' || *c == '\'');
+    let unquoted = &from[quote.map_or(0, char::len_utf8)..];
+    let word: String = unquoted
         .chars()
         .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
         .collect();
-    if !word.is_empty() && from[word.len()..].trim_start().starts_with(':') {
+    let after = &unquoted[word.len()..];
+    // The position may also fall on the key's first letter, after its opening quote.
+    let after = match quote {
+        Some(q) => after.strip_prefix(q),
+        None => Some(after.trim_start_matches(['"', '\''])),
+    };
+    if !word.is_empty() && after.is_some_and(|a| a.trim_start().starts_with(':')) {
         return Some(word);
     }
     let upto: String = here
@@ -83,6 +92,8 @@ pub(super) fn key_at(text: &str, line: u64, column: u64) -> Option<String> {
     let key_before = |s: &str| -> Option<String> {
         let colon = s.rfind(':')?;
         let word: String = s[..colon]
+            .trim_end()
+            .trim_end_matches(['"', '\''])
             .chars()
             .rev()
             .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
@@ -130,5 +141,11 @@ mod tests {
         let f = "scenes: [{k: 1.2, mu: 0.4, note: x}]\n";
         assert_eq!(key_at(f, 1, 28).as_deref(), Some("note"));
         assert_eq!(key_at(f, 1, 23).as_deref(), Some("mu"));
+        // A manifest written as JSON quotes its keys.
+        let j = "{\"name\": \"x\", \"colour\": \"red\"}\n";
+        assert_eq!(key_at(j, 1, 16).as_deref(), Some("colour"));
+        assert_eq!(key_at(j, 1, 26).as_deref(), Some("colour"));
+        let j2 = "{\n  \"name\": \"x\",\n  'colour': red\n}\n";
+        assert_eq!(key_at(j2, 3, 3).as_deref(), Some("colour"));
     }
 }
