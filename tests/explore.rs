@@ -162,6 +162,80 @@ fn the_scene_answer_is_the_librarys_and_its_figures_are_drawn() {
 }
 
 #[test]
+fn a_scene_in_the_gap_shows_its_collapse_and_says_where_it_stands() {
+    // Twelve voussoirs under a horizontal load: static limit λ_max = 8.518042, collapse (the
+    // first complete solution) at λ = 7.383083: left springing hinging at the intrados and
+    // sliding inward, the first joint sliding outward, the right springing hinging at the
+    // extrados.
+    let s = server(None);
+    let scene = "k=1.5278&mu=1.0396&half_angle=50.367&voussoirs=12&load=horizontal";
+    let (status, v) = get_json(&s, &format!("/api/scene?{scene}&lambda=9"));
+    assert_eq!(status, 200, "{v}");
+    assert_eq!(v["stands"], false);
+    let lf = &v["finds"]["load_factor"];
+    assert!(
+        (lf["collapse_value"].as_f64().unwrap() - 7.383083).abs() < 1e-6,
+        "{lf}"
+    );
+    let drawn = &v["drawn_joints"];
+    assert_eq!(drawn["hinges"], lf["collapse_hinges"]);
+    assert_eq!(drawn["sliding_joints"], lf["collapse_sliding_joints"]);
+    let hinges: Vec<(f64, &str)> = drawn["hinges"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|h| {
+            (
+                h["angle_deg"].as_f64().unwrap(),
+                h["face"].as_str().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(hinges, [(-50.367, "intrados"), (50.367, "extrados")]);
+    let senses: Vec<&str> = drawn["sliding_joints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|j| j["sense"].as_str().unwrap())
+        .collect();
+    assert_eq!(senses, ["inward", "outward"]);
+    assert!(
+        v["drawn"]
+            .as_str()
+            .unwrap()
+            .contains("first complete solution")
+    );
+    assert!(
+        v["svg"]["state"]
+            .as_str()
+            .unwrap()
+            .contains("collapse λ = 7.3831")
+    );
+    // At λ = 8 an equilibrium exists, but the arch can already move: the page says so.
+    let (_, v) = get_json(&s, &format!("/api/scene?{scene}&lambda=8"));
+    assert_eq!(v["stands"], true);
+    assert!(
+        v["drawn"].as_str().unwrap().contains("inside the gap"),
+        "{}",
+        v["drawn"]
+    );
+    let (_, v) = get_json(&s, &format!("/api/scene?{scene}&lambda=7"));
+    assert!(
+        !v["drawn"].as_str().unwrap().contains("gap"),
+        "{}",
+        v["drawn"]
+    );
+    // The mechanism that moves is the collapse's.
+    let (_, m) = get_json(&s, &format!("/api/mechanism?{scene}&lambda=9"));
+    assert!(
+        m["title"].as_str().unwrap().contains("at the collapse"),
+        "{}",
+        m["title"]
+    );
+    s.stop();
+}
+
+#[test]
 fn the_map_around_the_papers_scene_locates_both_bifurcations() {
     let s = server(None);
     let (status, v) = get_json(

@@ -225,8 +225,9 @@ class Solution:
 
     def _repr_svg_(self) -> str:
         """The state drawing of the report: the arch to scale, its line of thrust, hinges
-        and sliding joints (for a critical find its limit state, otherwise the scene's state
-        of largest margin when it stands)."""
+        and sliding joints (for a critical find its limit state, or its collapse, the first
+        complete solution, when that comes first; otherwise the scene's state of largest
+        margin when it stands)."""
         return str(self._svg())
 
     def __repr__(self) -> str:

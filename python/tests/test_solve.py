@@ -92,6 +92,13 @@ def test_the_svg_draws_the_collapse_state_of_the_asked_arch():
     assert "pointed, e = 0.5" in psvg, "the pointed arch is named in the title"
     v = archstudy.solve(k=1.3, mu=0.6, voussoirs=7)
     assert "N = 7 voussoirs" in v._repr_svg_()
+    # A find with a gap draws its collapse, below the static limit it names.
+    g = archstudy.solve(find="load_factor", voussoirs=12, k=1.5278, mu=1.0396,
+                        half_angle=50.367, load="horizontal")
+    assert g.gap == "gap" and abs(g.collapse_value - 7.383083) < 1e-6
+    gsvg = g._repr_svg_()
+    assert "first complete solution" in gsvg
+    assert "collapse λ = 7.3831" in gsvg and "static limit λ = 8.5180" in gsvg
 
 
 def test_a_bad_keyword_value_raises_value_error_naming_it():

@@ -175,8 +175,27 @@ impl SceneView {
             });
         }
         match (&self.limit, self.stands) {
+            // A gap: the collapse, the first complete solution, is drawn.
+            (Some(l), false) if solution::collapse_row(l).is_some() => json!({
+                "hinges": l.collapse_hinges,
+                "sliding_joints": l.collapse_sliding_joints,
+            }),
             (Some(l), false) => json!({"hinges": l.hinges, "sliding_joints": l.sliding_joints}),
             _ => json!({"hinges": [], "sliding_joints": []}),
+        }
+    }
+
+    /// True when the scene stands but lies between the collapse (the first complete
+    /// solution of its limit find) and the static limit: λ at or above the collapse λ, or K
+    /// at or below the collapse K.
+    fn inside_gap(&self, limit: &Solution) -> bool {
+        let Some(collapse) = solution::collapse_row(limit).and(limit.collapse_value) else {
+            return false;
+        };
+        match limit.find {
+            Find::LoadFactor => self.scene.lambda >= collapse,
+            Find::Thickness => self.scene.arch.k <= collapse,
+            _ => false,
         }
     }
 
@@ -186,7 +205,17 @@ impl SceneView {
             (_, true) if self.thrust.is_some() => {
                 "the minimum- and maximum-thrust states of the scene".into()
             }
+            (Some(l), true) if self.inside_gap(l) => format!(
+                "the scene's state of largest margin, inside the gap: an equilibrium exists up \
+                 to the static limit, but the arch can start to move from its collapse ({})",
+                solution::gap_words(l)
+            ),
             (_, true) => "the scene's state of largest margin".into(),
+            (Some(l), false) if solution::collapse_row(l).is_some() => format!(
+                "the scene does not stand: its collapse, the first complete solution, below \
+                 the static limit ({})",
+                solution::gap_words(l)
+            ),
             (Some(l), false) if l.find == Find::LoadFactor => format!(
                 "the scene does not stand: its collapse state at λ_max = {}",
                 fmt(l.load_factor)
@@ -226,7 +255,12 @@ impl SceneView {
         let Some(limit) = &self.limit else {
             return Vec::new();
         };
-        let row = solution::state_row(limit);
+        // With a gap, the mechanism that starts at the collapse (the first complete
+        // solution), else that of the static limit.
+        let collapse = solution::collapse_row(limit);
+        let row = collapse
+            .clone()
+            .unwrap_or_else(|| solution::state_row(limit));
         let Some((model, field)) = figdata::mechanism_of_state(&row) else {
             return Vec::new();
         };
@@ -234,6 +268,10 @@ impl SceneView {
         let window = drawing(&model, &field, full).bounds();
         let kind = field.kind().map_or("collapse", |k| k.as_str());
         let title = match limit.find {
+            _ if collapse.is_some() => format!(
+                "{kind} mechanism at the collapse ({})",
+                solution::gap_words(limit)
+            ),
             Find::LoadFactor => format!("{kind} mechanism at λ_max = {}", fmt(limit.load_factor)),
             _ if limit.lambda.is_some() => format!(
                 "{kind} mechanism at K_c = {} (λ = {})",
@@ -242,14 +280,18 @@ impl SceneView {
             ),
             _ => format!("{kind} mechanism at K_c = {}", fmt(limit.k_crit)),
         };
-        let subtitle = format!(
-            "non-associative (pure sliding); admissible: {}",
-            match limit.mechanism_admissible {
-                Some(true) => "yes",
-                Some(false) => "no",
-                None => "—",
-            }
-        );
+        let subtitle = if collapse.is_some() {
+            "the first complete solution: its mechanism obeys the flow rules".to_string()
+        } else {
+            format!(
+                "non-associative (pure sliding); admissible: {}",
+                match limit.mechanism_admissible {
+                    Some(true) => "yes",
+                    Some(false) => "no",
+                    None => "—",
+                }
+            )
+        };
         (0..MECHANISM_FRAMES)
             .map(|i| {
                 let a = full * i as f64 / (MECHANISM_FRAMES - 1) as f64;

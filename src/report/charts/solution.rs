@@ -96,10 +96,102 @@ fn finite(x: f64) -> Option<f64> {
 }
 
 /// The drawing of a solution's state, as the report draws a state.
+///
+/// A critical find with a gap draws its collapse, the first complete solution (the
+/// conservative end, the value archstudy calls the collapse), and names the static limit
+/// above it in the subtitle.
 pub fn figure(sol: &Solution) -> Result<FigureSpec> {
+    if let Some(row) = collapse_row(sol) {
+        let (line, on_joints) = figdata::lines_of_state(&row)?.unwrap_or_default();
+        let mut spec = figure_with_lines(&row, line, on_joints, false);
+        if let Chart::State(d) = &mut spec.chart {
+            d.subtitle.push(gap_words(sol));
+        }
+        return Ok(spec);
+    }
     let row = state_row(sol);
     let (line, on_joints) = figdata::lines_of_state(&row)?.unwrap_or_default();
     Ok(figure_with_lines(&row, line, on_joints, false))
+}
+
+/// The state row of a critical find's first complete solution when it comes before the
+/// static limit (`gap`): the arch at the collapse value with the crown state and the
+/// joints of its mechanism.
+pub fn collapse_row(sol: &Solution) -> Option<StateRow> {
+    use crate::analysis::gap::GapStatus;
+    let value = sol.collapse_value.filter(|v| v.is_finite())?;
+    if sol.gap != Some(GapStatus::Gap) || sol.outcome != Some(Outcome::Found) {
+        return None;
+    }
+    let mut row = state_row(sol);
+    match sol.find {
+        Find::LoadFactor => row.load_factor = Some(value),
+        Find::Thickness => {
+            row.k = value;
+            row.scene_k = value;
+            row.t_over_r = crate::model::t_over_r_from_k(value);
+        }
+        Find::Friction => {
+            row.mu = value;
+            row.scene_mu = value;
+        }
+        _ => return None,
+    }
+    row.state = "first_complete".into();
+    row.mechanism = sol.collapse_mechanism.map(|m| m.as_str().to_string());
+    row.thrust_over_half_weight = sol.collapse_thrust_over_half_weight;
+    row.crown_moment = sol.collapse_crown_moment;
+    row.crown_shear = sol.collapse_crown_shear;
+    row.joints = JointLists {
+        hinge_angles_deg: sol.collapse_hinges.iter().map(|h| h.angle_deg).collect(),
+        hinge_faces: sol
+            .collapse_hinges
+            .iter()
+            .map(|h| h.face.as_str().into())
+            .collect(),
+        sliding_angles_deg: sol
+            .collapse_sliding_joints
+            .iter()
+            .map(|s| s.angle_deg)
+            .collect(),
+        sliding_senses: sol
+            .collapse_sliding_joints
+            .iter()
+            .map(|s| s.sense.as_str().into())
+            .collect(),
+    };
+    Some(row)
+}
+
+/// One line on the gap: the collapse value, the static limit above it and the joints that
+/// lift off (drawn as neither hinge nor slide).
+pub fn gap_words(sol: &Solution) -> String {
+    use crate::report::format::short;
+    let name = match sol.find {
+        Find::LoadFactor => "λ",
+        Find::Thickness => "K",
+        _ => "μ",
+    };
+    let limit = match sol.find {
+        Find::LoadFactor => sol.load_factor,
+        Find::Thickness => sol.k_crit,
+        _ => sol.mu_crit,
+    };
+    let mut s = format!(
+        "collapse {name} = {}; static limit {name} = {}; gap {}",
+        sol.collapse_value.map_or("—".into(), short),
+        limit.map_or("∞".into(), short),
+        sol.gap_width.map_or("—".into(), short)
+    );
+    if !sol.collapse_lifted_joints.is_empty() {
+        let at: Vec<String> = sol
+            .collapse_lifted_joints
+            .iter()
+            .map(|a| format!("{}°", crate::report::format::position_deg(*a)))
+            .collect();
+        s.push_str(&format!("; lift-off at {}", at.join(", ")));
+    }
+    s
 }
 
 /// The drawing of a standing scene of a circular arch with radial joints under self-weight
@@ -184,6 +276,61 @@ mod tests {
             "the title names the static limit"
         );
         assert!(!svg.contains("cannot stand"));
+    }
+
+    #[test]
+    fn a_load_factor_find_with_a_gap_draws_its_collapse_below_the_static_limit() {
+        // Twelve voussoirs under a horizontal load: λ_max = 8.518042, but the arch can start
+        // to move at λ = 7.383083 (docs/mechanics.md §4).
+        let scene = SceneOptions {
+            find: "load-factor".into(),
+            voussoirs: Some(12),
+            k: Some(1.5278),
+            mu: 1.0396,
+            half_angle_deg: 50.367,
+            load: "horizontal".into(),
+            ..SceneOptions::default()
+        }
+        .scene()
+        .unwrap();
+        let sol = crate::scene::solve(&scene);
+        let row = collapse_row(&sol).expect("a gap");
+        assert_eq!(row.state, "first_complete");
+        assert!(
+            (row.load_factor.unwrap() - 7.383083).abs() < 1e-6,
+            "{row:?}"
+        );
+        let spec = figure(&sol).unwrap();
+        let Chart::State(d) = &spec.chart else {
+            panic!("a state drawing")
+        };
+        assert!(d.title.contains("first complete solution"), "{}", d.title);
+        assert_eq!(d.hinges.len(), sol.collapse_hinges.len());
+        assert_eq!(d.sliding.len(), sol.collapse_sliding_joints.len());
+        assert_eq!(
+            (d.hinges.len(), d.sliding.len()),
+            (2, 2),
+            "{:?}",
+            sol.collapse_hinges
+        );
+        let words = d.subtitle.join(" | ");
+        assert!(
+            words.contains("collapse λ = 7.3831") && words.contains("static limit λ = 8.5180"),
+            "{words}"
+        );
+        assert!(
+            !d.line_of_thrust.is_empty(),
+            "the collapse state's line is drawn"
+        );
+        // A find without a gap keeps its static limit.
+        let no_gap = SceneOptions {
+            find: "thickness".into(),
+            mu: 0.35,
+            ..SceneOptions::default()
+        }
+        .scene()
+        .unwrap();
+        assert!(collapse_row(&crate::scene::solve(&no_gap)).is_none());
     }
 
     #[test]

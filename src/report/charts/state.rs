@@ -150,6 +150,7 @@ impl StateTexts {
             }
             "collapse" => Self::collapse(s, &mech, values),
             "limit" => Self::limit(&mech, values),
+            "first_complete" => Self::first_complete(&mech, values),
             "no_load_factor" => Self::no_load_factor(s),
             _ => Self::no_equilibrium(s),
         }
@@ -311,6 +312,24 @@ impl StateTexts {
             note: None,
             caption: format!(
                 "The limit state of the find ({values}): the arch to scale at its critical value with its line of thrust, hinges and sliding joints (with the sense of the crown-side part)."
+            ),
+        }
+    }
+
+    /// The first complete solution of a critical find solved on its own, where it comes
+    /// before the static limit (the non-associative gap): the state from which the arch can
+    /// start to move, with the mechanism that obeys the flow rules there.
+    fn first_complete(mech: &str, values: String) -> Self {
+        StateTexts {
+            title: format!("Collapse: first complete solution, {mech} mechanism"),
+            heading: format!("Collapse state (first complete solution), {mech} mechanism"),
+            subtitle: vec![
+                values.clone(),
+                format!("{mech} mechanism obeying the flow rules"),
+            ],
+            note: None,
+            caption: format!(
+                "The first complete solution met along the find's path ({values}): an admissible state with a mechanism whose hinges turn about the faces the line of thrust touches and whose sliding joints slip against the full friction force. The arch can start to move here, before the static limit."
             ),
         }
     }
