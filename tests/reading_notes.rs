@@ -27,6 +27,11 @@ fn cases_where_no_requested_mu_stands_are_named() {
         md.contains("At K = 1.1, 1.2, 1.3 not one of the requested μ (up to 0.9) stands"),
         "{md}"
     );
+    // And the friction it would need (the friction find of seven voussoirs with vertical
+    // joints under self-weight): none at K = 1.1, μ_c = 1.2564266 at 1.2, 1.0229946 at 1.3.
+    assert!(md.contains("K = 1.1: no μ lets it stand"), "{md}");
+    assert!(md.contains("K = 1.2: μ_c = 1.256"), "{md}");
+    assert!(md.contains("K = 1.3: μ_c = 1.023"), "{md}");
 }
 
 #[test]

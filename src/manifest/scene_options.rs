@@ -156,7 +156,7 @@ impl SceneOptions {
             load,
             lambda,
         };
-        scene.check().map_err(form_error)?;
+        scene.check().map_err(|e| form_error(e, self.t_over_r))?;
         Ok(scene)
     }
 
@@ -333,10 +333,27 @@ fn check_general_voussoirs(
     }
 }
 
-/// The option at fault when the form does not exist.
-fn form_error(e: FormError) -> SceneOptionError {
+/// The option at fault when the form does not exist; a thickness given as t/R_c is named
+/// as given, with its own bound.
+fn form_error(e: FormError, t_over_r: Option<f64>) -> SceneOptionError {
     match e {
         FormError::Eccentricity(v) => bad("eccentricity", v, e.to_string()),
+        FormError::PointedTooThick {
+            eccentricity,
+            half_angle_deg,
+            max_k,
+            ..
+        } if t_over_r.is_some() => bad(
+            "t_over_r",
+            short_number(t_over_r.unwrap_or_default()),
+            format!(
+                "a pointed arch with eccentricity {eccentricity} and half-angle \
+                 {half_angle_deg}° exists only for t/R_c < {:.4} (K < {max_k:.4}); t/R_c = {} is \
+                 too thick",
+                crate::model::t_over_r_from_k(max_k),
+                short_number(t_over_r.unwrap_or_default()),
+            ),
+        ),
         FormError::PointedTooThick { k, .. } => bad("k", k, e.to_string()),
         FormError::VerticalBeyondQuadrant(a) => bad("half_angle", a, e.to_string()),
         FormError::LoadOutside { at_deg, .. }
@@ -383,5 +400,16 @@ mod tests {
             ..SceneOptions::default()
         };
         assert_eq!(o.scene().unwrap_err().option, "mu");
+        // A thickness given as t/R_c is named as given, not as the K it becomes.
+        let o = SceneOptions {
+            t_over_r: Some(0.9),
+            shape: "pointed".into(),
+            eccentricity: Some(0.9),
+            ..SceneOptions::default()
+        };
+        let e = o.scene().unwrap_err();
+        assert_eq!((e.option, e.value.as_str()), ("t_over_r", "0.9"));
+        // K < 1 + 2/9 there: t/R_c = 2(K − 1)/(K + 1) < 0.2.
+        assert!(e.allowed.contains("t/R_c < 0.2000 (K < 1.2222)"), "{e}");
     }
 }

@@ -26,6 +26,9 @@ pub struct ArchView {
     pub weight: String,
     /// `continuum` or a voussoir count.
     pub voussoirs: serde_json::Value,
+    /// The crown inside one rigid block (absent: no keystone).
+    #[serde(default)]
+    pub keystone: bool,
 }
 
 impl ArchView {

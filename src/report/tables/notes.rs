@@ -125,15 +125,89 @@ fn never_stands(data: &RunData) -> Option<String> {
     );
     if let (false, Some(&top)) = (none.is_empty(), mus.last()) {
         let ks: Vec<String> = none.iter().map(|&k| compact(k)).collect();
+        if top.is_infinite() {
+            // μ = ∞ was asked for: no friction at all lets the arch stand at these K.
+            text.push_str(&format!(
+                " At K = {} no μ stands, not even μ = ∞: the arch is too thin for its form and \
+                 load there.",
+                listed(&ks)
+            ));
+            return Some(text);
+        }
         text.push_str(&format!(
             " At K = {} not one of the requested μ (up to {}) stands: the arch needs more \
-             friction there than the study asks for; `archstudy solve --find friction --k K` \
-             (with the study's arch) gives the least μ at which it stands.",
+             friction there than the study asks for",
             listed(&ks),
             given(top)
         ));
+        match friction_needed(data, &none) {
+            Some(needed) => text.push_str(&format!(
+                ". The friction it needs under its own weight (the friction find, \
+                 `archstudy solve --find friction --k K` with the study's arch): {}.",
+                listed(&needed)
+            )),
+            None => text.push_str(
+                "; `archstudy solve --find friction --k K` (with the study's arch) gives the \
+                 least μ at which it stands.",
+            ),
+        }
     }
     Some(text)
+}
+
+/// The friction find of the study's arch under its own weight at each of the first
+/// [`LISTED`] thicknesses `ks`, in words: μ_c (the static limit) and, where the gap is open,
+/// the μ below which a mechanism can start; "no μ" where none lets it stand. `None` when
+/// the grid varies the arch (a half-angle or voussoir axis: the arch of each K is not one).
+fn friction_needed(data: &RunData, ks: &[f64]) -> Option<Vec<String>> {
+    let arch = &data.manifest.arch;
+    if data
+        .manifest
+        .grid
+        .iter()
+        .any(|a| a.name == "half_angle_deg" || a.name == "voussoirs")
+    {
+        return None;
+    }
+    let needed = ks
+        .iter()
+        .take(LISTED)
+        .map(|&k| {
+            let scene = crate::manifest::SceneOptions {
+                find: "friction".into(),
+                k: Some(k),
+                half_angle_deg: arch.half_angle_deg,
+                weight: arch.weight.clone(),
+                voussoirs: arch.voussoir_count().map(i64::from),
+                shape: arch.shape.clone(),
+                eccentricity: arch.eccentricity,
+                joints: arch.joints.clone(),
+                keystone: arch.keystone,
+                ..crate::manifest::SceneOptions::default()
+            }
+            .scene()
+            .ok()?;
+            let sol = crate::scene::solve(&scene);
+            let at = format!("K = {}", compact(k));
+            Some(match sol.outcome {
+                Some(crate::scene::Outcome::Found) => {
+                    let mut s = format!("{at}: μ_c = {}", compact(sol.mu_crit?));
+                    if sol.gap == Some(crate::analysis::gap::GapStatus::Gap)
+                        && let Some(c) = sol.collapse_value
+                    {
+                        s.push_str(&format!(
+                            " (a mechanism can start below μ = {}: the gap)",
+                            compact(c)
+                        ));
+                    }
+                    s
+                }
+                Some(crate::scene::Outcome::AlwaysStands) => format!("{at}: any μ"),
+                _ => format!("{at}: no μ lets it stand"),
+            })
+        })
+        .collect::<Option<Vec<String>>>()?;
+    Some(needed)
 }
 
 /// Cases whose λ is unbounded, with the load positions (as given) where it is.
