@@ -212,3 +212,46 @@ fn verify_names_every_forged_derived_file_even_with_recomputed_checksums() {
         assert!(!out.contains("verdict: OK"), "{name}: {out}");
     }
 }
+
+#[test]
+fn verify_stopped_by_sigterm_leaves_no_temporary_re_run() {
+    use crate::common::{bin, scratch};
+    let dir = scratch("verify-sigterm");
+    let run = run_study(
+        &dir,
+        "big.yaml",
+        "name: big\ngrid:\n  k: {from: 1.05, to: 1.5, steps: 400}\n  mu: {from: 0.2, to: 0.8, steps: 400}\n",
+    );
+    let tmp = dir.join("tmp");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let mut child = bin()
+        .args(["verify", run.to_str().unwrap()])
+        .env("TMPDIR", &tmp)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    // Wait (without a clock) until the re-run's temporary directory exists, then stop.
+    let rerun = || {
+        std::fs::read_dir(&tmp).unwrap().flatten().any(|e| {
+            e.file_name()
+                .to_string_lossy()
+                .starts_with("archstudy-rerun-")
+        })
+    };
+    while !rerun() && child.try_wait().unwrap().is_none() {
+        std::thread::yield_now();
+    }
+    std::process::Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap();
+    let status = child.wait().unwrap();
+    if status.success() {
+        // Verify finished before the signal: nothing to check.
+        return;
+    }
+    assert_eq!(status.code(), Some(143));
+    let left: Vec<_> = std::fs::read_dir(&tmp).unwrap().flatten().collect();
+    assert!(left.is_empty(), "left behind: {left:?}");
+}
