@@ -300,12 +300,22 @@ fn sbatch(args: &[&str]) -> Result<String> {
 
 /// Submits the scripts: the array, then the merge depending on it (`afterok`). Returns the
 /// two job ids.
+/// When the merge cannot be submitted, the error names the array job already queued, how to
+/// submit the merge by hand and how to cancel the array.
 pub fn submit(s: &SlurmScripts) -> Result<(String, String)> {
     let array = sbatch(&[&s.array.display().to_string()])?;
     let merge = sbatch(&[
         &format!("--dependency=afterok:{array}"),
         &s.merge.display().to_string(),
-    ])?;
+    ])
+    .with_context(|| {
+        format!(
+            "the array job {array} is queued, but its merge job could not be submitted: \
+             submit it with `sbatch --dependency=afterok:{array} {}`, or cancel the array \
+             with `scancel {array}`",
+            quote(&s.merge.display().to_string())
+        )
+    })?;
     Ok((array, merge))
 }
 

@@ -493,3 +493,48 @@ fn slurm_scripts_quote_or_refuse_every_value() {
     assert_usage_error(&o, &["--out", "control characters"]);
     assert!(!bad.exists());
 }
+
+#[test]
+fn a_merge_job_that_cannot_be_submitted_names_the_queued_array() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = scratch("slurm-submit-merge-fails");
+    let study = manifest(&dir, "s.yaml", STATE);
+    // An sbatch that queues the array (job 4242) and refuses the merge.
+    let fake = dir.join("bin");
+    std::fs::create_dir_all(&fake).unwrap();
+    let sbatch = fake.join("sbatch");
+    std::fs::write(
+        &sbatch,
+        "#!/bin/sh\ncase \"$*\" in *dependency*) echo 'sbatch: error: QOS limit' >&2; exit 1;; esac\necho 4242\n",
+    )
+    .unwrap();
+    std::fs::set_permissions(&sbatch, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let path = format!(
+        "{}:{}",
+        fake.display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    let o = bin()
+        .args([
+            "slurm",
+            study.to_str().unwrap(),
+            "--shards",
+            "2",
+            "--out",
+            dir.join("out").to_str().unwrap(),
+            "--submit",
+        ])
+        .env("PATH", path)
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    let err = stderr(&o);
+    for want in [
+        "array job 4242 is queued",
+        "sbatch --dependency=afterok:4242",
+        "scancel 4242",
+        "QOS limit",
+    ] {
+        assert!(err.contains(want), "{want}: {err}");
+    }
+}
