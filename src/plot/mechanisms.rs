@@ -262,7 +262,12 @@ impl<DB: DrawingBackend> Panel<'_, DB> {
                 BLOCK_EDGE.stroke_width(self.w(2.0)),
             ))?;
         }
-        for [i, e] in &d.voussoir_joints {
+        let joints = if d.voussoir_joints.len() <= super::MAX_DRAWN_JOINTS {
+            d.voussoir_joints.as_slice()
+        } else {
+            &[]
+        };
+        for [i, e] in joints {
             root.draw(&PathElement::new(
                 vec![frame.px(*i), frame.px(*e)],
                 BLOCK_EDGE.stroke_width(self.w(1.0)),

@@ -53,6 +53,12 @@ impl Format {
     }
 }
 
+/// The most voussoir joints a figure draws: an arch of more voussoirs is drawn as its
+/// outline, without its joints and the line's points on them (at a figure's resolution they
+/// would merge into a band, and hundreds of thousands of lines are more than a PDF figure
+/// can be converted from). Every joint is still analysed.
+pub const MAX_DRAWN_JOINTS: usize = 2000;
+
 /// How much larger a PNG is than the design size: an 800 px design becomes 2400 px.
 pub const PNG_SCALE: f64 = 3.0;
 /// Print resolution written into PNGs, dots per inch.

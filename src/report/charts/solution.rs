@@ -334,6 +334,42 @@ mod tests {
     }
 
     #[test]
+    fn an_arch_of_more_voussoirs_than_a_figure_can_draw_is_drawn_as_its_outline() {
+        let drawing = |n: i64| {
+            let scene = SceneOptions {
+                k: Some(1.3),
+                mu: 0.6,
+                voussoirs: Some(n),
+                find: "thickness".into(),
+                ..SceneOptions::default()
+            }
+            .scene()
+            .unwrap();
+            match figure(&crate::scene::solve_static(&scene)).unwrap().chart {
+                Chart::State(d) => d,
+                _ => panic!("a state drawing"),
+            }
+        };
+        let few = drawing(1000);
+        assert_eq!(few.voussoir_joints.len(), 999);
+        assert!(!few.line_on_joints.is_empty());
+        let many = drawing(5000);
+        assert!(many.voussoir_joints.is_empty() && many.line_on_joints.is_empty());
+        assert!(
+            many.subtitle
+                .iter()
+                .any(|l| l.contains("4999 joints are too close to draw")),
+            "{:?}",
+            many.subtitle
+        );
+        assert_eq!(
+            many.hinges.len(),
+            few.hinges.len(),
+            "the hinges are still drawn"
+        );
+    }
+
+    #[test]
     fn a_state_that_stands_draws_its_state_of_largest_margin() {
         let scene = SceneOptions {
             k: Some(1.3),

@@ -51,14 +51,24 @@ pub fn figure_with_lines(
         ""
     };
     let caption = format!("{}{joints_note}{vertical_note}", texts.caption);
-    let geometry = geometry::of_state(s);
+    let mut geometry = geometry::of_state(s);
+    let mut subtitle = texts.subtitle;
+    let mut on_joints = on_joints;
+    if geometry.voussoir_joints.len() > crate::plot::MAX_DRAWN_JOINTS {
+        subtitle.push(format!(
+            "the {} joints are too close to draw: the arch is drawn as its outline",
+            geometry.voussoir_joints.len()
+        ));
+        geometry.voussoir_joints.clear();
+        on_joints.clear();
+    }
     FigureSpec {
         stem: format!("state-{}", safe(&s.state_id)),
         title: texts.heading,
         caption,
         chart: Chart::State(StateDrawing {
             title: texts.title,
-            subtitle: texts.subtitle,
+            subtitle,
             outline: geometry.outline,
             voussoir_joints: geometry.voussoir_joints,
             supports: geometry.supports,
