@@ -42,6 +42,20 @@ pub fn run_quiet(manifest: &Path, out: &Path) -> Output {
     ])
 }
 
+/// Waits (without a clock) until `ready()` or the child ends, then sends it SIGTERM: its exit
+/// code, or `None` when it had already finished successfully (nothing to check).
+pub fn terminate_when(child: &mut std::process::Child, ready: impl Fn() -> bool) -> Option<i32> {
+    while !ready() && child.try_wait().expect("the child").is_none() {
+        std::thread::yield_now();
+    }
+    Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    let status = child.wait().expect("the child ends");
+    (!status.success()).then(|| status.code().unwrap_or(-1))
+}
+
 /// Standard output as text.
 pub fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()

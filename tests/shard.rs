@@ -282,21 +282,13 @@ fn an_interrupted_shard_leaves_no_files_and_the_merge_names_it() {
         ])
         .spawn()
         .unwrap();
-    // Wait (without a clock) until the staging directory exists, then interrupt.
+    // Interrupted once the staging directory exists.
     let staging = out.join(format!(".big.shard-1-of-2.partial-{}", child.id()));
-    while !staging.exists() && child.try_wait().unwrap().is_none() {
-        std::thread::yield_now();
-    }
-    Command::new("kill")
-        .args(["-TERM", &child.id().to_string()])
-        .status()
-        .unwrap();
-    let status = child.wait().unwrap();
-    if status.success() {
+    let Some(code) = crate::common::terminate_when(&mut child, || staging.exists()) else {
         // The shard finished before the signal: nothing to check.
         return;
-    }
-    assert_eq!(status.code(), Some(143));
+    };
+    assert_eq!(code, 143);
     assert_eq!(files(&out, ""), vec!["big.shard-2-of-2".to_string()]);
     let o = merge_cli(&[&out.join("big.shard-2-of-2")], &dir.join("merged"));
     assert_usage_error(&o, &["shard 1 of 2", "big.shard-1-of-2", "missing"]);

@@ -231,7 +231,7 @@ fn verify_stopped_by_sigterm_leaves_no_temporary_re_run() {
         .stderr(std::process::Stdio::null())
         .spawn()
         .unwrap();
-    // Wait (without a clock) until the re-run's temporary directory exists, then stop.
+    // Stopped once the re-run's temporary directory exists.
     let rerun = || {
         std::fs::read_dir(&tmp).unwrap().flatten().any(|e| {
             e.file_name()
@@ -239,19 +239,11 @@ fn verify_stopped_by_sigterm_leaves_no_temporary_re_run() {
                 .starts_with("archstudy-rerun-")
         })
     };
-    while !rerun() && child.try_wait().unwrap().is_none() {
-        std::thread::yield_now();
-    }
-    std::process::Command::new("kill")
-        .args(["-TERM", &child.id().to_string()])
-        .status()
-        .unwrap();
-    let status = child.wait().unwrap();
-    if status.success() {
+    let Some(code) = crate::common::terminate_when(&mut child, rerun) else {
         // Verify finished before the signal: nothing to check.
         return;
-    }
-    assert_eq!(status.code(), Some(143));
+    };
+    assert_eq!(code, 143);
     let left: Vec<_> = std::fs::read_dir(&tmp).unwrap().flatten().collect();
     assert!(left.is_empty(), "left behind: {left:?}");
 }
