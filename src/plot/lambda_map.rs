@@ -65,11 +65,13 @@ const SCALE: [(u8, u8, u8); 9] = [
 /// Fill where no finite λ exists.
 const NO_VALUE: RGBColor = RGBColor(215, 215, 215);
 
-/// Width of the μ = ∞ strip, its gap, the colour bar and its gap, design pixels.
+/// Width of the μ = ∞ strip, its gap, the colour bar and its gap, design pixels. The strip
+/// sits close to the plot, after a break in the μ axis, and the colour bar well apart from
+/// it, so that the strip reads as a part of the map and not as a second colour bar.
 const STRIP_WIDTH: f64 = 26.0;
-const STRIP_GAP: f64 = 14.0;
+const STRIP_GAP: f64 = 12.0;
 const BAR_WIDTH: f64 = 16.0;
-const BAR_GAP: f64 = 26.0;
+const BAR_GAP: f64 = 64.0;
 
 impl LambdaMap {
     /// The place of λ on the colour scale, 0 at the smallest and 1 at the largest.
@@ -322,6 +324,16 @@ impl LambdaMap {
         }
         let frame = BLACK.stroke_width(ctx.upx(1.0).max(1));
         root.draw(&Rectangle::new([(x0, yr.start), (x1, yr.end)], frame))?;
+        // A break in the μ axis between the plot and the strip: two slanted strokes across
+        // the gap, on the axis.
+        let gap = ctx.px(STRIP_GAP);
+        let (d, lean) = (gap / 4, ctx.px(5.0));
+        for x in [x0 - gap + d, x0 - d] {
+            root.draw(&PathElement::new(
+                vec![(x - lean / 2, yr.end + lean), (x + lean / 2, yr.end - lean)],
+                BLACK.stroke_width(ctx.upx(1.2).max(1)),
+            ))?;
+        }
         root.draw(&Text::new(
             "∞".to_string(),
             ((x0 + x1) / 2, yr.end + ctx.px(8.0)),
