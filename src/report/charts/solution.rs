@@ -335,7 +335,7 @@ mod tests {
 
     #[test]
     fn an_arch_of_more_voussoirs_than_a_figure_can_draw_is_drawn_as_its_outline() {
-        let drawing = |n: i64| {
+        let spec = |n: i64| {
             let scene = SceneOptions {
                 k: Some(1.3),
                 mu: 0.6,
@@ -345,15 +345,16 @@ mod tests {
             }
             .scene()
             .unwrap();
-            match figure(&crate::scene::solve_static(&scene)).unwrap().chart {
-                Chart::State(d) => d,
+            let spec = figure(&crate::scene::solve_static(&scene)).unwrap();
+            match spec.chart {
+                Chart::State(d) => (d, spec.caption),
                 _ => panic!("a state drawing"),
             }
         };
-        let few = drawing(1000);
+        let (few, few_caption) = spec(1000);
         assert_eq!(few.voussoir_joints.len(), 999);
         assert!(!few.line_on_joints.is_empty());
-        let many = drawing(5000);
+        let (many, many_caption) = spec(5000);
         assert!(many.voussoir_joints.is_empty() && many.line_on_joints.is_empty());
         assert!(
             many.subtitle
@@ -367,6 +368,9 @@ mod tests {
             few.hinges.len(),
             "the hinges are still drawn"
         );
+        // The caption speaks of the joints' points only where they are drawn.
+        assert!(few_caption.contains("Open circles"));
+        assert!(!many_caption.contains("Open circles"));
     }
 
     #[test]

@@ -29,6 +29,14 @@ pub fn figure_with_lines(
     on_joints: Vec<Xy>,
     moving: bool,
 ) -> FigureSpec {
+    let mut geometry = geometry::of_state(s);
+    let mut on_joints = on_joints;
+    let too_many = geometry.voussoir_joints.len() > crate::plot::MAX_DRAWN_JOINTS;
+    let n_joints = geometry.voussoir_joints.len();
+    if too_many {
+        geometry.voussoir_joints.clear();
+        on_joints.clear();
+    }
     let joints_note = if on_joints.is_empty() {
         ""
     } else {
@@ -51,16 +59,11 @@ pub fn figure_with_lines(
         ""
     };
     let caption = format!("{}{joints_note}{vertical_note}", texts.caption);
-    let mut geometry = geometry::of_state(s);
     let mut subtitle = texts.subtitle;
-    let mut on_joints = on_joints;
-    if geometry.voussoir_joints.len() > crate::plot::MAX_DRAWN_JOINTS {
+    if too_many {
         subtitle.push(format!(
-            "the {} joints are too close to draw: the arch is drawn as its outline",
-            geometry.voussoir_joints.len()
+            "the {n_joints} joints are too close to draw: the arch is drawn as its outline"
         ));
-        geometry.voussoir_joints.clear();
-        on_joints.clear();
     }
     FigureSpec {
         stem: format!("state-{}", safe(&s.state_id)),
