@@ -102,12 +102,8 @@ fn panel<DB: DrawingBackend>(
         .bold_line_style(TRANSPARENT)
         .draw()?;
     let plot = chart.plotting_area().get_pixel_range();
-    let xt: Vec<(i32, String)> = (style::log_ticks(x0, x1).into_iter())
-        .map(|(v, l)| (chart.backend_coord(&(v, y0)).0, l))
-        .collect();
-    let yt: Vec<(i32, String)> = (style::log_ticks(y0, y1).into_iter())
-        .map(|(v, l)| (chart.backend_coord(&(x0, v)).1, l))
-        .collect();
+    let xt = style::placed_log_ticks((x0, x1), |v| chart.backend_coord(&(v, y0)).0, ctx, true);
+    let yt = style::placed_log_ticks((y0, y1), |v| chart.backend_coord(&(x0, v)).1, ctx, false);
     style::draw_ticks(area, ctx, plot.clone(), style::AxisSide::Bottom, &xt)?;
     style::draw_ticks(area, ctx, plot.clone(), style::AxisSide::Left, &yt)?;
     // Labels stacked from the top so that lines close together keep readable labels.

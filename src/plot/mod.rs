@@ -192,17 +192,13 @@ pub(crate) fn draw_xy_axes<DB: DrawingBackend>(
         .draw()?;
     let plot = chart.plotting_area().get_pixel_range();
     if log_x {
-        let ticks: Vec<(i32, String)> = style::log_ticks(10f64.powf(x0), 10f64.powf(x1))
-            .into_iter()
-            .map(|(v, l)| (chart.backend_coord(&(v.log10(), y0)).0, l))
-            .collect();
+        let at = |v: f64| chart.backend_coord(&(v.log10(), y0)).0;
+        let ticks = style::placed_log_ticks((10f64.powf(x0), 10f64.powf(x1)), at, ctx, true);
         style::draw_ticks(root, ctx, plot.clone(), style::AxisSide::Bottom, &ticks)?;
     }
     if log_y {
-        let ticks: Vec<(i32, String)> = style::log_ticks(10f64.powf(y0), 10f64.powf(y1))
-            .into_iter()
-            .map(|(v, l)| (chart.backend_coord(&(x0, v.log10())).1, l))
-            .collect();
+        let at = |v: f64| chart.backend_coord(&(x0, v.log10())).1;
+        let ticks = style::placed_log_ticks((10f64.powf(y0), 10f64.powf(y1)), at, ctx, false);
         style::draw_ticks(root, ctx, plot, style::AxisSide::Left, &ticks)?;
     }
     Ok(())

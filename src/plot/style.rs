@@ -690,6 +690,39 @@ pub fn log_ticks(lo: f64, hi: f64) -> Vec<(f64, String)> {
     out
 }
 
+/// The room a label of a logarithmic x axis needs (`2×10³` at the tick font), design pixels.
+const LOG_LABEL_WIDTH: f64 = 46.0;
+/// The room a label of a logarithmic y axis needs, design pixels.
+const LOG_LABEL_HEIGHT: f64 = 18.0;
+
+/// The ticks of [`log_ticks`] over `(lo, hi)` at their pixels (`at` of each value), the 2
+/// and 5 times of each decade left out when two neighbouring labels would run together on
+/// a short axis (closer than a label's width on an x axis, `horizontal`, or its height on
+/// a y axis): then the powers of ten alone are labelled.
+pub fn placed_log_ticks(
+    (lo, hi): (f64, f64),
+    at: impl Fn(f64) -> i32,
+    ctx: &PlotContext,
+    horizontal: bool,
+) -> Vec<(i32, String)> {
+    let room = ctx.px(if horizontal {
+        LOG_LABEL_WIDTH
+    } else {
+        LOG_LABEL_HEIGHT
+    });
+    let mut ticks: Vec<(i32, f64, String)> = log_ticks(lo, hi)
+        .into_iter()
+        .map(|(v, l)| (at(v), v, l))
+        .collect();
+    let crowded = ticks.windows(2).any(|w| (w[1].0 - w[0].0).abs() < room);
+    let power_of_ten = |v: f64| (v.log10() - v.log10().round()).abs() < 1e-9;
+    // An axis within one decade keeps its multiples: it would have one label or none.
+    if crowded && ticks.iter().filter(|t| power_of_ten(t.1)).count() >= 2 {
+        ticks.retain(|t| power_of_ten(t.1));
+    }
+    ticks.into_iter().map(|(p, _, l)| (p, l)).collect()
+}
+
 /// Which side of the plotting area an axis drawn by [`draw_ticks`] is on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum AxisSide {
@@ -758,6 +791,26 @@ pub fn nice_step(span: f64, n: usize) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_short_log_axis_labels_only_the_powers_of_ten() {
+        let ctx = PlotContext::new(crate::plot::Format::Svg, (800, 600));
+        // Three decades over 300 px: 2×10² would stand 30 px from 10², closer than a label.
+        let at = |w: f64| move |v: f64| ((v / 10.0).log10() / 3.0 * w).round() as i32;
+        let labels = |w: f64| -> Vec<String> {
+            placed_log_ticks((10.0, 1e4), at(w), &ctx, true)
+                .into_iter()
+                .map(|t| t.1)
+                .collect()
+        };
+        assert_eq!(labels(300.0), ["10", "1e2", "1e3", "1e4"]);
+        // Over 1200 px the 2 and 5 times have room.
+        assert_eq!(labels(1200.0).len(), 10);
+        assert!(labels(1200.0).contains(&"2×10^2".to_string()));
+        // Within one decade the multiples stay: without them the axis would have one label.
+        let within = placed_log_ticks((2.0, 9.0), |v| (v * 5.0) as i32, &ctx, true);
+        assert!(within.len() >= 3, "{within:?}");
+    }
 
     #[test]
     fn log_ticks_label_every_decade_and_more_on_short_axes() {
