@@ -176,7 +176,7 @@ impl SceneView {
         }
         match (&self.limit, self.stands) {
             // A gap: the collapse, the first complete solution, is drawn.
-            (Some(l), false) if solution::collapse_row(l).is_some() => json!({
+            (Some(l), false) if solution::drawn_collapse(l).is_some() => json!({
                 "hinges": l.collapse_hinges,
                 "sliding_joints": l.collapse_sliding_joints,
             }),
@@ -189,7 +189,7 @@ impl SceneView {
     /// solution of its limit find) and the static limit: λ at or above the collapse λ, or K
     /// at or below the collapse K.
     fn inside_gap(&self, limit: &Solution) -> bool {
-        let Some(collapse) = solution::collapse_row(limit).and(limit.collapse_value) else {
+        let Some(collapse) = solution::drawn_collapse(limit) else {
             return false;
         };
         match limit.find {
@@ -211,7 +211,7 @@ impl SceneView {
                 solution::gap_words(l)
             ),
             (_, true) => "the scene's state of largest margin".into(),
-            (Some(l), false) if solution::collapse_row(l).is_some() => format!(
+            (Some(l), false) if solution::drawn_collapse(l).is_some() => format!(
                 "the scene does not stand: its collapse, the first complete solution, below \
                  the static limit ({})",
                 solution::gap_words(l)

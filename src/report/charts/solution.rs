@@ -12,7 +12,7 @@ use crate::analysis::symmetric::ThrustState;
 use crate::figdata::{self, general};
 use crate::plot::Format;
 use crate::scene::{Find, Outcome, Solution};
-use crate::store::{JointLists, StateRow};
+use crate::store::StateRow;
 use anyhow::Result;
 
 /// The state row drawn for a solution: its arch, load and, when known, its crown state.
@@ -66,16 +66,7 @@ pub fn state_row(sol: &Solution) -> StateRow {
         row.thrust_over_half_weight = sol.thrust_over_half_weight;
         row.crown_moment = sol.crown_moment;
         row.crown_shear = sol.crown_shear;
-        row.joints = JointLists {
-            hinge_angles_deg: sol.hinges.iter().map(|h| h.angle_deg).collect(),
-            hinge_faces: sol.hinges.iter().map(|h| h.face.as_str().into()).collect(),
-            sliding_angles_deg: sol.sliding_joints.iter().map(|s| s.angle_deg).collect(),
-            sliding_senses: sol
-                .sliding_joints
-                .iter()
-                .map(|s| s.sense.as_str().into())
-                .collect(),
-        };
+        row.joints = figdata::joint_lists(&sol.hinges, &sol.sliding_joints);
     } else if let Ok(model) = general::model_of_state(&row) {
         let phi = crate::model::Friction::new(mu)
             .unwrap_or(crate::model::Friction::INFINITE)
@@ -118,11 +109,7 @@ pub fn figure(sol: &Solution) -> Result<FigureSpec> {
 /// static limit (`gap`): the arch at the collapse value with the crown state and the
 /// joints of its mechanism.
 pub fn collapse_row(sol: &Solution) -> Option<StateRow> {
-    use crate::analysis::gap::GapStatus;
-    let value = sol.collapse_value.filter(|v| v.is_finite())?;
-    if sol.gap != Some(GapStatus::Gap) || sol.outcome != Some(Outcome::Found) {
-        return None;
-    }
+    let value = drawn_collapse(sol)?;
     let mut row = state_row(sol);
     match sol.find {
         Find::LoadFactor => row.load_factor = Some(value),
@@ -131,36 +118,31 @@ pub fn collapse_row(sol: &Solution) -> Option<StateRow> {
             row.scene_k = value;
             row.t_over_r = crate::model::t_over_r_from_k(value);
         }
-        Find::Friction => {
+        _ => {
             row.mu = value;
             row.scene_mu = value;
         }
-        _ => return None,
     }
     row.state = "first_complete".into();
     row.mechanism = sol.collapse_mechanism.map(|m| m.as_str().to_string());
     row.thrust_over_half_weight = sol.collapse_thrust_over_half_weight;
     row.crown_moment = sol.collapse_crown_moment;
     row.crown_shear = sol.collapse_crown_shear;
-    row.joints = JointLists {
-        hinge_angles_deg: sol.collapse_hinges.iter().map(|h| h.angle_deg).collect(),
-        hinge_faces: sol
-            .collapse_hinges
-            .iter()
-            .map(|h| h.face.as_str().into())
-            .collect(),
-        sliding_angles_deg: sol
-            .collapse_sliding_joints
-            .iter()
-            .map(|s| s.angle_deg)
-            .collect(),
-        sliding_senses: sol
-            .collapse_sliding_joints
-            .iter()
-            .map(|s| s.sense.as_str().into())
-            .collect(),
-    };
+    row.joints = figdata::joint_lists(&sol.collapse_hinges, &sol.collapse_sliding_joints);
     Some(row)
+}
+
+/// The collapse value of a critical find whose first complete solution comes before its
+/// static limit (a gap), the state [`collapse_row`] draws; `None` otherwise.
+pub fn drawn_collapse(sol: &Solution) -> Option<f64> {
+    use crate::analysis::gap::GapStatus;
+    let critical = matches!(
+        sol.find,
+        Find::LoadFactor | Find::Thickness | Find::Friction
+    );
+    (critical && sol.gap == Some(GapStatus::Gap) && sol.outcome == Some(Outcome::Found))
+        .then_some(sol.collapse_value?)
+        .filter(|v| v.is_finite())
 }
 
 /// One line on the gap: the collapse value, the static limit above it and the joints that

@@ -192,9 +192,7 @@ fn friction_needed(data: &RunData, ks: &[f64]) -> Option<Vec<String>> {
             Some(match sol.outcome {
                 Some(crate::scene::Outcome::Found) => {
                     let mut s = format!("{at}: μ_c = {}", compact(sol.mu_crit?));
-                    if sol.gap == Some(crate::analysis::gap::GapStatus::Gap)
-                        && let Some(c) = sol.collapse_value
-                    {
+                    if let Some(c) = crate::report::charts::solution::drawn_collapse(&sol) {
                         s.push_str(&format!(
                             " (a mechanism can start below μ = {}: the gap)",
                             compact(c)
