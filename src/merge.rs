@@ -5,6 +5,10 @@
 //! (only the solve times, measured where each shard ran, differ from another run's), and the
 //! boundaries, bifurcations, figures and reports are those of an unsharded run.
 
+mod recheck;
+
+pub use recheck::{DEFAULT_RECHECK_ROWS, Recheck};
+
 use crate::engine::CaseResult;
 use crate::error::UsageError;
 use crate::output::StagedRun;
@@ -32,6 +36,8 @@ pub struct MergeOptions {
     pub progress: Arc<dyn Progress>,
     /// The command line recorded in run.json.
     pub command_line: Vec<String>,
+    /// How many rows of each shard are analysed again and compared with the shard's.
+    pub recheck: Recheck,
 }
 
 fn bad_shard(dir: &Path, why: impl ToString) -> anyhow::Error {
@@ -222,14 +228,15 @@ fn check_complete(dirs: &[PathBuf]) -> Result<Vec<(PathBuf, ShardRunInfo)>> {
     Ok(records)
 }
 
-/// The rows of one shard, checked against the slice of the plan it must hold, handed to
-/// `each` a chunk of [`runner::CHUNK_CASES`] rows at a time (only those rows are decoded).
+/// The rows of one shard, checked against the slice of the plan it must hold and some of them
+/// analysed again ([`Recheck`]), handed to `each` a chunk of [`runner::CHUNK_CASES`] rows at
+/// a time (only those rows are decoded). Returns the number of rows analysed again.
 fn shard_rows(
-    (m, total): (&crate::manifest::Manifest, u64),
+    (m, total, again): (&crate::manifest::Manifest, u64, Recheck),
     dir: &Path,
     r: &ShardRunInfo,
     mut each: impl FnMut(Vec<CaseResult>) -> Result<()>,
-) -> Result<()> {
+) -> Result<u64> {
     let ids = plan::shard_ids(total, r.shard.index, r.shard.count);
     let recorded = r.shard.first_case..r.shard.first_case + r.shard.cases;
     if r.shard.plan_cases != total || recorded != ids {
@@ -267,6 +274,7 @@ fn shard_rows(
     }
     drop(got);
     let n = ids.end - ids.start;
+    let picked = again.offsets(n);
     let mut offset = 0u64;
     while offset < n {
         let len = runner::CHUNK_CASES.min(n - offset);
@@ -275,10 +283,45 @@ fn shard_rows(
         let rows =
             store::read_foreign_case_results_rows(&slice, &path, (offset as usize, len as usize))
                 .map_err(unreadable)?;
+        let picks: Vec<usize> = picked
+            .range(offset..offset + len)
+            .map(|&i| (i - offset) as usize)
+            .collect();
+        if let Some(d) = recheck::recheck(&slice, &rows, &picks)? {
+            return Err(disagreeing_shard(dir, r, &d));
+        }
         each(rows)?;
         offset += len;
     }
-    Ok(())
+    Ok(picked.len() as u64)
+}
+
+/// A shard whose row this build analyses otherwise, named with the case, the column, both
+/// values and the build that wrote the shard.
+fn disagreeing_shard(dir: &Path, r: &ShardRunInfo, d: &recheck::Disagreement) -> anyhow::Error {
+    let ours = crate::provenance::git_commit();
+    let build = if r.info.archstudy_version == crate::provenance::version()
+        && r.info.git_commit == ours
+    {
+        "this build".to_string()
+    } else {
+        format!(
+            "archstudy {} ({}), this build being {} ({})",
+            r.info.archstudy_version,
+            r.info.git_commit.as_deref().unwrap_or("commit unknown"),
+            crate::provenance::version(),
+            ours.as_deref().unwrap_or("commit unknown")
+        )
+    };
+    bad_shard(
+        dir,
+        format!(
+            "case {} analysed again gives `{}` = {} where the shard's results.parquet holds {} \
+             (the shard says it was analysed by {build}): its table is not the analysis of its \
+             plan; re-run the shard",
+            d.case_id, d.column, d.recomputed, d.stored
+        ),
+    )
 }
 
 /// results.parquet of a shard against the hash its run.json records: a table edited after
@@ -359,18 +402,32 @@ pub const MAX_SHARD_MS: f64 = 1e15;
 
 /// The builds that analysed the shards (version, commit, rustc), each with the shards it ran,
 /// in the order first seen.
-fn shard_builds(records: &[(PathBuf, ShardRunInfo)]) -> Vec<ShardBuild> {
+fn shard_builds(records: &[(PathBuf, ShardRunInfo)], rechecked: &[u64]) -> Vec<ShardBuild> {
     let mut builds: Vec<(ShardBuild, Vec<u64>)> = Vec::new();
-    for (_, r) in records {
+    for ((_, r), &again) in records.iter().zip(rechecked) {
         let b = ShardBuild {
             archstudy_version: r.info.archstudy_version.clone(),
             git_commit: r.info.git_commit.clone(),
             rustc_version: r.info.rustc_version.clone(),
             shards: String::new(),
+            rows_rechecked: 0,
         };
-        match builds.iter_mut().find(|(x, _)| *x == b) {
-            Some((_, list)) => list.push(r.shard.index),
-            None => builds.push((b, vec![r.shard.index])),
+        let same = |x: &ShardBuild| {
+            (&x.archstudy_version, &x.git_commit, &x.rustc_version)
+                == (&b.archstudy_version, &b.git_commit, &b.rustc_version)
+        };
+        match builds.iter_mut().find(|(x, _)| same(x)) {
+            Some((x, list)) => {
+                list.push(r.shard.index);
+                x.rows_rechecked += again;
+            }
+            None => builds.push((
+                ShardBuild {
+                    rows_rechecked: again,
+                    ..b
+                },
+                vec![r.shard.index],
+            )),
         }
     }
     builds
@@ -445,8 +502,9 @@ pub fn merge(opts: &MergeOptions) -> Result<RunSummary> {
         Ok(())
     };
     let chunk = runner::CHUNK_CASES as usize;
+    let mut rechecked = Vec::with_capacity(records.len());
     for (dir, r) in &records {
-        shard_rows((&m, total), dir, r, |rows| {
+        let again = shard_rows((&m, total, opts.recheck), dir, r, |rows| {
             pending.extend(rows);
             while pending.len() >= chunk {
                 let rest = pending.split_off(chunk);
@@ -454,6 +512,7 @@ pub fn merge(opts: &MergeOptions) -> Result<RunSummary> {
             }
             Ok(())
         })?;
+        rechecked.push(again);
         stages.engine_ms += r.info.stages.engine_ms;
     }
     if !pending.is_empty() || stored == 0 {
@@ -476,7 +535,7 @@ pub fn merge(opts: &MergeOptions) -> Result<RunSummary> {
         written,
         stages,
         started_at,
-        shard_builds: shard_builds(&records),
+        shard_builds: shard_builds(&records, &rechecked),
     };
     runner::finish_run(analysed, staged, (&pool, threads), &run_opts, t0)
 }

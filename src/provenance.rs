@@ -93,6 +93,9 @@ pub struct ShardBuild {
     pub rustc_version: String,
     /// The shards it ran, as ranges of shard numbers (`1-37, 40`).
     pub shards: String,
+    /// Rows of those shards the merge analysed again, each agreeing with the shard's row.
+    #[serde(default)]
+    pub rows_rechecked: u64,
 }
 
 /// The version of archstudy.

@@ -3,7 +3,7 @@
 //! replace one of its own inputs; and the ways of naming many shards.
 
 use crate::common::{archstudy, assert_usage_error, scratch, stderr};
-use crate::shard::{STATE, cli_shards, merge_cli};
+use crate::shard::{STATE, cli_shards, merge_cli, merge_cli_with};
 use archstudy::provenance::sha256_hex;
 use archstudy::store;
 use std::path::{Path, PathBuf};
@@ -108,6 +108,78 @@ fn a_merge_refuses_shard_tables_that_are_not_what_the_shard_wrote_or_the_plan_ho
         }
         assert!(!out.join("state").exists(), "{name}");
     }
+}
+
+/// Rewrites a float column of a shard's table through `f` and records the new hash, as a
+/// careful forger would.
+fn forge_column(dir: &Path, column: &str, f: impl Fn(f64) -> f64) {
+    let p = dir.join("results.parquet");
+    let mut df = store::read_parquet(&p).unwrap();
+    let c = df.column(column).unwrap().f64().unwrap().clone();
+    let v: Vec<Option<f64>> = (0..c.len()).map(|i| c.get(i).map(&f)).collect();
+    df.with_column(polars::prelude::Column::new(column.into(), v))
+        .unwrap();
+    store::write_parquet(&mut df, &p).unwrap();
+    rehash(dir);
+}
+
+#[test]
+fn a_merge_analyses_shard_rows_again_and_refuses_values_the_plan_does_not_give() {
+    let dir = scratch("merge-recheck");
+    let d = cli_shards(&dir, STATE, "s.yaml", 2);
+    let out = dir.join("merged");
+    // Every thrust scaled by 1.5, the hash recomputed: the plan checks pass, the values do
+    // not; any of the 64 rows drawn shows it.
+    let scaled = copy_shard(&d[0], &dir.join("scaled/state.shard-1-of-2"));
+    forge_column(&scaled, "thrust_r_max", |h| 1.5 * h);
+    let o = merge_cli(&[&scaled, &d[1]], &out);
+    assert_usage_error(
+        &o,
+        &[
+            scaled.to_str().unwrap(),
+            "analysed again gives `thrust_r_max`",
+            "analysed by this build",
+            "re-run the shard",
+        ],
+    );
+    assert!(!out.join("state").exists());
+    // One regime flipped: a random draw of 64 of 124 rows may miss it, `--recheck all`
+    // cannot, and names the case.
+    let flipped = copy_shard(&d[1], &dir.join("flipped/state.shard-2-of-2"));
+    let p = flipped.join("results.parquet");
+    let mut df = store::read_parquet(&p).unwrap();
+    let row = 40;
+    let c = df.column("regime").unwrap().str().unwrap().clone();
+    let mut regimes: Vec<Option<String>> =
+        (0..c.len()).map(|i| c.get(i).map(str::to_string)).collect();
+    let was = regimes[row].clone().unwrap();
+    regimes[row] = Some(if was == "stable" { "sliding" } else { "stable" }.to_string());
+    let case: u64 = df.column("case_id").unwrap().u64().unwrap().get(row).unwrap();
+    df.with_column(polars::prelude::Column::new("regime".into(), regimes))
+        .unwrap();
+    store::write_parquet(&mut df, &p).unwrap();
+    rehash(&flipped);
+    let o = merge_cli_with(&[&d[0], &flipped], &out, &["--recheck", "all"]);
+    assert_usage_error(
+        &o,
+        &[&format!("case {case} analysed again gives `regime` = \"{was}\"")],
+    );
+    // `--recheck 0` takes the values on trust once the rows match the plan, and says so in
+    // run.json: no row analysed again.
+    let o = merge_cli_with(&[&d[0], &flipped], &out, &["--recheck", "0"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let info: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("state/run.json")).unwrap()).unwrap();
+    assert_eq!(info["shard_builds"][0]["rows_rechecked"], 0);
+    // The genuine shards merge, with the rows analysed again counted: 64 of each shard.
+    let o = merge_cli(&[&d[0], &d[1]], &dir.join("genuine"));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let info: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("genuine/state/run.json")).unwrap())
+            .unwrap();
+    assert_eq!(info["shard_builds"][0]["rows_rechecked"], 128);
+    let o = merge_cli_with(&[&d[0], &d[1]], &out, &["--recheck", "some"]);
+    assert_usage_error(&o, &["--recheck", "some", "`all`"]);
 }
 
 #[test]

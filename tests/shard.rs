@@ -42,6 +42,9 @@ fn merged(dirs: &[PathBuf], out: PathBuf) -> PathBuf {
         jobs: Some(1),
         progress: Arc::new(archstudy::progress::Silent),
         command_line: Vec::new(),
+        // Every row analysed again: each study here also checks that a case analysed on its
+        // own agrees with the same case analysed among its plan.
+        recheck: archstudy::merge::Recheck::All,
     })
     .expect("the shards merge")
     .dir
@@ -176,7 +179,13 @@ pub(crate) fn cli_shards(dir: &Path, text: &str, file: &str, count: u64) -> Vec<
 }
 
 pub(crate) fn merge_cli(dirs: &[&Path], out: &Path) -> std::process::Output {
+    merge_cli_with(dirs, out, &[])
+}
+
+/// `archstudy merge` of `dirs` into `out` with further options.
+pub(crate) fn merge_cli_with(dirs: &[&Path], out: &Path, extra: &[&str]) -> std::process::Output {
     let mut args = vec!["merge".to_string()];
+    args.extend(extra.iter().map(|s| s.to_string()));
     args.extend(dirs.iter().map(|d| d.display().to_string()));
     args.extend(["--out".into(), out.display().to_string(), "--quiet".into()]);
     let args: Vec<&str> = args.iter().map(String::as_str).collect();

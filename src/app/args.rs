@@ -77,6 +77,11 @@ pub struct MergeArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Rows of each shard analysed again and compared with the shard's (drawn at random in
+    /// each merge): a count, or `all`; 0 takes the shards' values on trust once their rows
+    /// match the plan.
+    #[arg(long, value_name = "N|all", default_value = "64")]
+    pub recheck: String,
 }
 
 /// `archstudy slurm`.

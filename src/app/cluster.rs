@@ -14,6 +14,14 @@ pub(super) fn merge(args: &MergeArgs) -> Result<ExitCode> {
             UsageError::new("--jobs", 0, "the number of threads must be at least 1").into(),
         );
     }
+    let Some(recheck) = merging::Recheck::parse(&args.recheck) else {
+        return Err(UsageError::new(
+            "--recheck",
+            &args.recheck,
+            "give the number of rows of each shard to analyse again (0 or more), or `all`",
+        )
+        .into());
+    };
     let mut shards = args.shards.clone();
     if let Some(from) = &args.shards_from {
         shards.extend(merging::shards_from(from)?);
@@ -24,6 +32,7 @@ pub(super) fn merge(args: &MergeArgs) -> Result<ExitCode> {
         jobs: args.jobs,
         progress: shown(args.quiet),
         command_line: std::env::args().collect(),
+        recheck,
     };
     let summary = merging::merge(&opts)?;
     report_run(&summary);
