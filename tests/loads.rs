@@ -333,6 +333,43 @@ fn continuum_and_fine_voussoirs_agree() {
     }
 }
 
+
+/// At 10⁵ voussoirs the thrust line comes within the active tolerance of the boundary at
+/// several neighbouring joints (their slack grows as the square of the spacing, 10⁻⁹ here):
+/// each band is one hinge, and the mechanism is the continuum's, with one degree of freedom
+/// and its work equation met.
+#[test]
+fn the_finest_voussoir_arches_name_the_continuums_mechanism() {
+    let m = mu(0.6);
+    let c = lambda_max(
+        arch(1.3, Discretisation::Continuum),
+        m,
+        ArchForm::default(),
+        Load::Horizontal,
+    );
+    for n in [70_000, 100_000] {
+        let s = lambda_max(
+            arch(1.3, Discretisation::Voussoirs(n)),
+            m,
+            ArchForm::default(),
+            Load::Horizontal,
+        );
+        let (l, lc) = (s.load_factor.unwrap(), c.load_factor.unwrap());
+        assert!(l >= lc - 1e-12 && l - lc < 1e-9, "{n}: {l} against {lc}");
+        assert_eq!(s.mechanism_dof, Some(1), "{n}: {:?}", s.hinges);
+        assert_eq!(s.mechanism_admissible, Some(true), "{n}");
+        assert!(s.work_residual.unwrap() < 1e-12, "{n}: {:?}", s.work_residual);
+        assert_eq!(s.hinges.len(), 3, "{n}: {:?}", s.hinges);
+        for (h, hc) in s.hinges.iter().zip(&c.hinges) {
+            assert_eq!(h.face, hc.face);
+            // Within two joint spacings (180°/n) of the continuum's hinge.
+            assert!(
+                (h.angle_deg - hc.angle_deg).abs() < 2.0 * 180.0 / f64::from(n),
+                "{n}: {h:?} against {hc:?}"
+            );
+        }
+    }
+}
 #[test]
 fn pointed_arch_collapses_with_the_crown_rising() {
     // Under self-weight an equilateral arch is much thinner at collapse than the semicircle,

@@ -114,6 +114,12 @@ pub struct GeneralSettings {
     /// A joint shorter than this (over r) has shrunk to a point: hinges on both of its faces
     /// are the thrust passing through it (default 1e-6).
     pub tol_point_joint: f64,
+    /// Neighbouring joints of a voussoir arch closer than this (joint parameter, radians)
+    /// that are active with one condition are one contact of the thrust line, which comes
+    /// within `tol_active` of the boundary at all of them (their slack grows as the square of
+    /// the spacing): only the joint it comes closest to is kept (default 1e-3, about 3,000
+    /// voussoirs on a semicircle; coarser arches keep every active joint).
+    pub band_joint_spacing: f64,
     /// K = 1 + this starts a thickness search (default 1e-12, dimensionless).
     pub k_search_offset: f64,
     /// K of the first upper bracket of a thickness search (default 1.5, dimensionless).
@@ -157,6 +163,7 @@ impl GeneralSettings {
         tol_necessary_relax: 1e-14,
         tol_same_joint: 1e-9,
         tol_point_joint: 1e-6,
+        band_joint_spacing: 1e-3,
         k_search_offset: 1e-12,
         k_search_start: 1.5,
         max_bracket: 1e9,

@@ -126,6 +126,9 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
         };
         if s.outcome == Outcome::Solved && limit && !s.active.is_empty() {
             self.keep_necessary(&mut s, settings);
+            if let Some(thetas) = self.geom.discrete_joints() {
+                thin_bands(&mut s, &thetas, settings.band_joint_spacing);
+            }
         }
         s
     }
@@ -176,4 +179,48 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
             iterations: 1,
         }
     }
+}
+
+/// Keeps one joint of each band of neighbouring active joints of one condition closer than
+/// `spacing` (the one of least slack): the thrust line touches the boundary once there, and
+/// its neighbours are active only because their slack is below the tolerance.
+pub(super) fn thin_bands(s: &mut Solved, thetas: &[f64], spacing: f64) {
+    let index = |t: f64| thetas.iter().position(|&x| x == t);
+    let n = s.active.len();
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| {
+        (s.active[a].condition as u8, s.active[a].theta)
+            .partial_cmp(&(s.active[b].condition as u8, s.active[b].theta))
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    let mut keep = vec![true; n];
+    let mut run: Vec<usize> = Vec::new();
+    let close_run = |run: &mut Vec<usize>, keep: &mut Vec<bool>| {
+        if let Some(&best) = run
+            .iter()
+            .min_by(|&&a, &&b| s.active[a].slack.total_cmp(&s.active[b].slack))
+        {
+            for &i in run.iter() {
+                keep[i] = i == best;
+            }
+        }
+        run.clear();
+    };
+    for &i in &order {
+        let joined = run.last().is_some_and(|&j| {
+            let (a, b) = (&s.active[j], &s.active[i]);
+            a.condition == b.condition
+                && (b.theta - a.theta).abs() < spacing
+                && matches!((index(a.theta), index(b.theta)), (Some(x), Some(y)) if y == x + 1)
+        });
+        if !joined {
+            close_run(&mut run, &mut keep);
+        }
+        run.push(i);
+    }
+    close_run(&mut run, &mut keep);
+    let mut k = keep.iter();
+    s.active.retain(|_| *k.next().unwrap_or(&true));
+    let mut k = keep.iter();
+    s.active_joints.retain(|_| *k.next().unwrap_or(&true));
 }
