@@ -300,19 +300,18 @@ fn shard_rows(
 /// values and the build that wrote the shard.
 fn disagreeing_shard(dir: &Path, r: &ShardRunInfo, d: &recheck::Disagreement) -> anyhow::Error {
     let ours = crate::provenance::git_commit();
-    let build = if r.info.archstudy_version == crate::provenance::version()
-        && r.info.git_commit == ours
-    {
-        "this build".to_string()
-    } else {
-        format!(
-            "archstudy {} ({}), this build being {} ({})",
-            r.info.archstudy_version,
-            r.info.git_commit.as_deref().unwrap_or("commit unknown"),
-            crate::provenance::version(),
-            ours.as_deref().unwrap_or("commit unknown")
-        )
-    };
+    let build =
+        if r.info.archstudy_version == crate::provenance::version() && r.info.git_commit == ours {
+            "this build".to_string()
+        } else {
+            format!(
+                "archstudy {} ({}), this build being {} ({})",
+                r.info.archstudy_version,
+                r.info.git_commit.as_deref().unwrap_or("commit unknown"),
+                crate::provenance::version(),
+                ours.as_deref().unwrap_or("commit unknown")
+            )
+        };
     bad_shard(
         dir,
         format!(

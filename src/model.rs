@@ -257,7 +257,7 @@ pub enum Shape {
     /// ρ_c = (1 + K)/2 is the centreline radius of each arc (over r); e = 0 is the semicircle
     /// and e = 0.5 the equilateral arch (centres at the centreline springings).
     Pointed {
-        /// Eccentricity e ∈ [0, 1): distance of each centre from the axis over ρ_c.
+        /// Eccentricity e ∈ [0, 0.9999]: distance of each centre from the axis over ρ_c.
         eccentricity: f64,
     },
 }

@@ -6,6 +6,7 @@ use crate::common::reference::{
     HAUNCH_DEG as HAUNCH, K_BIF, K_C, MU_MIN, MU_ROT, SLIDING_DEG, T_OVER_R_C,
 };
 use crate::common::{archstudy, assert_usage_error, manifest, scratch, solve_json, stderr};
+use archstudy::analysis::forms::ArchModel;
 use archstudy::analysis::{Face, MechanismKind, Regime};
 use archstudy::model::{
     Arch, ArchForm, Discretisation, Friction, JointOrientation, Load, Shape, WeightModel,
@@ -333,7 +334,6 @@ fn continuum_and_fine_voussoirs_agree() {
     }
 }
 
-
 /// At 10⁵ voussoirs the thrust line comes within the active tolerance of the boundary at
 /// several neighbouring joints (their slack grows as the square of the spacing, 10⁻⁹ here):
 /// each band is one hinge, and the mechanism is the continuum's, with one degree of freedom
@@ -358,7 +358,11 @@ fn the_finest_voussoir_arches_name_the_continuums_mechanism() {
         assert!(l >= lc - 1e-12 && l - lc < 1e-9, "{n}: {l} against {lc}");
         assert_eq!(s.mechanism_dof, Some(1), "{n}: {:?}", s.hinges);
         assert_eq!(s.mechanism_admissible, Some(true), "{n}");
-        assert!(s.work_residual.unwrap() < 1e-12, "{n}: {:?}", s.work_residual);
+        assert!(
+            s.work_residual.unwrap() < 1e-12,
+            "{n}: {:?}",
+            s.work_residual
+        );
         assert_eq!(s.hinges.len(), 3, "{n}: {:?}", s.hinges);
         for (h, hc) in s.hinges.iter().zip(&c.hinges) {
             assert_eq!(h.face, hc.face);
@@ -370,6 +374,62 @@ fn the_finest_voussoir_arches_name_the_continuums_mechanism() {
         }
     }
 }
+
+/// The critical thickness of a pointed arch falls as t/R_c ≈ 0.175 (1 − e): up to the largest
+/// eccentricity allowed (0.9999) it follows that law and friction only raises it; beyond,
+/// the margins no longer resolve the thrust line, and the eccentricity is refused.
+#[test]
+fn the_most_pointed_arches_keep_their_critical_thickness_law_and_beyond_are_refused() {
+    let k_c = |e: f64, m: Friction| {
+        let s = scene::solve(&scene(
+            arch(1.2, Discretisation::Continuum),
+            m,
+            Find::Thickness,
+            pointed(e),
+            Load::SelfWeight,
+        ));
+        s.k_crit.unwrap()
+    };
+    for e in [0.99, 0.999, 0.9999] {
+        let (inf, finite) = (k_c(e, Friction::INFINITE), k_c(e, mu(0.6)));
+        let t = archstudy::model::t_over_r_from_k(inf);
+        assert!(
+            (t / (1.0 - e) - 0.175).abs() < 0.004,
+            "e = {e}: t/R_c = {t}"
+        );
+        // Within 10⁻⁹ of K_c − 1 (at e = 0.99999 the two were 2 % apart).
+        assert!(
+            finite >= inf - 1e-9 * (inf - 1.0),
+            "e = {e}: {finite} < {inf}"
+        );
+    }
+    let e = ArchModel::new(
+        arch(1.0000005, Discretisation::Continuum),
+        pointed(0.99999),
+        Load::SelfWeight,
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("[0, 0.9999]"), "{e}");
+    let o = archstudy(&[
+        "solve",
+        "--shape",
+        "pointed",
+        "--eccentricity",
+        "0.99999",
+        "--mu",
+        "0.6",
+    ]);
+    assert_usage_error(&o, &["--eccentricity", "0.99999", "[0, 0.9999]"]);
+    let dir = scratch("eccentricity-bound");
+    let study = manifest(
+        &dir,
+        "e.yaml",
+        "name: e\narch: {shape: pointed, eccentricity: 0.999999}\ngrid:\n  k: {values: [1.2]}\n  mu: {values: [0.6]}\n",
+    );
+    let o = archstudy(&["check", study.to_str().unwrap()]);
+    assert_usage_error(&o, &["arch.eccentricity", "0.999999", "[0, 0.9999]"]);
+}
+
 #[test]
 fn pointed_arch_collapses_with_the_crown_rising() {
     // Under self-weight an equilateral arch is much thinner at collapse than the semicircle,

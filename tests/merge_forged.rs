@@ -154,7 +154,13 @@ fn a_merge_analyses_shard_rows_again_and_refuses_values_the_plan_does_not_give()
         (0..c.len()).map(|i| c.get(i).map(str::to_string)).collect();
     let was = regimes[row].clone().unwrap();
     regimes[row] = Some(if was == "stable" { "sliding" } else { "stable" }.to_string());
-    let case: u64 = df.column("case_id").unwrap().u64().unwrap().get(row).unwrap();
+    let case: u64 = df
+        .column("case_id")
+        .unwrap()
+        .u64()
+        .unwrap()
+        .get(row)
+        .unwrap();
     df.with_column(polars::prelude::Column::new("regime".into(), regimes))
         .unwrap();
     store::write_parquet(&mut df, &p).unwrap();
@@ -162,7 +168,9 @@ fn a_merge_analyses_shard_rows_again_and_refuses_values_the_plan_does_not_give()
     let o = merge_cli_with(&[&d[0], &flipped], &out, &["--recheck", "all"]);
     assert_usage_error(
         &o,
-        &[&format!("case {case} analysed again gives `regime` = \"{was}\"")],
+        &[&format!(
+            "case {case} analysed again gives `regime` = \"{was}\""
+        )],
     );
     // `--recheck 0` takes the values on trust once the rows match the plan, and says so in
     // run.json: no row analysed again.

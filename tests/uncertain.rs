@@ -403,7 +403,7 @@ const BAD: &[(&str, &[&str])] = &[
     ),
     (
         "arch: {shape: pointed, eccentricity: 0.2}\nuncertain:\n  eccentricity: {distribution: uniform, from: 0.5, to: 1.2}\n  k: {distribution: uniform, from: 1.1, to: 1.3}\n  mu: {distribution: uniform, from: 0.3, to: 0.5}\nfind: probability\n",
-        &["uncertain.eccentricity", "[0, 1)"],
+        &["uncertain.eccentricity", "[0, 0.9999]"],
     ),
     (
         "load_cases:\n  - {name: p, kind: point, at_deg: 30}\nuncertain:\n  at_deg: {distribution: uniform, from: -20, to: 20}\n  k: {distribution: uniform, from: 1.1, to: 1.3}\n  mu: {distribution: uniform, from: 0.3, to: 0.5}\nfind: fragility\n",

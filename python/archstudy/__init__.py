@@ -310,7 +310,7 @@ def solve(
         weight: Weight model, ``"annular"`` or ``"centreline"``.
         voussoirs: Number of voussoirs N ≥ 1 (``None``: the continuum).
         shape: ``"circular"`` or ``"pointed"`` (needs ``eccentricity``).
-        eccentricity: e ∈ [0, 1) of a pointed arch (0.5: equilateral).
+        eccentricity: e ∈ [0, 0.9999] of a pointed arch (0.5: equilateral).
         joints: Joint planes, ``"radial"`` or ``"vertical"`` (α ≤ 90°).
         keystone: The crown inside one rigid block.
         load: ``"self-weight"``, ``"horizontal"`` (a horizontal body force λ·weight) or

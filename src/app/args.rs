@@ -214,7 +214,7 @@ pub struct SolveArgs {
     /// Outline: circular, or pointed (two arcs meeting at the crown; needs --eccentricity).
     #[arg(long, value_name = "SHAPE", default_value = "circular", value_parser = ["circular", "pointed"])]
     pub shape: String,
-    /// Eccentricity e ∈ [0, 1) of a pointed arch: its arcs' centres lie at ±e·ρ_c on the
+    /// Eccentricity e ∈ [0, 0.9999] of a pointed arch: its arcs' centres lie at ±e·ρ_c on the
     /// springing line (0: semicircle, 0.5: equilateral).
     #[arg(long, value_name = "E", allow_hyphen_values = true)]
     pub eccentricity: Option<f64>,

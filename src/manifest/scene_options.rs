@@ -54,7 +54,7 @@ pub struct SceneOptions {
     pub find: String,
     /// Outline: `circular` or `pointed`.
     pub shape: String,
-    /// Eccentricity e ∈ [0, 1) of a pointed arch.
+    /// Eccentricity e ∈ [0, 0.9999] of a pointed arch.
     pub eccentricity: Option<f64>,
     /// Joint planes: `radial` or `vertical`.
     pub joints: String,
@@ -214,9 +214,19 @@ impl SceneOptions {
                     "only a pointed arch has an eccentricity: add --shape pointed",
                 ));
             }
-            ("pointed", Some(e)) if (0.0..1.0).contains(&e) => Shape::Pointed { eccentricity: e },
+            ("pointed", Some(e)) if crate::analysis::forms::eccentricity_allowed(e) => {
+                Shape::Pointed { eccentricity: e }
+            }
             ("pointed", Some(e)) => {
-                return Err(bad("eccentricity", e, "e must lie in [0, 1)"));
+                return Err(bad(
+                    "eccentricity",
+                    e,
+                    format!(
+                        "e must lie in {} (beyond, the critical thickness t/R_c ≈ 0.175 (1 − e) \
+                         is below what the margins resolve)",
+                        crate::analysis::forms::ECCENTRICITY_RANGE
+                    ),
+                ));
             }
             ("pointed", None) => {
                 return Err(bad(

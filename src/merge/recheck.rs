@@ -99,7 +99,11 @@ pub fn recheck(slice: &Plan, rows: &[CaseResult], picks: &[usize]) -> Result<Opt
     let table = |r: &[CaseResult]| -> Result<store::Table> {
         store::table_from_frame(&store::results_frame(&sub, r)?)
     };
-    let c = compare_tables(&table(&stored)?, &table(&again)?, compare::DEFAULT_TOLERANCE);
+    let c = compare_tables(
+        &table(&stored)?,
+        &table(&again)?,
+        compare::DEFAULT_TOLERANCE,
+    );
     for col in &c.columns {
         if let ColumnVerdict::Different { first, .. } = &col.verdict
             && let Some(d) = first.first()

@@ -51,11 +51,27 @@ use std::f64::consts::FRAC_PI_2;
 /// The numerical thresholds of the forms (see [`GeometrySettings`]).
 const GEOMETRY: GeometrySettings = GeometrySettings::DEFAULT;
 
+/// The largest eccentricity of a pointed arch. Its critical thickness falls as
+/// t/R_c ≈ 0.175 (1 − e), so beyond e = 0.9999 (t/R_c below 2·10⁻⁵) the margins no longer
+/// resolve the thrust line within the arch: at e = 0.99999 a finite μ would give a critical
+/// K below the K of infinite friction, which cannot be.
+pub const MAX_ECCENTRICITY: f64 = 0.9999;
+
+/// The eccentricities a pointed arch may have, as messages print them.
+pub const ECCENTRICITY_RANGE: &str = "[0, 0.9999]";
+
+/// Whether `e` is an eccentricity a pointed arch may have ([`MAX_ECCENTRICITY`]).
+pub fn eccentricity_allowed(e: f64) -> bool {
+    (0.0..=MAX_ECCENTRICITY).contains(&e)
+}
+
 /// Why a form, an arch and a load do not make a valid scene.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FormError {
-    /// The eccentricity must lie in [0, 1).
-    #[error("eccentricity {0} is not allowed: it must lie in [0, 1)")]
+    /// The eccentricity must lie in [`ECCENTRICITY_RANGE`].
+    #[error(
+        "eccentricity {0} is not allowed: it must lie in [0, 0.9999] (beyond, the critical thickness t/R_c ≈ 0.175 (1 − e) is below what the margins resolve)"
+    )]
     Eccentricity(f64),
     /// The intrados arcs of a pointed arch must meet above the springings.
     #[error(
@@ -196,7 +212,7 @@ impl ArchModel {
         let k = arch.k;
         let alpha = arch.half_angle;
         let e = form.shape.eccentricity();
-        if !(0.0..1.0).contains(&e) {
+        if !eccentricity_allowed(e) {
             return Err(FormError::Eccentricity(e));
         }
         let max_k = form.max_k(alpha);

@@ -42,23 +42,25 @@ fn shape(a: &RawArch, cx: &Ctx) -> Result<&'static str, ManifestError> {
     }
 }
 
-/// A pointed arch needs an eccentricity in [0, 1); no other shape has one.
+/// A pointed arch needs an eccentricity in [0, 0.9999]; no other shape has one.
 fn eccentricity(a: &RawArch, shape: &str, cx: &Ctx) -> Result<Option<f64>, ManifestError> {
     match (&a.eccentricity, shape) {
         (None, "pointed") => Err(cx.err(
             a.shape.as_ref().map(|s| s.referenced),
             "arch.eccentricity",
-            "a pointed arch needs `eccentricity: e` with 0 ≤ e < 1 (0.5 is the equilateral arch)",
+            "a pointed arch needs `eccentricity: e` with 0 ≤ e ≤ 0.9999 (0.5 is the equilateral arch)",
         )),
         (None, _) => Ok(None),
         (Some(e), "pointed") => {
-            if !(0.0..1.0).contains(&e.value) {
+            if !crate::analysis::forms::eccentricity_allowed(e.value) {
                 return Err(cx.err(
                     Some(e.referenced),
                     "arch.eccentricity",
                     format!(
-                        "value {} is not allowed: it must lie in [0, 1)",
-                        fmt_num(e.value)
+                        "value {} is not allowed: it must lie in {} (beyond, the critical \
+                         thickness t/R_c ≈ 0.175 (1 − e) is below what the margins resolve)",
+                        fmt_num(e.value),
+                        crate::analysis::forms::ECCENTRICITY_RANGE
                     ),
                 ));
             }

@@ -29,7 +29,13 @@ pub(super) fn allowed(name: ParamName, arch: &ArchOptions, alpha_lo: f64) -> All
         ParamName::TOverR => (0.0, t_max, false, true, format!("(0, {t_max:.4}]")),
         ParamName::Mu => (0.0, f64::INFINITY, true, true, "[0, inf]".to_string()),
         ParamName::HalfAngleDeg => (0.0, 180.0, false, false, "(0, 180) degrees".into()),
-        ParamName::Eccentricity => (0.0, 1.0, true, false, "[0, 1)".into()),
+        ParamName::Eccentricity => (
+            0.0,
+            crate::analysis::forms::MAX_ECCENTRICITY,
+            true,
+            true,
+            crate::analysis::forms::ECCENTRICITY_RANGE.into(),
+        ),
         ParamName::Voussoirs => (
             1.0,
             f64::INFINITY,
