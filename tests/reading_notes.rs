@@ -1,6 +1,7 @@
 //! The report says in words what a reader would otherwise take for a defect: cases where no
 //! requested μ lets the arch stand, load positions with an unbounded λ, and the sliver a
-//! point load punches through the continuum.
+//! point load punches through the continuum, and sliding on the edges of a pointed arch's crown
+//! wedge.
 
 use crate::common::{run_study, scratch};
 use std::path::Path;
@@ -70,4 +71,54 @@ fn a_sliver_punched_by_a_point_load_on_the_continuum_is_named() {
         ),
         "{md}"
     );
+}
+
+#[test]
+fn sliding_on_the_edges_of_a_pointed_arch_s_crown_wedge_is_named() {
+    let dir = scratch("notes-crown-wedge");
+    let run = run_study(
+        &dir,
+        "p5.yaml",
+        "name: p5\narch: {shape: pointed, eccentricity: 0.5}\ngrid:\n  k: {from: 1.05, to: 1.3, steps: 26}\n  mu: {from: 0.1, to: 0.6, steps: 26}\n",
+    );
+    let md = report(&run);
+    // The mixed/sliding bifurcation of the equilateral arch lies at K = 1.1420: ψ₁ =
+    // asin(0.5 · 2.1420 / 2) = 32.378°, where its mechanism slides.
+    let psi1 = (0.5f64 * (1.0 + 1.142) / 2.0).asin().to_degrees();
+    assert!((psi1 - 32.378).abs() < 0.01);
+    assert!(
+        md.contains("In 2 of the 2 mechanisms drawn the arch slides at ±ψ₁")
+            && md.contains("ψ₁ = 32.378")
+            && md.contains("edges of the crown wedge"),
+        "{md}"
+    );
+    // The friction find at K = 1.2 slides outward at ±ψ₁ = asin(0.55) = 33.367°.
+    let v = crate::common::solve_json(&[
+        "--find",
+        "friction",
+        "--shape",
+        "pointed",
+        "--eccentricity",
+        "0.5",
+        "--k",
+        "1.2",
+    ]);
+    let angles: Vec<f64> = v["sliding_joints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["angle_deg"].as_f64().unwrap())
+        .collect();
+    let edge = 0.55f64.asin().to_degrees();
+    assert!(
+        angles.iter().any(|a| (a - edge).abs() < 1e-9),
+        "{angles:?} against ψ₁ = {edge}"
+    );
+    // A pointed arch whose mechanisms slide elsewhere says nothing of the kind.
+    let run = run_study(
+        &dir,
+        "p2.yaml",
+        "name: p2\narch: {shape: pointed, eccentricity: 0.2}\ngrid:\n  k: {from: 1.05, to: 1.4, steps: 15}\n  mu: {from: 0.15, to: 0.6, steps: 10}\n",
+    );
+    assert!(!report(&run).contains("crown wedge"));
 }

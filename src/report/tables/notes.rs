@@ -1,6 +1,7 @@
 //! Notes in words on what a reader would otherwise take for a defect of the run: cases where
 //! no requested μ lets the arch stand under its own weight, and load positions at which λ
-//! is unbounded. Each note names the counts and the values behind it, from the stored data.
+//! is unbounded, slivers punched by a point load, and sliding on the edges of a pointed
+//! arch's crown wedge. Each note names the counts and the values behind it, from the stored data.
 
 use crate::report::charts::load_factor::compact;
 use crate::report::data::{RunData, given_position};
@@ -38,7 +39,51 @@ pub fn notes(data: &RunData) -> Vec<String> {
     out.extend(never_stands(data));
     out.extend(unbounded(data));
     out.extend(slivers(data));
+    out.extend(crown_wedge(data));
     out
+}
+
+/// Two sliding angles closer than this (degrees) are one joint.
+const SAME_ANGLE_DEG: f64 = 1e-6;
+
+/// Mechanisms of a pointed arch of radial joints that slide at ±ψ₁ = asin(e (1 + K)/2), the
+/// first radial joints: the edges of the crown wedge, which holds no joint but the vertical
+/// crown joint and so slides as one block.
+fn crown_wedge(data: &RunData) -> Option<String> {
+    let arch = &data.manifest.arch;
+    let e = arch.eccentricity.filter(|_| arch.shape == "pointed")?;
+    if arch.joints != "radial" {
+        return None;
+    }
+    let psi1 = |k: f64| (e * (1.0 + k) / 2.0).asin().to_degrees();
+    let on_edge: Vec<&crate::store::MechanismRow> = data
+        .mechanisms
+        .iter()
+        .filter(|m| m.flow_rule == "non_associative")
+        .filter(|m| {
+            m.sliding_angles_deg
+                .iter()
+                .any(|a| (a.abs() - psi1(m.k)).abs() <= SAME_ANGLE_DEG)
+        })
+        .collect();
+    let first = on_edge.first()?;
+    let drawn = data
+        .mechanisms
+        .iter()
+        .filter(|m| m.flow_rule == "non_associative")
+        .count();
+    Some(format!(
+        "In {} of the {drawn} mechanisms drawn the arch slides at ±ψ₁ = asin(e (1 + K)/2), the \
+         first radial joints of the pointed arch ({} first: K = {}, μ = {}, ψ₁ = {:.4}°): these \
+         are the edges of the crown wedge, which holds no joint but the vertical crown joint, so \
+         the wedge between them moves as one block. The angle follows from e and K; it is not a \
+         joint picked at an odd place.",
+        on_edge.len(),
+        first.state_id,
+        compact(first.k),
+        compact(first.mu),
+        psi1(first.k),
+    ))
 }
 
 /// Point loads on the continuum whose mechanism slides on both sides of the load's joint:
