@@ -14,7 +14,7 @@
 //! The Parquet files are read by the store; comparison works on the store's plain tables,
 //! so this module does not use polars.
 
-pub mod compare;
+pub use crate::store::compare;
 mod redraw;
 
 use crate::archive::{self, Provenance, REQUIRED_FILES, SUMS_FILE, check_sums, parse_sums};

@@ -641,6 +641,54 @@ find: load_factor
     }
 }
 
+/// The weakest position of a moving point load is refined between the grid positions either
+/// side of the grid's weakest: on the pointed arch (e = 0.2, K = 1.15, μ = 0.5) λ_max falls
+/// towards the keystone's edge ψ₁ = asin(e (1 + K)/2) = 12.4155°, below the grid's least
+/// (0.1703 at ±15°), to 0.15721 there.
+#[test]
+fn the_weakest_load_position_is_refined_between_grid_positions() {
+    let dir = scratch("refined-position");
+    let text = "name: r\narch: {shape: pointed, eccentricity: 0.2}\nfind: load_factor\nload_cases:\n  - {name: p, kind: point}\ngrid:\n  at_deg: {values: [-30, -25, -20, -15, 0, 15, 20, 25, 30]}\n  k: {values: [1.15]}\n  mu: {values: [0.5]}\n";
+    let o = run_study(&dir, "r", text);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let run = dir.join("out/r");
+    let states = store::read_states(&run.join("states.parquet")).unwrap();
+    let w = states.iter().find(|s| s.state == "weakest").unwrap();
+    let psi1 = (0.2f64 * 2.15 / 2.0).asin().to_degrees();
+    let at = w.at_deg.unwrap();
+    assert!(
+        (at.abs() - psi1).abs() < 1e-7 && at.abs() >= psi1,
+        "{at} against ψ₁ = {psi1}"
+    );
+    let refined = w.load_factor.unwrap();
+    // The grid's weakest, and λ_max at the refined position solved on its own.
+    let grid = lambda_max(
+        arch(1.15, Discretisation::Continuum),
+        mu(0.5),
+        pointed(0.2),
+        Load::Point { at_deg: -15.0 },
+    )
+    .load_factor
+    .unwrap();
+    let again = lambda_max(
+        arch(1.15, Discretisation::Continuum),
+        mu(0.5),
+        pointed(0.2),
+        Load::Point { at_deg: at },
+    )
+    .load_factor
+    .unwrap();
+    assert!((grid - 0.170251).abs() < 1e-6, "{grid}");
+    assert!((refined - 0.157210).abs() < 1e-6, "{refined}");
+    assert!((again - refined).abs() < 1e-9, "{again} against {refined}");
+    let md = std::fs::read_to_string(run.join("report.md")).unwrap();
+    assert!(
+        md.contains("λ_max at the weakest load position refined between grid points (K = 1.15, μ = 0.5, load at -12.4155°; the grid's weakest: 0.1703 at -15°) | 0.1572102"),
+        "{md}"
+    );
+    assert!(md.contains("The open diamond is the least λ_max of the weakest line"));
+}
+
 #[test]
 fn live_load_state_study_uses_the_general_route() {
     let dir = scratch("loads-state");

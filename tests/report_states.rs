@@ -85,19 +85,28 @@ fn assert_case_states(run: &Path, form: (&str, f64, &str), load: &str) {
         assert_eq!((s.shape.as_str(), s.eccentricity), (form.0, form.1));
         assert_eq!(s.joint_orientation, form.2);
         assert_eq!(s.load, load);
-        assert_eq!(
-            (s.k, s.mu, s.at_deg),
-            (c.k, c.mu, c.at_deg),
-            "{}",
-            s.state_id
-        );
         let (l, lc) = (s.load_factor.expect("λ"), c.load_factor.expect("λ"));
-        assert!(
-            (l - lc).abs() < 1e-9 * (1.0 + lc),
-            "{}: λ {l} vs {lc}",
-            s.state_id
-        );
-        assert_eq!(s.mechanism, c.mechanism, "{}", s.state_id);
+        // The weakest position of a moving point load is refined between the grid positions
+        // either side of its case (20° apart here): below the case's λ, within 20° of it.
+        if s.state == "weakest" && load == "point" && s.at_deg != c.at_deg {
+            assert_eq!((s.k, s.mu), (c.k, c.mu), "{}", s.state_id);
+            let (a, ac) = (s.at_deg.unwrap(), c.at_deg.unwrap());
+            assert!((a - ac).abs() < 20.0, "{}: {a} from {ac}", s.state_id);
+            assert!(l < lc, "{}: λ {l} vs {lc}", s.state_id);
+        } else {
+            assert_eq!(
+                (s.k, s.mu, s.at_deg),
+                (c.k, c.mu, c.at_deg),
+                "{}",
+                s.state_id
+            );
+            assert!(
+                (l - lc).abs() < 1e-9 * (1.0 + lc),
+                "{}: λ {l} vs {lc}",
+                s.state_id
+            );
+            assert_eq!(s.mechanism, c.mechanism, "{}", s.state_id);
+        }
         // Its collapse mechanism is stored and drawn, of the same kind, meeting eq. (11).
         let mechs = store::read_mechanisms(&RunLayout::at(run).mechanisms()).expect("mechanisms");
         let m = mechs
@@ -139,10 +148,11 @@ fn assert_case_states(run: &Path, form: (&str, f64, &str), load: &str) {
     let mut kinds: Vec<&str> = all.iter().filter_map(|c| c.mechanism.as_deref()).collect();
     kinds.sort_unstable();
     kinds.dedup();
+    // Of the cases drawn (a refined weakest state may collapse otherwise than its case).
     let mut drawn_kinds: Vec<&str> = drawn
         .iter()
         .filter(|s| s.source == "case")
-        .filter_map(|s| s.mechanism.as_deref())
+        .filter_map(|s| all[s.case_id? as usize].mechanism.as_deref())
         .collect();
     drawn_kinds.sort_unstable();
     assert_eq!(drawn_kinds, kinds);

@@ -4,7 +4,9 @@
 //! case and of the weakest case of every other mechanism found (docs/report-files.md).
 
 use super::general::{self, CrownForce, active_joint_parameter};
-use super::{ArchGroup, Collector, SceneAt, blank_state, finite, joint_lists, suffix};
+use super::{
+    ArchGroup, Collector, SceneAt, blank_state, finite, joint_lists, suffix, weakest_position,
+};
 use crate::analysis::forms::ArchModel;
 use crate::analysis::general::Settings;
 use crate::analysis::kinematics::{
@@ -184,11 +186,14 @@ impl LoadCaseStates<'_> {
                 crate::model::Discretisation::Voussoirs,
             ),
         };
-        let position = self.position_of(c);
+        let f = friction(c.mu);
+        let position = match why {
+            "weakest" => self.refined_position(group, c, f)?,
+            _ => self.position_of(c),
+        };
         let Some(model) = self.model(group, c.k, position)? else {
             return Ok(None);
         };
-        let f = friction(c.mu);
         let Some(collapse) = general::load_factor_collapse(&model, f.angle()) else {
             return Ok(None);
         };
@@ -204,10 +209,56 @@ impl LoadCaseStates<'_> {
         row.state = why.into();
         (row.scene_k, row.scene_mu, row.k, row.mu) = (c.k, f.mu(), c.k, f.mu());
         row.t_over_r = crate::model::t_over_r_from_k(c.k);
-        (row.at_deg, row.at_x) = (c.at_deg, position.1);
+        row.at_deg = position
+            .0
+            .or_else(|| model.point_position().map(|(deg, _)| deg))
+            .or(c.at_deg);
+        row.at_x = position.1;
         row.case_id = u32::try_from(c.row).ok();
         fill(&mut row, &crown, mechanism.as_ref());
         Ok(Some(row))
+    }
+
+    /// The position of the weakest case of a point load that moves over a grid axis of three
+    /// positions or more (an influence line), refined between its neighbouring grid positions
+    /// ([`weakest_position`]); the case's own position otherwise.
+    fn refined_position(
+        &self,
+        group: ArchGroup,
+        c: &LoadFactorCase,
+        f: Friction,
+    ) -> Result<(Option<f64>, Option<f64>)> {
+        use crate::manifest::AxisName;
+        let grid = self.position_of(c);
+        let axis = (self.manifest.grid.iter()).find(|a| {
+            (a.name == AxisName::AtDeg && grid.0.is_some())
+                || (a.name == AxisName::AtX && grid.1.is_some())
+        });
+        // An influence line has three positions or more; two are two loads, not a line.
+        let (Some(axis), Some(lambda)) = (axis.filter(|a| a.values.len() >= 3), c.load_factor)
+        else {
+            return Ok(grid);
+        };
+        let by_x = axis.name == AxisName::AtX;
+        let at = if by_x { grid.1 } else { grid.0 }.unwrap_or(f64::NAN);
+        let tol = self.manifest.boundary_tolerance;
+        let Some(bracket) = weakest_position::bracket(&axis.values, at, tol) else {
+            return Ok(grid);
+        };
+        let place = |p: f64| {
+            if by_x {
+                (None, Some(p))
+            } else {
+                (Some(p), None)
+            }
+        };
+        let lambda_at = |p: f64| {
+            let model = self.model(group, c.k, place(p)).ok()??;
+            let lf = crate::analysis::general::load_factor(&model, f.angle(), &Settings::default());
+            (lf.outcome == crate::analysis::general::Outcome::Solved).then_some(lf.lambda)
+        };
+        let (p, _) = weakest_position::refine(bracket, (at, lambda), tol, lambda_at);
+        Ok(place(p))
     }
 
     /// A scene: under a load factor find, its collapse state at λ_max (the load at the

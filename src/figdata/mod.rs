@@ -12,6 +12,7 @@ pub mod load_factors;
 pub mod mechanisms;
 mod reference;
 pub mod sampled;
+pub mod weakest_position;
 pub use general_states::mechanism_of_state;
 pub use reference::find_of_quantity;
 

@@ -3,13 +3,13 @@
 //! regime flipped, every thrust scaled) would otherwise pass every check of the plan. The
 //! rows are drawn at random in each merge (no one can tell in advance which rows a merge
 //! reads), analysed as a plan of their own and compared with the shard's, value by value,
-//! at `verify`'s tolerance. `verify` on the merged run re-analyses every row.
+//! at `verify`'s tolerance ([`compare`]). `verify` on the merged run re-analyses every row.
 
 use crate::engine::{self, CaseResult};
 use crate::plan::Plan;
 use crate::progress::Silent;
 use crate::store;
-use crate::verify::compare::{self, ColumnVerdict, compare_tables};
+use crate::store::compare::{self, ColumnVerdict, compare_tables};
 use anyhow::Result;
 use std::collections::BTreeSet;
 use std::hash::{BuildHasher, Hasher};

@@ -44,6 +44,9 @@ pub struct LinePanel {
     pub lines: Vec<Line>,
     /// A logarithmic y axis (for values spanning more than a decade or two).
     pub log_y: bool,
+    /// Points found between the lines' points (the least of an influence line refined
+    /// between grid positions), drawn as open diamonds; empty for none.
+    pub marks: Vec<(f64, f64)>,
 }
 
 impl LinePanel {
@@ -99,7 +102,11 @@ fn range(vals: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
 fn panel_window(p: &LinePanel) -> Option<((f64, f64), (f64, f64))> {
     let pts = || p.lines.iter().flat_map(|l| l.points.iter());
     let (x0, x1) = range(pts().filter(|q| q.y.is_finite()).map(|q| q.x))?;
-    let (y0, y1) = range(pts().flat_map(|q| [p.y_of(q.y), p.y_of(q.collapse)]))?;
+    let (y0, y1) = range(
+        pts()
+            .flat_map(|q| [p.y_of(q.y), p.y_of(q.collapse)])
+            .chain(p.marks.iter().map(|m| p.y_of(m.1))),
+    )?;
     let y0 = if !p.log_y && y0 > 0.0 && y0 < 0.3 * y1 {
         0.0
     } else {
@@ -167,6 +174,10 @@ fn draw_points<DB: DrawingBackend>(
             let color = palette::mechanism(&q.mechanism);
             root.draw(&Circle::new(c, ctx.upx(r), color.filled()))?;
         }
+    }
+    for &(x, y) in p.marks.iter().filter(|m| p.y_of(m.1).is_finite()) {
+        let c = chart.backend_coord(&(x, p.y_of(y)));
+        style::diamond(root, ctx, c, r + 3.0, palette::INK)?;
     }
     let (xr, yr) = chart.plotting_area().get_pixel_range();
     let mut placer = LabelPlacer::new((xr.start, yr.start, xr.end + ctx.px(68.0), yr.end));
@@ -323,6 +334,12 @@ impl LinesChart {
                     width: 1.4,
                     dashed: false,
                 },
+            ));
+        }
+        if self.panels.iter().any(|p| !p.marks.is_empty()) {
+            items.push(LegendItem::new(
+                "least λ_max refined between grid positions",
+                Mark::Diamond(palette::INK),
             ));
         }
         // Each line's shade of grey, when every panel draws the same lines (an influence line

@@ -3,6 +3,7 @@
 
 mod boundaries;
 mod cases;
+pub mod compare;
 mod estimates;
 mod figures;
 mod results;

@@ -158,6 +158,7 @@ fn collapse_overlay(
                 y_desc: "collapse thickness ratio K_c = R/r".into(),
                 lines,
                 log_y: false,
+                marks: Vec::new(),
             }],
         }),
     }
@@ -222,6 +223,7 @@ fn bifurcations_against_axis(
             })
             .collect(),
         log_y: false,
+        marks: Vec::new(),
     };
     let left = panel(&|mu, _| mu, "friction coefficient μ at the bifurcation");
     let right = panel(&|_, k| k, "thickness ratio K at the bifurcation");

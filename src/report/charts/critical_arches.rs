@@ -104,6 +104,7 @@ pub fn figure(data: &RunData, lc: &LoadCaseFigure) -> Option<FigureSpec> {
                 y_desc: y_desc.into(),
                 lines,
                 log_y: false,
+                marks: Vec::new(),
             }],
         }),
     })

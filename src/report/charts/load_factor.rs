@@ -5,7 +5,7 @@
 use super::{Chart, FigureSpec, LoadCaseFigure, mu_text};
 use crate::plot::lines::{Line, LinePanel, LinePoint, LinesChart};
 use crate::report::data::{ArchView, RunData, given_position};
-use crate::report::format::{given, position_deg};
+use crate::report::format::{given, position_deg, short};
 use crate::store::LoadFactorCase;
 
 /// How the line figures mark the gap.
@@ -216,6 +216,7 @@ fn lambda_curves(
             x_desc: "K = R/r".into(),
             y_desc: "λ_max (multiples of the weight)".into(),
             log_y: wide(&lines),
+            marks: Vec::new(),
             lines,
         });
     }
@@ -236,6 +237,7 @@ fn lambda_curves(
             x_desc: "friction coefficient μ".into(),
             y_desc: "λ_max (multiples of the weight)".into(),
             log_y: wide(&lines),
+            marks: Vec::new(),
             lines,
         });
     }
@@ -265,6 +267,20 @@ fn lambda_curves(
             panels,
         }),
     })
+}
+
+/// The refined weakest position in words, for the influence line's caption.
+fn refined_sentence(refined: Option<&crate::store::StateRow>) -> String {
+    let Some((s, lambda, at)) = refined.and_then(|s| Some((s, s.load_factor?, s.at_deg?))) else {
+        return String::new();
+    };
+    let at_x = s.at_x.map_or(String::new(), |x| format!(", x/L = {x:.6}"));
+    format!(
+        " The open diamond is the least λ_max of the weakest line (K = {}, μ = {}) refined between the grid positions either side of its weakest one: λ_max = {} with the load at {at:.4}°{at_x} (states.parquet).",
+        compact(s.k),
+        compact(s.mu),
+        short(lambda),
+    )
 }
 
 /// The cases with a non-associative gap in words, after `marks` (how the figure shows them);
@@ -312,10 +328,36 @@ fn influence_line(
     combos.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
     combos.dedup();
     let idx: Vec<f64> = (0..combos.len()).map(|i| i as f64).collect();
-    let chosen: Vec<(f64, f64)> = spread(&idx, MAX_LINES)
+    let mut chosen: Vec<(f64, f64)> = spread(&idx, MAX_LINES)
         .into_iter()
         .map(|i| combos[i as usize])
         .collect();
+    // The weakest position refined between grid positions (the drawn state of the weakest
+    // case), on the line of its (K, μ), which is always drawn.
+    let refined = data.states.iter().find(|s| {
+        s.load_case == lc.name && s.state == "weakest" && s.source == "case" && s.load == "point"
+    });
+    if let Some(s) = refined
+        && !chosen.contains(&(s.k, s.mu))
+        && combos.contains(&(s.k, s.mu))
+    {
+        chosen.push((s.k, s.mu));
+        chosen.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    }
+    let mark = |as_xl: bool| -> Vec<(f64, f64)> {
+        refined
+            .and_then(|s| {
+                let (lambda, at) = (s.load_factor?, s.at_deg?);
+                let x = if as_xl {
+                    s.at_x
+                        .unwrap_or_else(|| x_over_l(&data.manifest.arch, s.k, s.half_angle_deg, at))
+                } else {
+                    at
+                };
+                Some(vec![(x, lambda)])
+            })
+            .unwrap_or_default()
+    };
     let line = |(k, mu): (f64, f64), as_xl: bool| {
         let mut pts: Vec<LinePoint> = own
             .iter()
@@ -352,13 +394,15 @@ fn influence_line(
         },
         y_desc: "λ_max (multiples of the weight)".into(),
         log_y: wide(&chosen.iter().map(|&c| line(c, as_xl)).collect::<Vec<_>>()),
+        marks: mark(as_xl),
         lines: chosen.iter().map(|&c| line(c, as_xl)).collect(),
     };
     Some(FigureSpec {
         stem: format!("influence-line{stem}"),
         title: format!("Influence line of the point load{}{on}", lc.title_suffix),
         caption: format!(
-            "The collapse load factor λ_max of a point load λ·W_total on the extrados (results.parquet) against its position: left, the angle θ of its joint from the crown (negative to the left); right, the horizontal position x/L of the load's point from the left springing of the extrados over the distance between the extrados springings. One line per (K, μ), for up to four of the study's; each point coloured by the collapse mechanism at λ_max; a break in a line is a position where λ is unbounded or no state stands.{}",
+            "The collapse load factor λ_max of a point load λ·W_total on the extrados (results.parquet) against its position: left, the angle θ of its joint from the crown (negative to the left); right, the horizontal position x/L of the load's point from the left springing of the extrados over the distance between the extrados springings. One line per (K, μ), for up to four of the study's (and the line of the weakest case); each point coloured by the collapse mechanism at λ_max; a break in a line is a position where λ is unbounded or no state stands.{}{}",
+            refined_sentence(refined),
             gap_sentence(own, BARS)
         ),
         chart: Chart::Lines(LinesChart {

@@ -196,9 +196,10 @@ impl StateTexts {
     /// The collapse state at λ_max of a stored load_factor case.
     fn weakest_case(s: &StateRow, mech: &str, values: String, moving: bool) -> Self {
         let lambda = s.load_factor.map_or("—".into(), short);
+        let refined = s.state == "weakest" && s.load == "point" && moving;
         let which = if s.state == "weakest" {
-            if s.load == "point" && moving {
-                "the weakest load position of the study".to_string()
+            if refined {
+                "the weakest load position of the study, refined between the grid positions either side of it".to_string()
             } else {
                 "the weakest case of the study".to_string()
             }
@@ -215,8 +216,13 @@ impl StateTexts {
             subtitle: vec![values.clone(), format!("λ_max = {lambda}{at}; {which}")],
             note: None,
             caption: format!(
-                "The collapse state of case {} of results.parquet, {which}, at its largest load factor λ_max = {lambda} ({values}{at}): the arch to scale with the load drawn where it acts, the line of thrust, hinges on the intrados or extrados and sliding joints with the sense in which the part nearer the crown moves.",
-                s.case_id.map_or("—".into(), |c| c.to_string())
+                "The collapse state of case {} of results.parquet, {which}, at its largest load factor λ_max = {lambda} ({values}{at}): the arch to scale with the load drawn where it acts, the line of thrust, hinges on the intrados or extrados and sliding joints with the sense in which the part nearer the crown moves.{}",
+                s.case_id.map_or("—".into(), |c| c.to_string()),
+                if refined {
+                    " The position and λ_max are those refined between the grid positions either side of the case (the least λ_max over them, to the study's boundary tolerance); the case holds the grid's."
+                } else {
+                    ""
+                }
             ),
         }
     }

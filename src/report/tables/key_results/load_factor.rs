@@ -133,6 +133,9 @@ impl Rows {
         }
         let by_x = data.manifest.positions_by_x(lc);
         let moving = distinct(cases.iter().filter_map(|c| given_position(c, by_x))).len() > 1;
+        if moving {
+            self.refined_weakest(data, lc, on);
+        }
         let ks = spread(&distinct(cases.iter().map(|c| c.k)), TABLE_SIDE);
         let mus = spread(&distinct(cases.iter().map(|c| c.mu)), TABLE_SIDE);
         for &k in &ks {
@@ -153,6 +156,47 @@ impl Rows {
                 }
             }
         }
+    }
+
+    /// The weakest position of a moving point load refined between the grid's positions:
+    /// the drawn state of the study's weakest case (states.parquet), with the grid's own.
+    fn refined_weakest(&mut self, data: &RunData, lc: &str, on: &str) {
+        let Some((i, st)) = (data.states.iter().enumerate())
+            .find(|(_, s)| s.load_case == lc && s.state == "weakest" && s.source == "case")
+        else {
+            return;
+        };
+        let (Some(v), Some(a)) = (st.load_factor, st.at_deg) else {
+            return;
+        };
+        let grid = study_cases(data, lc)
+            .into_iter()
+            .find(|c| st.case_id.is_some_and(|id| id as usize == c.row));
+        // A refined position is not a grid value: to a tenth of a thousandth.
+        let place = match st.at_x {
+            Some(x) => format!("x/L = {x:.6} ({a:.4}°)"),
+            None => format!("{a:.4}°"),
+        };
+        let against =
+            grid.and_then(|c| Some((c.load_factor?, given_position(c, st.at_x.is_some())?)));
+        let against = against.map_or(String::new(), |(l, p)| {
+            let p = if st.at_x.is_some() {
+                given(p)
+            } else {
+                format!("{}°", position_deg(p))
+            };
+            format!("; the grid's weakest: {} at {p}", short(l))
+        });
+        self.push(
+            format!(
+                "λ_max at the weakest load position refined between grid points{on} (K = {}, μ = {}, load at {place}{against})",
+                compact(st.k),
+                compact(st.mu),
+            ),
+            v,
+            None,
+            format!("states.parquet row {i} load_factor, at_deg"),
+        );
     }
 
     /// A few of the changes of collapse mechanism located over (K, μ), spread over the table.

@@ -11,7 +11,7 @@
 //! - A different row count, a column missing from either side, a changed data type or a
 //!   changed column order are differences.
 
-use crate::store::{ColumnData, Table, TableColumn};
+use super::{ColumnData, Table, TableColumn};
 
 /// The default tolerance of float comparisons (relative and absolute).
 pub const DEFAULT_TOLERANCE: f64 = 1e-9;
