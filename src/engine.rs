@@ -18,7 +18,7 @@ use crate::analysis::circular::SymmetricCircular;
 use crate::analysis::forms::ArchModel;
 use crate::analysis::settings::GeneralSettings;
 use crate::analysis::symmetric::{self, RotationalDomain, SlidingDomain};
-use crate::model::Discretisation;
+use crate::model::{Discretisation, JointOrientation};
 use crate::plan::{Case, Plan};
 use crate::progress::{Progress, Stage};
 use crate::scene::{self, Find, Scene, Solution};
@@ -454,11 +454,22 @@ pub fn is_symmetric_state_grid(plan: &Plan) -> bool {
 
 /// The cases of one K line (one arch, every μ), in plan order.
 fn k_lines(plan: &Plan) -> Vec<Vec<usize>> {
-    let mut index: HashMap<(u64, Discretisation, u64), usize> = HashMap::new();
+    type LineKey = (
+        u64,
+        Discretisation,
+        u64,
+        (bool, u64, JointOrientation, bool),
+    );
+    let mut index: HashMap<LineKey, usize> = HashMap::new();
     let mut lines: Vec<Vec<usize>> = Vec::new();
     for (n, c) in plan.cases.iter().enumerate() {
         let a = &c.scene.arch;
-        let key = (a.half_angle.to_bits(), a.joints, a.k.to_bits());
+        let key = (
+            a.half_angle.to_bits(),
+            a.joints,
+            a.k.to_bits(),
+            c.scene.form.key(),
+        );
         let l = *index.entry(key).or_insert_with(|| {
             lines.push(Vec::new());
             lines.len() - 1

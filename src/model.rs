@@ -343,6 +343,17 @@ pub struct ArchForm {
 }
 
 impl ArchForm {
+    /// The form as a hashable key: whether it is pointed, its eccentricity's bits, its joint
+    /// planes and its keystone (cases of one key share their outline and joints).
+    pub fn key(&self) -> (bool, u64, JointOrientation, bool) {
+        (
+            matches!(self.shape, Shape::Pointed { .. }),
+            self.shape.eccentricity().to_bits(),
+            self.joints,
+            self.keystone,
+        )
+    }
+
     /// Checks that a form asked to have a keystone has one with these joints.
     pub fn check_keystone(&self, joints: Discretisation) -> Result<(), KeystoneRefusal> {
         if !self.keystone {

@@ -179,6 +179,7 @@ fn scene_at(
     let mut at_deg = None;
     let mut at_x = None;
     let mut joints = m.arch.voussoirs;
+    let mut form = m.arch.form();
     // K for finds that do not use it: a placeholder the analysis ignores.
     let mut k = 2.0;
     let mut mu = f64::INFINITY;
@@ -193,6 +194,8 @@ fn scene_at(
             AxisName::TOverR => k = k_from_t_over_r(v),
             AxisName::Mu => mu = v,
             AxisName::HalfAngleDeg => half = v,
+            AxisName::Eccentricity => form.shape = Shape::Pointed { eccentricity: v },
+            AxisName::Joints => form.joints = crate::manifest::joints_of_axis_value(v),
             AxisName::Voussoirs => joints = discretisation(v),
             AxisName::AtDeg => at_deg = Some(v),
             AxisName::AtX => at_x = Some(v),
@@ -203,7 +206,7 @@ fn scene_at(
         arch: Arch::from_valid(k, half, m.arch.weight, joints),
         friction: Friction::new(mu).unwrap_or(Friction::INFINITE),
         find: case.map_or(m.find, |c| c.find),
-        form: m.arch.form(),
+        form,
         load: case.map_or(Load::SelfWeight, |c| c.load(at_deg, at_x)),
         lambda: case.and_then(|c| c.lambda).unwrap_or(0.0),
     };
@@ -260,6 +263,7 @@ impl Plan {
     /// formulation.
     pub fn is_separable_state_grid(&self) -> bool {
         self.manifest.arch.form().is_circular_radial()
+            && !self.manifest.forms_vary()
             && self
                 .manifest
                 .load_cases
@@ -273,21 +277,20 @@ impl Plan {
     }
 }
 
-/// A readable description of a manifest's plan for `archstudy check`, without expanding it:
-/// the number of cases is [`case_count`], so a plan of 10⁸ cases costs what a plan of ten
-/// does.
-pub fn describe(m: &Manifest) -> String {
-    let find = m
-        .sampling
-        .as_ref()
-        .map_or(m.find.to_string(), |s| s.question.to_string());
-    let mut s = format!("study `{}`: find {find}\n", m.name);
+/// The arch line of [`describe`]: an arch parameter that is a grid axis is described with
+/// the axes, not as one value.
+fn describe_arch(m: &Manifest) -> String {
+    let is_axis = |n: AxisName| m.grid.iter().any(|a| a.name == n);
     let shape = match m.arch.eccentricity {
+        _ if is_axis(AxisName::Eccentricity) => format!("{} (e: grid axis)", m.arch.shape),
         Some(e) => format!("{} (e = {e})", m.arch.shape),
         None => m.arch.shape.to_string(),
     };
-    // An arch parameter that is a grid axis is described with the axes, not as one value.
-    let is_axis = |n: AxisName| m.grid.iter().any(|a| a.name == n);
+    let joints = if is_axis(AxisName::Joints) {
+        "joints: grid axis".to_string()
+    } else {
+        format!("{} joints", m.arch.joints)
+    };
     let alpha = if is_axis(AxisName::HalfAngleDeg) {
         "α: grid axis".to_string()
     } else {
@@ -299,16 +302,32 @@ pub fn describe(m: &Manifest) -> String {
         m.arch.voussoirs.to_string()
     };
     let keystone = if m.arch.keystone { ", keystone" } else { "" };
-    s.push_str(&format!(
-        "arch: {} {alpha}, {} joints{keystone}, {} weight, {voussoirs}\n",
-        shape, m.arch.joints, m.arch.weight
-    ));
+    format!(
+        "arch: {} {alpha}, {joints}{keystone}, {} weight, {voussoirs}\n",
+        shape, m.arch.weight
+    )
+}
+
+/// A readable description of a manifest's plan for `archstudy check`, without expanding it:
+/// the number of cases is [`case_count`], so a plan of 10⁸ cases costs what a plan of ten
+/// does.
+pub fn describe(m: &Manifest) -> String {
+    let find = m
+        .sampling
+        .as_ref()
+        .map_or(m.find.to_string(), |s| s.question.to_string());
+    let mut s = format!("study `{}`: find {find}\n", m.name);
+    s.push_str(&describe_arch(m));
     for a in &m.grid {
         let first = a.values.first().copied().unwrap_or(f64::NAN);
         let last = a.values.last().copied().unwrap_or(f64::NAN);
         let show = |v: f64| {
             if a.name == AxisName::Voussoirs && v.is_infinite() {
                 "continuum".to_string()
+            } else if a.name == AxisName::Joints {
+                crate::manifest::joints_of_axis_value(v)
+                    .as_str()
+                    .to_string()
             } else {
                 v.to_string()
             }

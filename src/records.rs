@@ -34,6 +34,9 @@ pub struct BoundaryPoint {
     pub half_angle_deg: f64,
     /// Voussoir count, `None` for the continuum.
     pub voussoirs: Option<u32>,
+    /// Outline and joint planes of the arch (they vary along `eccentricity` and `joints`
+    /// axes).
+    pub form: crate::model::ArchForm,
     /// Position of the point load of the group, degrees from the crown (`None` for other
     /// loads, and for a position given as x/L, whose angle depends on K).
     pub at_deg: Option<f64>,
@@ -75,6 +78,9 @@ pub struct Bifurcation {
     pub half_angle_deg: f64,
     /// Voussoir count, `None` for the continuum.
     pub voussoirs: Option<u32>,
+    /// Outline and joint planes of the arch (they vary along `eccentricity` and `joints`
+    /// axes).
+    pub form: crate::model::ArchForm,
     /// Position of the point load of the group, degrees from the crown (`None` for other
     /// loads, and for a position given as x/L, whose angle depends on K).
     pub at_deg: Option<f64>,

@@ -11,6 +11,7 @@ mod common;
 mod damaged;
 mod disk_full;
 mod explore;
+mod form_axes;
 mod gap;
 mod given_values;
 mod hardening;

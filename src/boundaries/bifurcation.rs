@@ -119,6 +119,7 @@ pub(crate) fn record(grid: &Grid, kind: Kind, state: &CriticalState) -> Bifurcat
         load_case: grid.load_case,
         half_angle_deg: grid.arch.half_angle_deg(),
         voussoirs: grid.arch.joints.voussoirs(),
+        form: grid.scene.form,
         at_deg: grid.scene.load.at_deg(),
         at_x: grid.scene.load.at_x(),
         axis: None,

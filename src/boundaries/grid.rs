@@ -1,5 +1,5 @@
 //! The answers of a run as K × μ grids: one per load case and per value of the other axes
-//! (half-angle, voussoirs, position of a point load), with the K and μ values sorted (a
+//! (half-angle, eccentricity, joints, voussoirs, position of a point load), with the K and μ values sorted (a
 //! `values:` list may be in any order). A grid holds one byte per case, the case's
 //! [cell code](super::cells), read from the plan chunk by chunk: neither the whole plan nor
 //! the engine's rows are held.
@@ -44,14 +44,15 @@ impl Grid {
     }
 }
 
-/// Group key: load case, half-angle bits, discretisation and point-load position bits (as
-/// an angle, as x/L).
+/// Group key: load case, half-angle bits, discretisation, point-load position bits (as an
+/// angle, as x/L) and form ([`crate::model::ArchForm::key`]).
 type Key = (
     usize,
     u64,
     crate::model::Discretisation,
     Option<u64>,
     Option<u64>,
+    (bool, u64, crate::model::JointOrientation, bool),
 );
 
 fn key_of(case: &plan::Case) -> Key {
@@ -59,7 +60,14 @@ fn key_of(case: &plan::Case) -> Key {
     // A group per position as given: an x/L position's angle moves with K.
     let at = case.scene.load.at_deg().map(f64::to_bits);
     let at_x = case.scene.load.at_x().map(f64::to_bits);
-    (case.load_case, a.half_angle.to_bits(), a.joints, at, at_x)
+    (
+        case.load_case,
+        a.half_angle.to_bits(),
+        a.joints,
+        at,
+        at_x,
+        case.scene.form.key(),
+    )
 }
 
 fn sorted_distinct(set: &HashSet<u64>) -> Vec<f64> {

@@ -269,6 +269,7 @@ impl<'a> Refiner<'a> {
             load_case: grid.load_case,
             half_angle_deg: grid.arch.half_angle_deg(),
             voussoirs: grid.arch.joints.voussoirs(),
+            form: grid.scene.form,
             at_deg: grid.scene.load.at_deg(),
             at_x: grid.scene.load.at_x(),
             k,

@@ -216,6 +216,7 @@ impl<'a> GridRefiner<'a> {
             load_case: self.grid.load_case,
             half_angle_deg: self.grid.arch.half_angle_deg(),
             voussoirs: self.grid.arch.joints.voussoirs(),
+            form: self.grid.scene.form,
             at_deg: self.grid.scene.load.at_deg(),
             at_x: self.grid.scene.load.at_x(),
             k,

@@ -231,6 +231,7 @@ fn sweep(grid: &Grid, swept: Swept, tol: f64, lm: &Landmarks) -> Vec<Bifurcation
                     load_case: grid.load_case,
                     half_angle_deg: grid.arch.half_angle_deg(),
                     voussoirs: grid.arch.joints.voussoirs(),
+                    form: grid.scene.form,
                     at_deg: grid.scene.load.at_deg(),
                     at_x: grid.scene.load.at_x(),
                     axis: None,

@@ -70,7 +70,7 @@ impl LoadCaseStates<'_> {
     ) -> Result<Option<ArchModel>> {
         let arch = group.arch(self.manifest, k)?;
         let load = self.lc.load(at_deg, at_x);
-        Ok(ArchModel::new(arch, self.manifest.arch.form(), load).ok())
+        Ok(ArchModel::new(arch, group.form, load).ok())
     }
 
     /// True when the load case places its point load by x/L (its own `at_x` or the grid's
@@ -179,13 +179,7 @@ impl LoadCaseStates<'_> {
         (c, why): (&LoadFactorCase, &str),
         mechs: &mut Vec<MechanismRow>,
     ) -> Result<Option<StateRow>> {
-        let group = ArchGroup {
-            half_angle_deg: c.half_angle_deg,
-            voussoirs: c.voussoirs.map_or(
-                crate::model::Discretisation::Continuum,
-                crate::model::Discretisation::Voussoirs,
-            ),
-        };
+        let group = ArchGroup::of_case(self.manifest, c);
         let f = friction(c.mu);
         let position = match why {
             "weakest" => self.refined_position(group, c, f)?,
@@ -269,10 +263,8 @@ impl LoadCaseStates<'_> {
             (self.lc.at_deg, self.lc.at_x)
         } else {
             // results.parquet stores α as given.
-            let alpha = at.group.half_angle_deg;
-            let own = self.cases.iter().filter(|c| {
-                c.half_angle_deg == alpha && c.voussoirs == at.group.voussoirs.voussoirs()
-            });
+            let own =
+                (self.cases.iter()).filter(|c| ArchGroup::of_case(self.manifest, c) == at.group);
             weakest(own.copied()).map_or((None, None), |c| self.position_of(c))
         };
         let Some(model) = self.model(at.group, at.k, position)? else {
@@ -526,6 +518,8 @@ mod tests {
             mu: 0.5,
             half_angle_deg: 90.0,
             voussoirs: None,
+            eccentricity: None,
+            joints: crate::model::JointOrientation::Radial,
             at_deg: Some(row as f64),
             at_x: None,
             load_factor: Some(lambda),

@@ -17,8 +17,19 @@ pub const READ_BLOCK_ROWS: usize = 1 << 18;
 /// The mechanisms whose weakest case is kept.
 const MECHANISMS: [&str; 3] = ["rotational", "mixed", "sliding"];
 
-/// A load case and arch group: the load case, the half-angle's bits and the voussoirs.
-type GroupKey = (String, u64, Option<u32>);
+/// A load case and arch group: the load case, the half-angle's bits, the voussoirs, the
+/// eccentricity's bits (none for a circular arch) and the joint planes.
+type GroupKey = (String, u64, Option<u32>, Option<u64>, u8);
+
+fn group_key(c: &LoadFactorCase) -> GroupKey {
+    (
+        c.load_case.clone(),
+        c.half_angle_deg.to_bits(),
+        c.voussoirs,
+        c.eccentricity.map(f64::to_bits),
+        c.joints as u8,
+    )
+}
 
 /// The cases singled out in one load case and arch group.
 #[derive(Debug, Clone, Default)]
@@ -89,10 +100,7 @@ impl LoadFactorCases {
         let mut out = LoadFactorCases::default();
         store::read_load_factor_cases_in_blocks(path, READ_BLOCK_ROWS, |block| {
             for c in &block {
-                out.singled
-                    .entry((c.load_case.clone(), c.half_angle_deg.to_bits(), c.voussoirs))
-                    .or_default()
-                    .add(c);
+                out.singled.entry(group_key(c)).or_default().add(c);
             }
             out.kept
                 .extend(block.into_iter().filter(|c| keeps(c.row as u64)));
@@ -129,6 +137,8 @@ mod tests {
             mu: 0.5,
             half_angle_deg: 90.0,
             voussoirs: group,
+            eccentricity: None,
+            joints: crate::model::JointOrientation::Radial,
             at_deg: None,
             at_x: None,
             load_factor: lambda,
@@ -152,9 +162,7 @@ mod tests {
         ];
         let mut s = BTreeMap::<GroupKey, Singled>::new();
         for c in &cases {
-            s.entry(("h".into(), 90f64.to_bits(), c.voussoirs))
-                .or_default()
-                .add(c);
+            s.entry(group_key(c)).or_default().add(c);
         }
         let r = LoadFactorCases {
             kept: Vec::new(),

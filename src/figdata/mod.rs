@@ -122,14 +122,16 @@ fn suffix(manifest: &Manifest, load_case: &str) -> String {
     }
 }
 
-/// The arch of one group of cases: the manifest's arch with the values of its `half_angle_deg`
-/// and `voussoirs` axes, when it has them.
+/// The arch of one group of cases: the manifest's arch with the values of its
+/// `half_angle_deg`, `eccentricity`, `joints` and `voussoirs` axes, when it has them.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct ArchGroup {
     /// Half-embrace angle α, degrees.
     half_angle_deg: f64,
     /// Continuum or N voussoirs.
     voussoirs: Discretisation,
+    /// Outline and joint planes.
+    form: crate::model::ArchForm,
 }
 
 impl ArchGroup {
@@ -137,6 +139,39 @@ impl ArchGroup {
         ArchGroup {
             half_angle_deg: manifest.arch.half_angle_deg,
             voussoirs: manifest.arch.voussoirs,
+            form: manifest.arch.form(),
+        }
+    }
+
+    /// The form of a stored row's columns (eccentricity, null for a circular arch, and joint
+    /// planes), the manifest's keystone kept; the manifest's form where the table lacks them.
+    fn form_of(
+        manifest: &Manifest,
+        e: Option<f64>,
+        joints: Option<&str>,
+    ) -> crate::model::ArchForm {
+        let base = manifest.arch.form();
+        let Some(joints) = joints.and_then(crate::model::JointOrientation::parse) else {
+            return base;
+        };
+        crate::model::ArchForm {
+            shape: match e {
+                Some(eccentricity) => crate::model::Shape::Pointed { eccentricity },
+                None => crate::model::Shape::Circular,
+            },
+            joints,
+            ..base
+        }
+    }
+
+    /// The group of a stored load_factor case.
+    fn of_case(manifest: &Manifest, c: &store::LoadFactorCase) -> Self {
+        ArchGroup {
+            half_angle_deg: c.half_angle_deg,
+            voussoirs: c
+                .voussoirs
+                .map_or(Discretisation::Continuum, Discretisation::Voussoirs),
+            form: Self::form_of(manifest, c.eccentricity, Some(c.joints.as_str())),
         }
     }
 
@@ -152,6 +187,7 @@ impl ArchGroup {
                 Some(None) => Discretisation::Continuum,
                 None => base.voussoirs,
             },
+            form: Self::form_of(manifest, g.eccentricity, g.joints.as_deref()),
         }
     }
 
@@ -169,6 +205,12 @@ impl ArchGroup {
         let mut out = String::new();
         if has_axis(manifest, AxisName::HalfAngleDeg) {
             out.push_str(&format!("-a{}", self.half_angle_deg));
+        }
+        if has_axis(manifest, AxisName::Eccentricity) {
+            out.push_str(&format!("-e{}", self.form.shape.eccentricity()));
+        }
+        if has_axis(manifest, AxisName::Joints) {
+            out.push_str(&format!("-{}", self.form.joints.as_str()));
         }
         if has_axis(manifest, AxisName::Voussoirs) {
             match self.voussoirs.voussoirs() {
@@ -209,15 +251,20 @@ fn arch_groups(manifest: &Manifest) -> Vec<ArchGroup> {
                 .collect()
         },
     );
-    halves
-        .iter()
-        .flat_map(|&half_angle_deg| {
-            counts.iter().map(move |&voussoirs| ArchGroup {
-                half_angle_deg,
-                voussoirs,
-            })
-        })
-        .collect()
+    let forms = manifest.forms();
+    let mut out = Vec::new();
+    for &half_angle_deg in &halves {
+        for &form in &forms {
+            for &voussoirs in &counts {
+                out.push(ArchGroup {
+                    half_angle_deg,
+                    voussoirs,
+                    form,
+                });
+            }
+        }
+    }
+    out
 }
 
 fn finite(x: f64) -> Option<f64> {
@@ -226,7 +273,7 @@ fn finite(x: f64) -> Option<f64> {
 
 /// A state row with the arch and load of its case filled in and nothing drawn yet.
 fn blank_state(manifest: &Manifest, lc: &LoadCase, group: ArchGroup, id: String) -> StateRow {
-    let form = manifest.arch.form();
+    let form = group.form;
     StateRow {
         state_id: id,
         source: String::new(),
@@ -490,7 +537,7 @@ pub fn run(manifest: &Manifest, layout: &RunLayout) -> Result<FigureDataSummary>
     // Self-weight on the circular arch with radial joints has the symmetric closed forms
     // (H^r, H^s and the paper's Fig. 2); every other form and load is drawn from the general
     // statics of its own arch.
-    let symmetric = manifest.arch.form().is_circular_radial();
+    let symmetric = manifest.arch.form().is_circular_radial() && !manifest.forms_vary();
     for lc in &manifest.load_cases {
         let bifs: Vec<(&BifurcationRow, Option<&BifurcationGroup>)> = bifurcations
             .iter()
@@ -560,10 +607,16 @@ fn run_sampled(
     })
 }
 
-/// True when every case uses the manifest's arch (no voussoir or half-angle axis).
+/// True when every case uses the manifest's arch (no arch axis: half-angle, eccentricity,
+/// joints or voussoirs).
 pub fn single_model(manifest: &Manifest) -> bool {
-    !manifest
-        .grid
-        .iter()
-        .any(|a| matches!(a.name, AxisName::Voussoirs | AxisName::HalfAngleDeg))
+    !manifest.grid.iter().any(|a| {
+        matches!(
+            a.name,
+            AxisName::Voussoirs
+                | AxisName::HalfAngleDeg
+                | AxisName::Eccentricity
+                | AxisName::Joints
+        )
+    })
 }

@@ -18,8 +18,9 @@ pub use parse_errors::MAX_NODES;
 pub use raw::{Number, RawVoussoirs};
 pub use scene_options::{SceneOptionError, SceneOptions};
 pub use types::{
-    ArchOptions, Author, AxisName, DEFAULT_BOUNDARY_TOLERANCE, FigureWidth, GridAxis, LoadCase,
-    LoadKind, Manifest, SceneSpec,
+    ArchOptions, Author, AxisName, DEFAULT_BOUNDARY_TOLERANCE, FigureWidth, GridAxis,
+    JOINTS_RADIAL, JOINTS_VERTICAL, LoadCase, LoadKind, Manifest, SceneSpec, axis_value_of_joints,
+    joints_of_axis_value,
 };
 pub use uncertain::{
     Correlation, DEFAULT_BOOTSTRAP, DEFAULT_SAMPLES, DistributionAxis, ParamName, Question,

@@ -110,6 +110,13 @@ pub(super) struct RawAxis {
     pub(super) also: Option<Vec<Spanned<Number>>>,
 }
 
+/// An axis of names, `{values: [radial, vertical]}`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawNamesAxis {
+    pub(super) values: Vec<Spanned<String>>,
+}
+
 /// The `grid:` block as written.
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -118,6 +125,8 @@ pub(super) struct RawGrid {
     pub(super) t_over_r: Option<Spanned<RawAxis>>,
     pub(super) mu: Option<Spanned<RawAxis>>,
     pub(super) half_angle_deg: Option<Spanned<RawAxis>>,
+    pub(super) eccentricity: Option<Spanned<RawAxis>>,
+    pub(super) joints: Option<Spanned<RawNamesAxis>>,
     pub(super) voussoirs: Option<Spanned<RawAxis>>,
     pub(super) at_deg: Option<Spanned<RawAxis>>,
     pub(super) at_x: Option<Spanned<RawAxis>>,

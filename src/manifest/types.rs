@@ -87,7 +87,12 @@ impl LoadCase {
         match axis {
             AxisName::K | AxisName::TOverR => self.find.needs_k(),
             AxisName::Mu => self.find.needs_mu(),
-            AxisName::HalfAngleDeg | AxisName::Voussoirs | AxisName::AtDeg | AxisName::AtX => true,
+            AxisName::HalfAngleDeg
+            | AxisName::Eccentricity
+            | AxisName::Joints
+            | AxisName::Voussoirs
+            | AxisName::AtDeg
+            | AxisName::AtX => true,
         }
     }
 }
@@ -147,6 +152,10 @@ pub enum AxisName {
     Mu,
     /// Half-embrace angle in degrees.
     HalfAngleDeg,
+    /// Eccentricity of a pointed arch (0: the semicircle's outline).
+    Eccentricity,
+    /// Joint planes, coded [`JOINTS_RADIAL`] and [`JOINTS_VERTICAL`].
+    Joints,
     /// Voussoir count.
     Voussoirs,
     /// Position of a point load, degrees from the crown (an influence line).
@@ -163,6 +172,8 @@ impl AxisName {
             AxisName::TOverR => "t_over_r",
             AxisName::Mu => "mu",
             AxisName::HalfAngleDeg => "half_angle_deg",
+            AxisName::Eccentricity => "eccentricity",
+            AxisName::Joints => "joints",
             AxisName::Voussoirs => "voussoirs",
             AxisName::AtDeg => "at_deg",
             AxisName::AtX => "at_x",
@@ -170,13 +181,83 @@ impl AxisName {
     }
 }
 
+/// The value of a `joints` axis that stands for radial joints.
+pub const JOINTS_RADIAL: f64 = 0.0;
+/// The value of a `joints` axis that stands for vertical joints.
+pub const JOINTS_VERTICAL: f64 = 1.0;
+
+/// The joint planes a value of a `joints` axis stands for.
+pub fn joints_of_axis_value(v: f64) -> crate::model::JointOrientation {
+    if v == JOINTS_VERTICAL {
+        crate::model::JointOrientation::Vertical
+    } else {
+        crate::model::JointOrientation::Radial
+    }
+}
+
+/// The value of a `joints` axis that stands for `j`.
+pub fn axis_value_of_joints(j: crate::model::JointOrientation) -> f64 {
+    match j {
+        crate::model::JointOrientation::Radial => JOINTS_RADIAL,
+        crate::model::JointOrientation::Vertical => JOINTS_VERTICAL,
+    }
+}
+
+/// Every form of an arch and its grid axes ([`Manifest::forms`]).
+pub fn study_forms(arch: &ArchOptions, grid: &[GridAxis]) -> Vec<crate::model::ArchForm> {
+    use crate::model::{ArchForm, JointOrientation, Shape};
+    let values = |n: AxisName| grid.iter().find(|a| a.name == n).map(|a| a.values.clone());
+    let base = arch.form();
+    let shapes: Vec<Shape> = values(AxisName::Eccentricity).map_or_else(
+        || vec![base.shape],
+        |v| {
+            v.iter()
+                .map(|&e| Shape::Pointed { eccentricity: e })
+                .collect()
+        },
+    );
+    let joints: Vec<JointOrientation> = values(AxisName::Joints).map_or_else(
+        || vec![base.joints],
+        |v| v.iter().map(|&j| joints_of_axis_value(j)).collect(),
+    );
+    shapes
+        .iter()
+        .flat_map(|&shape| {
+            joints.iter().map(move |&joints| ArchForm {
+                shape,
+                joints,
+                ..base
+            })
+        })
+        .collect()
+}
+
 /// A validated grid axis: its values in the order they are run.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct GridAxis {
     /// The parameter.
     pub name: AxisName,
     /// Values (μ may be infinite).
     pub values: Vec<f64>,
+}
+
+/// A `joints` axis is written with its names (`radial`, `vertical`), every other axis with
+/// its numbers.
+impl Serialize for GridAxis {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let mut st = s.serialize_struct("GridAxis", 2)?;
+        st.serialize_field("name", &self.name)?;
+        if self.name == AxisName::Joints {
+            let names: Vec<&str> = (self.values.iter())
+                .map(|&v| joints_of_axis_value(v).as_str())
+                .collect();
+            st.serialize_field("values", &names)?;
+        } else {
+            st.serialize_field("values", &self.values)?;
+        }
+        st.end()
+    }
 }
 
 /// A scene (K, μ) the report draws.
@@ -298,6 +379,20 @@ impl Manifest {
             ),
             _ => None,
         })
+    }
+
+    /// True when a grid axis varies the arch's form (`eccentricity` or `joints`): each case's
+    /// form is then its own, and [`ArchOptions::form`] is not every case's.
+    pub fn forms_vary(&self) -> bool {
+        self.grid
+            .iter()
+            .any(|a| matches!(a.name, AxisName::Eccentricity | AxisName::Joints))
+    }
+
+    /// Every form of the study: the arch's, or one per value of its `eccentricity` and
+    /// `joints` axes (the arch's keystone kept), eccentricities outermost.
+    pub fn forms(&self) -> Vec<crate::model::ArchForm> {
+        study_forms(&self.arch, &self.grid)
     }
 
     /// t/R_c for a K value.

@@ -32,6 +32,22 @@ pub struct ArchView {
 }
 
 impl ArchView {
+    /// The arch with the form of one case or state (its shape, eccentricity and joints),
+    /// the manifest's other options kept: the arch of a study whose form varies along an axis.
+    pub fn with_form(&self, eccentricity: Option<f64>, joints: &str) -> ArchView {
+        ArchView {
+            shape: if eccentricity.is_some() {
+                "pointed"
+            } else {
+                "circular"
+            }
+            .into(),
+            eccentricity,
+            joints: joints.to_string(),
+            ..self.clone()
+        }
+    }
+
     /// The voussoir count, `None` for the continuum.
     pub fn voussoir_count(&self) -> Option<u32> {
         self.voussoirs.as_u64().map(|n| n as u32)
@@ -41,10 +57,32 @@ impl ArchView {
 /// A grid axis of the resolved manifest (JSON writes infinite μ as null).
 #[derive(Debug, Clone, Deserialize)]
 pub struct AxisView {
-    /// `k`, `t_over_r`, `mu`, `half_angle_deg` or `voussoirs`.
+    /// `k`, `t_over_r`, `mu`, `half_angle_deg`, `eccentricity`, `joints` or `voussoirs`.
     pub name: String,
-    /// Values; `None` stands for +inf.
+    /// Values; `None` stands for +inf. The names of a `joints` axis are read as their codes
+    /// ([`crate::manifest::JOINTS_RADIAL`], [`crate::manifest::JOINTS_VERTICAL`]).
+    #[serde(deserialize_with = "numbers_or_joint_names")]
     pub values: Vec<Option<f64>>,
+}
+
+fn numbers_or_joint_names<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> Result<Vec<Option<f64>>, D::Error> {
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum Value {
+        Number(Option<f64>),
+        Name(String),
+    }
+    Vec::<Value>::deserialize(d)?
+        .into_iter()
+        .map(|v| match v {
+            Value::Number(x) => Ok(x),
+            Value::Name(n) => crate::model::JointOrientation::parse(&n)
+                .map(|j| Some(crate::manifest::axis_value_of_joints(j)))
+                .ok_or_else(|| serde::de::Error::custom(format!("unknown axis value {n:?}"))),
+        })
+        .collect()
 }
 
 /// A load case of the resolved manifest.
@@ -231,7 +269,12 @@ impl ManifestView {
             && self.arch.joints == "radial"
             && (self.arch.half_angle_deg - 90.0).abs() < 1e-12
             && self.arch.weight == "annular"
-            && !self.grid.iter().any(|a| a.name == "half_angle_deg")
+            && !self.grid.iter().any(|a| {
+                matches!(
+                    a.name.as_str(),
+                    "half_angle_deg" | "eccentricity" | "joints"
+                )
+            })
     }
 
     /// The axis of a name, if the grid has it.
@@ -400,10 +443,12 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
     } else {
         (Vec::new(), Vec::new())
     };
-    let arch_axis = manifest
-        .grid
-        .iter()
-        .any(|a| a.name == "voussoirs" || a.name == "half_angle_deg");
+    let arch_axis = manifest.grid.iter().any(|a| {
+        matches!(
+            a.name.as_str(),
+            "voussoirs" | "half_angle_deg" | "eccentricity" | "joints"
+        )
+    });
     let (result_arches, boundary_arches) = if arch_axis {
         // Rows are in case-id order (checked above): the arch of row i is case i's.
         let arches = store::read_row_arches(&layout.results())?;

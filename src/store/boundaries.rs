@@ -65,6 +65,17 @@ impl StateColumns {
     }
 }
 
+/// The form's columns, as results.parquet writes them: shape, eccentricity (null for a
+/// circular arch) and joint planes.
+fn form_columns(f: &crate::model::ArchForm) -> (String, Option<f64>, String) {
+    let e = match f.shape {
+        crate::model::Shape::Pointed { eccentricity } => Some(eccentricity),
+        crate::model::Shape::Circular => None,
+    };
+    let shape = if e.is_some() { "pointed" } else { "circular" };
+    (shape.to_string(), e, f.joints.as_str().to_string())
+}
+
 fn load_case_name(plan: &Plan, i: usize) -> String {
     plan.manifest
         .load_cases
@@ -118,6 +129,15 @@ pub fn boundaries_frame(plan: &Plan, located: &Located) -> Result<DataFrame> {
             b.iter().map(|p| p.half_angle_deg).collect(),
         )
         .opt_u32("voussoirs", b.iter().map(|p| p.voussoirs).collect())
+        .str("shape", b.iter().map(|p| form_columns(&p.form).0).collect())
+        .opt_f64(
+            "eccentricity",
+            b.iter().map(|p| form_columns(&p.form).1).collect(),
+        )
+        .str(
+            "joints",
+            b.iter().map(|p| form_columns(&p.form).2).collect(),
+        )
         .opt_f64("at_deg", b.iter().map(|p| p.at_deg).collect())
         .opt_f64("at_x", b.iter().map(|p| p.at_x).collect())
         .finish()
@@ -155,6 +175,15 @@ pub fn bifurcations_frame(plan: &Plan, located: &Located) -> Result<DataFrame> {
             b.iter().map(|p| p.half_angle_deg).collect(),
         )
         .opt_u32("voussoirs", b.iter().map(|p| p.voussoirs).collect())
+        .str("shape", b.iter().map(|p| form_columns(&p.form).0).collect())
+        .opt_f64(
+            "eccentricity",
+            b.iter().map(|p| form_columns(&p.form).1).collect(),
+        )
+        .str(
+            "joints",
+            b.iter().map(|p| form_columns(&p.form).2).collect(),
+        )
         .opt_f64("at_deg", b.iter().map(|p| p.at_deg).collect())
         .opt_f64("at_x", b.iter().map(|p| p.at_x).collect())
         .opt_str(
@@ -176,7 +205,7 @@ mod tests {
     use polars::prelude::DataType;
     use std::path::Path;
 
-    const BOUNDARY_COLUMNS: [&str; 19] = [
+    const BOUNDARY_COLUMNS: [&str; 22] = [
         "load_case",
         "mu",
         "k",
@@ -194,10 +223,13 @@ mod tests {
         "sliding_senses",
         "half_angle_deg",
         "voussoirs",
+        "shape",
+        "eccentricity",
+        "joints",
         "at_deg",
         "at_x",
     ];
-    const BIFURCATION_COLUMNS: [&str; 18] = [
+    const BIFURCATION_COLUMNS: [&str; 21] = [
         "load_case",
         "mu",
         "k",
@@ -212,6 +244,9 @@ mod tests {
         "sliding_senses",
         "half_angle_deg",
         "voussoirs",
+        "shape",
+        "eccentricity",
+        "joints",
         "at_deg",
         "at_x",
         "axis",
@@ -270,6 +305,7 @@ mod tests {
             load_case: 0,
             half_angle_deg: 90.0,
             voussoirs: None,
+            form: crate::model::ArchForm::default(),
             at_deg: None,
             at_x: None,
             k: kc.k,
@@ -287,6 +323,7 @@ mod tests {
                 load_case: 0,
                 half_angle_deg: 90.0,
                 voussoirs: Some(16),
+                form: crate::model::ArchForm::default(),
                 at_deg: None,
                 at_x: None,
                 axis: None,

@@ -521,6 +521,7 @@ fn differs_from_plan(
         ("voussoirs", want.voussoirs == stored.voussoirs),
         ("weight", want.weight == stored.weight),
         ("shape", want.shape == stored.shape),
+        ("eccentricity", same(want.eccentricity, stored.eccentricity)),
         ("joints", want.joints == stored.joints),
         ("lambda", same(want.lambda, stored.lambda)),
     ]

@@ -468,6 +468,11 @@ pub struct BifurcationGroup {
     /// `k` or `mu`: the grid edge along which a change of mechanism was located (general
     /// route), `None` on the symmetric collapse curve.
     pub axis: Option<String>,
+    /// Eccentricity of a pointed arch (`None` for a circular one, and when the table lacks
+    /// the column).
+    pub eccentricity: Option<f64>,
+    /// Joint planes (`None` when the table lacks the column).
+    pub joints: Option<String>,
 }
 
 /// Reads the arch group and load of every row of bifurcations.parquet, in table order.
@@ -485,6 +490,8 @@ pub fn bifurcation_groups_of_frame(df: &polars::prelude::DataFrame) -> Vec<Bifur
     let lf = f64_or_null(df, "load_factor");
     let has_voussoirs = has("voussoirs");
     let axis = str_or_null(df, "axis");
+    let e = f64_or_null(df, "eccentricity");
+    let joints = str_or_null(df, "joints");
     (0..df.height())
         .map(|i| BifurcationGroup {
             half_angle_deg: half[i],
@@ -493,32 +500,59 @@ pub fn bifurcation_groups_of_frame(df: &polars::prelude::DataFrame) -> Vec<Bifur
             at_x: at_x[i],
             load_factor: lf[i],
             axis: axis[i].clone(),
+            eccentricity: e[i],
+            joints: joints[i].clone(),
         })
         .collect()
 }
 
-/// The arch of one row of results.parquet or boundaries.parquet: its half-angle and voussoir
-/// count (what varies along a `half_angle_deg` or `voussoirs` axis).
+impl LoadFactorCase {
+    /// The arch of the case, as the arch axes vary it.
+    pub fn arch(&self) -> RowArch {
+        RowArch {
+            half_angle_deg: self.half_angle_deg,
+            voussoirs: self.voussoirs,
+            eccentricity: self.eccentricity,
+            joints: self.joints,
+        }
+    }
+}
+
+/// The arch of one row of results.parquet or boundaries.parquet: its half-angle, voussoir
+/// count, eccentricity and joint planes (what varies along the arch axes).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RowArch {
     /// Half-embrace angle α, degrees (90 when the table lacks the column).
     pub half_angle_deg: f64,
     /// Voussoir count, `None` for the continuum.
     pub voussoirs: Option<u32>,
+    /// Eccentricity of a pointed arch, `None` for a circular one (or a table without the
+    /// column).
+    pub eccentricity: Option<f64>,
+    /// Joint planes (radial when the table lacks the column).
+    pub joints: crate::model::JointOrientation,
 }
 
-/// Reads the half-angle and voussoir count of every row of results.parquet or
-/// boundaries.parquet, in table order (only those two columns are read).
+/// Reads the arch of every row of results.parquet or boundaries.parquet, in table order
+/// (only those columns are read).
 pub fn read_row_arches(path: &Path) -> Result<Vec<RowArch>> {
-    let df = super::read_parquet_columns(path, &["half_angle_deg", "voussoirs"])?;
+    let df = super::read_parquet_columns(
+        path,
+        &["half_angle_deg", "voussoirs", "eccentricity", "joints"],
+    )?;
     let half = f64_or_null(&df, "half_angle_deg");
     let nv = f64_or_null(&df, "voussoirs");
-    Ok(half
-        .iter()
-        .zip(&nv)
-        .map(|(a, n)| RowArch {
-            half_angle_deg: a.unwrap_or(90.0),
-            voussoirs: n.map(|v| v as u32),
+    let e = f64_or_null(&df, "eccentricity");
+    let joints = str_or_null(&df, "joints");
+    Ok((0..df.height())
+        .map(|i| RowArch {
+            half_angle_deg: half[i].unwrap_or(90.0),
+            voussoirs: nv[i].map(|v| v as u32),
+            eccentricity: e[i],
+            joints: joints[i]
+                .as_deref()
+                .and_then(crate::model::JointOrientation::parse)
+                .unwrap_or_default(),
         })
         .collect())
 }
@@ -576,6 +610,10 @@ pub struct LoadFactorCase {
     pub half_angle_deg: f64,
     /// Voussoir count, `None` for the continuum.
     pub voussoirs: Option<u32>,
+    /// Eccentricity of a pointed arch, `None` for a circular one.
+    pub eccentricity: Option<f64>,
+    /// Joint planes.
+    pub joints: crate::model::JointOrientation,
     /// Position of the point load, degrees from the crown.
     pub at_deg: Option<f64>,
     /// Position of the point load as x/L (`None` in runs written before it was stored).
@@ -598,13 +636,15 @@ pub struct LoadFactorCase {
 pub const AT_LOAD_TOL_DEG: f64 = 1e-9;
 
 /// The columns of results.parquet read into [`LoadFactorCase`].
-const LOAD_FACTOR_COLUMNS: [&str; 13] = [
+const LOAD_FACTOR_COLUMNS: [&str; 15] = [
     "load_case",
     "find",
     "k",
     "mu",
     "half_angle_deg",
     "voussoirs",
+    "eccentricity",
+    "joints",
     "at_deg",
     "at_x",
     "load_factor",
@@ -646,6 +686,8 @@ fn load_factor_cases_of_frame(
     let (k, mu, half) = (f("k")?, f("mu")?, f("half_angle_deg")?);
     let (nv, at, lf) = (f("voussoirs")?, f("at_deg")?, f("load_factor")?);
     let at_x = f64_or_null(df, "at_x");
+    let e = f64_or_null(df, "eccentricity");
+    let joints = str_or_null(df, "joints");
     let (collapse, width) = (
         f64_or_null(df, "collapse_value"),
         f64_or_null(df, "gap_width"),
@@ -668,6 +710,11 @@ fn load_factor_cases_of_frame(
             mu: mu[i].unwrap_or(f64::NAN),
             half_angle_deg: half[i].unwrap_or(90.0),
             voussoirs: nv[i].map(|v| v as u32),
+            eccentricity: e[i],
+            joints: joints[i]
+                .as_deref()
+                .and_then(crate::model::JointOrientation::parse)
+                .unwrap_or_default(),
             at_deg: at[i],
             at_x: at_x[i],
             load_factor: lf[i],

@@ -8,9 +8,27 @@ use crate::model::{Discretisation, JointOrientation, WeightModel};
 use serde_saphyr::Location;
 
 /// The arch options, each checked in the order its key is reported.
-pub(super) fn validate_arch(a: &RawArch, cx: &Ctx) -> Result<ArchOptions, ManifestError> {
+/// `e_axis`: the grid has an `eccentricity` axis, which gives a pointed arch its eccentricity
+/// case by case (a nominal one is then not needed, and overridden when given).
+pub(super) fn validate_arch(
+    a: &RawArch,
+    e_axis: bool,
+    cx: &Ctx,
+) -> Result<ArchOptions, ManifestError> {
     let shape = shape(a, cx)?;
-    let eccentricity = eccentricity(a, shape, cx)?;
+    if e_axis && shape != "pointed" {
+        return Err(cx.err(
+            a.shape.as_ref().map(|s| s.referenced),
+            "arch.shape",
+            "an `eccentricity` axis spans pointed arches: set `shape: pointed` (e = 0 is the \
+             semicircle's outline)",
+        ));
+    }
+    let eccentricity = if e_axis && a.eccentricity.is_none() {
+        None
+    } else {
+        eccentricity(a, shape, cx)?
+    };
     let joints = joints(a, cx)?;
     let half_angle_deg = match &a.half_angle_deg {
         None => 90.0,

@@ -3,7 +3,7 @@
 
 use super::{Ctx, fmt_num};
 use crate::manifest::error::ManifestError;
-use crate::manifest::raw::{Number, RawAxis, RawGrid};
+use crate::manifest::raw::{Number, RawAxis, RawGrid, RawNamesAxis};
 use crate::manifest::types::{AxisName, GridAxis, LoadCase};
 use crate::scene::Find;
 use serde_saphyr::{Location, Spanned};
@@ -117,8 +117,25 @@ fn check_axes_are_spanned(
 /// then μ innermost).
 fn grid_axes(g: &RawGrid, cx: &Ctx) -> Result<Vec<GridAxis>, ManifestError> {
     let mut axes = Vec::new();
+    if let Some(ax) = &g.half_angle_deg {
+        axes.push(GridAxis {
+            name: AxisName::HalfAngleDeg,
+            values: axis_values(AxisName::HalfAngleDeg, ax, cx)?,
+        });
+    }
+    if let Some(ax) = &g.eccentricity {
+        axes.push(GridAxis {
+            name: AxisName::Eccentricity,
+            values: axis_values(AxisName::Eccentricity, ax, cx)?,
+        });
+    }
+    if let Some(ax) = &g.joints {
+        axes.push(GridAxis {
+            name: AxisName::Joints,
+            values: joint_values(ax, cx)?,
+        });
+    }
     for (name, ax) in [
-        (AxisName::HalfAngleDeg, &g.half_angle_deg),
         (AxisName::Voussoirs, &g.voussoirs),
         (AxisName::AtDeg, &g.at_deg),
         (AxisName::AtX, &g.at_x),
@@ -134,6 +151,42 @@ fn grid_axes(g: &RawGrid, cx: &Ctx) -> Result<Vec<GridAxis>, ManifestError> {
         }
     }
     Ok(axes)
+}
+
+/// A `joints` axis: `radial` and/or `vertical`, each once, coded [`crate::manifest::JOINTS_RADIAL`]
+/// and [`crate::manifest::JOINTS_VERTICAL`].
+fn joint_values(ax: &Spanned<RawNamesAxis>, cx: &Ctx) -> Result<Vec<f64>, ManifestError> {
+    let key = "grid.joints.values";
+    if ax.value.values.is_empty() {
+        return Err(cx.err(
+            Some(ax.referenced),
+            key,
+            "the list `values` is empty: give radial, vertical or both",
+        ));
+    }
+    let mut out = Vec::new();
+    for v in &ax.value.values {
+        let Some(j) = crate::model::JointOrientation::parse(&v.value) else {
+            return Err(cx.err(
+                Some(v.referenced),
+                key,
+                format!("value {:?} is not allowed: use radial or vertical", v.value),
+            ));
+        };
+        let code = crate::manifest::axis_value_of_joints(j);
+        if out.contains(&code) {
+            return Err(cx.err(
+                Some(v.referenced),
+                key,
+                format!(
+                    "value {:?} is repeated: each value may appear once",
+                    v.value
+                ),
+            ));
+        }
+        out.push(code);
+    }
+    Ok(out)
 }
 
 /// Every load case has the K and μ axes its find needs.
@@ -321,6 +374,8 @@ fn check_value(
         AxisName::TOverR => v > 0.0 && v < 2.0,
         AxisName::Mu => v >= 0.0,
         AxisName::HalfAngleDeg => v > 0.0 && v < 180.0,
+        AxisName::Eccentricity => crate::analysis::forms::eccentricity_allowed(v),
+        AxisName::Joints => v == 0.0 || v == 1.0,
         AxisName::Voussoirs => {
             v.is_infinite() && v > 0.0 || v.fract() == 0.0 && (1.0..=1e7).contains(&v)
         }
@@ -335,6 +390,10 @@ fn check_value(
         AxisName::TOverR => "t/R_c must lie in (0, 2)",
         AxisName::Mu => "μ must be a number ≥ 0 or inf (NaN and negative values are not allowed)",
         AxisName::HalfAngleDeg => "the half-angle must lie in (0, 180) degrees",
+        AxisName::Eccentricity => {
+            "the eccentricity of a pointed arch must lie in [0, 0.9999] (0: the semicircle's outline)"
+        }
+        AxisName::Joints => "the joints are radial or vertical",
         AxisName::Voussoirs => {
             "the voussoir count must be an integer in [1, 10000000], or `continuum`"
         }

@@ -104,7 +104,9 @@ fn check_voussoirs(
     cx: &Ctx,
 ) -> Result<(), ManifestError> {
     let live = load_cases.iter().find(|lc| lc.kind.is_live());
-    let general_form = !arch.form().is_circular_radial();
+    let general_form = super::load_checks::study_forms(arch, grid)
+        .iter()
+        .any(|f| !f.is_circular_radial());
     if live.is_none() && !general_form {
         return Ok(());
     }

@@ -71,38 +71,38 @@ pub(super) fn check_loads(
         };
         check_position_source(i, lc, axis, &written, cx)?;
     }
-    let form = arch.form();
-    check_form_fits_finds(raw, lcs, &form, cx)?;
     let alphas =
         axis_values(grid, AxisName::HalfAngleDeg).unwrap_or_else(|| vec![arch.half_angle_deg]);
     let alpha_min = alphas.iter().copied().fold(f64::INFINITY, f64::min);
     let alpha_max = alphas.iter().copied().fold(0.0, f64::max);
-    check_vertical_joints(raw, &form, alpha_max, cx)?;
-    check_keystone(raw, arch, grid, cx)?;
-    check_positions_x(
-        raw,
-        lcs,
-        grid,
-        &Span {
-            form: &form,
-            alphas: &alphas,
-        },
-        cx,
-    )?;
     let positions = point_positions(lcs, at_axis, grid, &written);
     check_positions_on_arch(&positions, alpha_min, cx)?;
-    if let Shape::Pointed { eccentricity: e } = form.shape
-        && e > 0.0
-    {
-        let pointed = Pointed {
+    // Every form of the study: the arch's, or one per value of its eccentricity and joints
+    // axes.
+    for form in study_forms(arch, grid) {
+        check_form_fits_finds(raw, lcs, &form, cx)?;
+        check_vertical_joints(raw, &form, alpha_max, cx)?;
+        check_keystone(raw, arch, &form, grid, cx)?;
+        let span = Span {
             form: &form,
-            e,
             alphas: &alphas,
         };
-        check_pointed_arch(raw, grid, &pointed, &positions, cx)?;
+        check_positions_x(raw, lcs, grid, &span, cx)?;
+        if let Shape::Pointed { eccentricity: e } = form.shape
+            && e > 0.0
+        {
+            let pointed = Pointed {
+                form: &form,
+                e,
+                alphas: &alphas,
+            };
+            check_pointed_arch(raw, grid, &pointed, &positions, cx)?;
+        }
     }
     Ok(())
 }
+
+pub(super) use crate::manifest::types::study_forms;
 
 fn axis_values(grid: &[GridAxis], n: AxisName) -> Option<Vec<f64>> {
     grid.iter().find(|a| a.name == n).map(|a| a.values.clone())
@@ -269,6 +269,7 @@ fn check_vertical_joints(
 fn check_keystone(
     raw: &RawManifest,
     arch: &ArchOptions,
+    form: &ArchForm,
     grid: &[GridAxis],
     cx: &Ctx,
 ) -> Result<(), ManifestError> {
@@ -286,7 +287,7 @@ fn check_keystone(
         None => vec![arch.voussoirs],
     };
     for joints in counts {
-        if let Err(why) = arch.form().check_keystone(joints) {
+        if let Err(why) = form.check_keystone(joints) {
             return Err(cx.err(
                 raw.arch.keystone.as_ref().map(|k| k.referenced),
                 "arch.keystone",

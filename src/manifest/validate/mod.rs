@@ -66,7 +66,8 @@ fn is_valid_name(s: &str) -> bool {
 pub(super) fn manifest(raw: RawManifest, path: &Path) -> Result<Manifest, ManifestError> {
     let cx = &Ctx { path };
     check_name(&raw.name, cx)?;
-    let arch = arch::validate_arch(&raw.arch, cx)?;
+    let e_axis = raw.grid.as_ref().is_some_and(|g| g.eccentricity.is_some());
+    let arch = arch::validate_arch(&raw.arch, e_axis, cx)?;
     let question = raw
         .find
         .as_ref()

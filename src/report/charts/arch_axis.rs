@@ -8,27 +8,48 @@ use crate::plot::lines::{Line, LinePanel, LinePoint, LinesChart};
 use crate::plot::regime_map::{RegimeMap, RegimeMapPanels};
 use crate::report::data::RunData;
 
-/// The arches of a load case's state cases, by α then N (the continuum last).
+/// The arches of a load case's state cases, by α, e (circular first), joints (radial first)
+/// then N (the continuum last).
 pub fn arches_of(data: &RunData, lc: &str) -> Vec<ArchKey> {
     let mut v: Vec<ArchKey> = data
         .results
         .iter()
         .zip(&data.result_arches)
         .filter(|(r, _)| &*r.load_case == lc && &*r.find == "state")
-        .map(|(_, a)| (a.half_angle_deg, a.voussoirs))
+        .map(|(_, a)| *a)
         .collect();
     v.sort_by(|a, b| {
-        a.0.total_cmp(&b.0)
-            .then(a.1.unwrap_or(u32::MAX).cmp(&b.1.unwrap_or(u32::MAX)))
+        (a.half_angle_deg.total_cmp(&b.half_angle_deg))
+            .then((a.eccentricity.unwrap_or(-1.0)).total_cmp(&b.eccentricity.unwrap_or(-1.0)))
+            .then((a.joints as u8).cmp(&(b.joints as u8)))
+            .then((a.voussoirs.unwrap_or(u32::MAX)).cmp(&b.voussoirs.unwrap_or(u32::MAX)))
     });
     v.dedup();
     v
 }
 
-/// Which arch axes the study has: (half-angle, voussoirs).
-fn axes(data: &RunData) -> (bool, bool) {
+/// Which arch axes a study has.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ArchAxes {
+    /// A `half_angle_deg` axis.
+    pub alpha: bool,
+    /// An `eccentricity` axis.
+    pub e: bool,
+    /// A `joints` axis.
+    pub joints: bool,
+    /// A `voussoirs` axis.
+    pub n: bool,
+}
+
+/// Which arch axes the study has.
+pub fn axes(data: &RunData) -> ArchAxes {
     let has = |n: &str| data.manifest.grid.iter().any(|a| a.name == n);
-    (has("half_angle_deg"), has("voussoirs"))
+    ArchAxes {
+        alpha: has("half_angle_deg"),
+        e: has("eccentricity"),
+        joints: has("joints"),
+        n: has("voussoirs"),
+    }
 }
 
 /// An angle in degrees to at most four decimals, without trailing zeros (α = 60°, not
@@ -38,15 +59,28 @@ pub fn degrees(v: f64) -> String {
     s.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
-/// The arch's values on the study's arch axes, e.g. `α = 60°`, `N = 9`, `continuum`.
-pub fn arch_label(data: &RunData, (alpha, n): ArchKey) -> String {
-    let (by_alpha, by_n) = axes(data);
+/// The arch's values on the study's arch axes, e.g. `α = 60°`, `e = 0.2`, `vertical joints`,
+/// `N = 9`, `continuum`.
+pub fn arch_label(data: &RunData, a: ArchKey) -> String {
+    let by = axes(data);
     let mut parts = Vec::new();
-    if by_alpha {
-        parts.push(format!("α = {}°", degrees(alpha)));
+    if by.alpha {
+        parts.push(format!("α = {}°", degrees(a.half_angle_deg)));
     }
-    if by_n {
-        parts.push(n.map_or("continuum".to_string(), |n| format!("N = {n}")));
+    if by.e {
+        parts.push(format!(
+            "e = {}",
+            crate::report::format::given(a.eccentricity.unwrap_or(0.0))
+        ));
+    }
+    if by.joints {
+        parts.push(format!("{} joints", a.joints.as_str()));
+    }
+    if by.n {
+        parts.push(
+            a.voussoirs
+                .map_or("continuum".to_string(), |n| format!("N = {n}")),
+        );
     }
     parts.join(", ")
 }
@@ -107,9 +141,12 @@ fn numbered_bifurcations(maps: &[(ArchKey, RegimeMap)]) -> String {
 
 /// `half-angle`, `voussoir count` or `arch`.
 fn axis_words(data: &RunData) -> String {
-    match axes(data) {
-        (true, false) => "half-angle".into(),
-        (false, true) => "voussoir count".into(),
+    let by = axes(data);
+    match (by.alpha, by.e, by.joints, by.n) {
+        (true, false, false, false) => "half-angle".into(),
+        (false, true, false, false) => "eccentricity".into(),
+        (false, false, true, false) => "joint orientation".into(),
+        (false, false, false, true) => "voussoir count".into(),
         _ => "arch".into(),
     }
 }
@@ -172,13 +209,22 @@ fn bifurcations_against_axis(
     maps: &[(ArchKey, RegimeMap)],
     lc: &LoadCaseFigure,
 ) -> Option<FigureSpec> {
-    let (by_alpha, by_n) = axes(data);
-    if by_alpha && by_n {
-        // Two arch axes: one line per pair of mechanisms would mix the counts; the table
-        // under "Values" lists them by arch.
+    let by = axes(data);
+    if usize::from(by.alpha) + usize::from(by.e) + usize::from(by.n) != 1 || by.joints {
+        // Two arch axes (or joint planes, which have no scale): one line per pair of
+        // mechanisms would mix the arches; the table under "Values" lists them by arch.
         return None;
     }
-    let x_of = |(a, n): ArchKey| if by_alpha { Some(a) } else { n.map(f64::from) };
+    let (by_alpha, by_e) = (by.alpha, by.e);
+    let x_of = |a: ArchKey| {
+        if by_alpha {
+            Some(a.half_angle_deg)
+        } else if by_e {
+            Some(a.eccentricity.unwrap_or(0.0))
+        } else {
+            a.voussoirs.map(f64::from)
+        }
+    };
     let mut kinds: Vec<String> = maps
         .iter()
         .flat_map(|(_, m)| {
@@ -193,6 +239,8 @@ fn bifurcations_against_axis(
         title: String::new(),
         x_desc: if by_alpha {
             "half-angle α (°)".into()
+        } else if by_e {
+            "eccentricity e".into()
         } else {
             "voussoirs N".into()
         },
@@ -233,6 +281,8 @@ fn bifurcations_against_axis(
     let on = &lc.title_suffix;
     let axis = if by_alpha {
         "half-angle α"
+    } else if by_e {
+        "eccentricity e"
     } else {
         "voussoir count N"
     };

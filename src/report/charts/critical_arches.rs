@@ -34,7 +34,7 @@ pub fn figure(data: &RunData, lc: &LoadCaseFigure) -> Option<FigureSpec> {
         let Some(x) = x.filter(|x| x.is_finite()) else {
             continue;
         };
-        let key = (a.half_angle_deg, a.voussoirs);
+        let key = *a;
         let point = LinePoint {
             x,
             y: y.unwrap_or(f64::NAN),

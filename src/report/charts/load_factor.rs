@@ -2,6 +2,7 @@
 //! λ against K for a few μ and against μ for a few K, and, for a point load at several
 //! positions, the influence line λ against the load's position (angle and x/L).
 
+use super::regime_map::ArchKey;
 use super::{Chart, FigureSpec, LoadCaseFigure, mu_text};
 use crate::plot::lines::{Line, LinePanel, LinePoint, LinesChart};
 use crate::report::data::{ArchView, RunData, given_position};
@@ -123,42 +124,66 @@ impl<'a> Cases<'a> {
         }
     }
 
-    /// The arch groups: (half-angle, voussoirs).
-    pub(super) fn groups(&self) -> Vec<(f64, Option<u32>)> {
-        let mut g: Vec<(f64, Option<u32>)> = self
-            .all
-            .iter()
-            .map(|c| (c.half_angle_deg, c.voussoirs))
-            .collect();
-        g.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        g.dedup();
+    /// The arch groups (half-angle, voussoirs, eccentricity, joints), in the order of the
+    /// arch axes.
+    pub(super) fn groups(&self) -> Vec<ArchKey> {
+        let mut g: Vec<ArchKey> = Vec::new();
+        for c in &self.all {
+            if !g.contains(&c.arch()) {
+                g.push(c.arch());
+            }
+        }
+        g.sort_by(|a, b| {
+            (a.half_angle_deg.total_cmp(&b.half_angle_deg))
+                .then((a.eccentricity.unwrap_or(-1.0)).total_cmp(&b.eccentricity.unwrap_or(-1.0)))
+                .then((a.joints as u8).cmp(&(b.joints as u8)))
+                .then(a.voussoirs.cmp(&b.voussoirs))
+        });
         g
     }
 
-    pub(super) fn of_group(&self, g: (f64, Option<u32>)) -> Vec<&'a LoadFactorCase> {
-        self.all
-            .iter()
-            .copied()
-            .filter(|c| (c.half_angle_deg, c.voussoirs) == g)
-            .collect()
+    pub(super) fn of_group(&self, g: ArchKey) -> Vec<&'a LoadFactorCase> {
+        self.all.iter().copied().filter(|c| c.arch() == g).collect()
     }
 }
 
 /// The words naming an arch group when the study has more than one.
-pub(super) fn group_text(g: (f64, Option<u32>), several: bool) -> String {
+pub(super) fn group_text(g: ArchKey, several: bool) -> String {
     if !several {
         return String::new();
     }
-    let n = g.1.map_or("continuum".to_string(), |n| format!("N = {n}"));
-    format!(", α = {}°, {n}", given(g.0))
+    let n = g
+        .voussoirs
+        .map_or("continuum".to_string(), |n| format!("N = {n}"));
+    let form = match g.eccentricity {
+        Some(e) => format!(", e = {}", given(e)),
+        None => String::new(),
+    };
+    let joints = if g.joints == crate::model::JointOrientation::Vertical {
+        ", vertical joints"
+    } else {
+        ""
+    };
+    format!(", α = {}°{form}{joints}, {n}", given(g.half_angle_deg))
 }
 
-pub(super) fn group_stem(g: (f64, Option<u32>), several: bool) -> String {
+pub(super) fn group_stem(g: ArchKey, several: bool) -> String {
     if !several {
         return String::new();
     }
-    let n = g.1.map_or("continuum".to_string(), |n| format!("n{n}"));
-    format!("-a{}-{n}", given(g.0))
+    let n = g
+        .voussoirs
+        .map_or("continuum".to_string(), |n| format!("n{n}"));
+    let form = match g.eccentricity {
+        Some(e) => format!("-e{}", given(e)),
+        None => String::new(),
+    };
+    let joints = if g.joints == crate::model::JointOrientation::Vertical {
+        "-vertical"
+    } else {
+        ""
+    };
+    format!("-a{}{form}{joints}-{n}", given(g.half_angle_deg))
 }
 
 /// The load-factor figures of a load case.
@@ -269,6 +294,51 @@ fn lambda_curves(
     })
 }
 
+/// The drawn state of the weakest case of a moving point load on the arch of `own`, its
+/// position refined between grid positions (with arch axes the weakest case may lie on
+/// another arch's figure).
+fn refined_weakest<'a>(
+    data: &'a RunData,
+    lc: &str,
+    own: &[&LoadFactorCase],
+) -> Option<&'a crate::store::StateRow> {
+    let arch = own.first().map(|c| c.arch())?;
+    data.states.iter().find(|s| {
+        s.load_case == lc
+            && s.state == "weakest"
+            && s.source == "case"
+            && s.load == "point"
+            && arch.half_angle_deg == s.half_angle_deg
+            && arch.voussoirs == s.voussoirs
+            && arch.joints.as_str() == s.joint_orientation
+            && arch.eccentricity.unwrap_or(0.0) == s.eccentricity
+    })
+}
+
+/// The refined weakest point of an influence line, (position, λ_max), against the angle or
+/// x/L; empty without one.
+fn refined_mark(
+    data: &RunData,
+    refined: Option<&crate::store::StateRow>,
+    as_xl: bool,
+) -> Vec<(f64, f64)> {
+    refined
+        .and_then(|s| {
+            let (lambda, at) = (s.load_factor?, s.at_deg?);
+            let x = if as_xl {
+                s.at_x.unwrap_or_else(|| {
+                    let e = (s.shape == "pointed").then_some(s.eccentricity);
+                    let arch = data.manifest.arch.with_form(e, &s.joint_orientation);
+                    x_over_l(&arch, s.k, s.half_angle_deg, at)
+                })
+            } else {
+                at
+            };
+            Some(vec![(x, lambda)])
+        })
+        .unwrap_or_default()
+}
+
 /// The refined weakest position in words, for the influence line's caption.
 fn refined_sentence(refined: Option<&crate::store::StateRow>) -> String {
     let Some((s, lambda, at)) = refined.and_then(|s| Some((s, s.load_factor?, s.at_deg?))) else {
@@ -334,9 +404,7 @@ fn influence_line(
         .collect();
     // The weakest position refined between grid positions (the drawn state of the weakest
     // case), on the line of its (K, μ), which is always drawn.
-    let refined = data.states.iter().find(|s| {
-        s.load_case == lc.name && s.state == "weakest" && s.source == "case" && s.load == "point"
-    });
+    let refined = refined_weakest(data, lc.name, own);
     if let Some(s) = refined
         && !chosen.contains(&(s.k, s.mu))
         && combos.contains(&(s.k, s.mu))
@@ -344,20 +412,7 @@ fn influence_line(
         chosen.push((s.k, s.mu));
         chosen.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
     }
-    let mark = |as_xl: bool| -> Vec<(f64, f64)> {
-        refined
-            .and_then(|s| {
-                let (lambda, at) = (s.load_factor?, s.at_deg?);
-                let x = if as_xl {
-                    s.at_x
-                        .unwrap_or_else(|| x_over_l(&data.manifest.arch, s.k, s.half_angle_deg, at))
-                } else {
-                    at
-                };
-                Some(vec![(x, lambda)])
-            })
-            .unwrap_or_default()
-    };
+    let mark = |as_xl: bool| refined_mark(data, refined, as_xl);
     let line = |(k, mu): (f64, f64), as_xl: bool| {
         let mut pts: Vec<LinePoint> = own
             .iter()
@@ -367,8 +422,11 @@ fn influence_line(
                 // The stored x/L is exact on every form (keystones, springing wedges);
                 // runs written before it was stored get it from the angle.
                 let x = if as_xl {
-                    c.at_x
-                        .unwrap_or_else(|| x_over_l(&data.manifest.arch, c.k, c.half_angle_deg, at))
+                    c.at_x.unwrap_or_else(|| {
+                        let arch =
+                            (data.manifest.arch).with_form(c.eccentricity, c.joints.as_str());
+                        x_over_l(&arch, c.k, c.half_angle_deg, at)
+                    })
                 } else {
                     at
                 };

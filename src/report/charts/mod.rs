@@ -175,15 +175,17 @@ pub fn build(data: &RunData) -> Vec<FigureSpec> {
     out
 }
 
-/// True when every case uses the manifest's arch (no voussoir or half-angle axis).
+/// True when every case uses the manifest's arch (no arch axis: half-angle, eccentricity,
+/// joints or voussoirs).
 pub fn single_model_of(data: &RunData) -> bool {
     single_model(data)
 }
 
 pub(super) fn single_model(data: &RunData) -> bool {
-    !data
-        .manifest
-        .grid
-        .iter()
-        .any(|a| a.name == "voussoirs" || a.name == "half_angle_deg")
+    !data.manifest.grid.iter().any(|a| {
+        matches!(
+            a.name.as_str(),
+            "voussoirs" | "half_angle_deg" | "eccentricity" | "joints"
+        )
+    })
 }

@@ -58,14 +58,23 @@ fn regime_map(data: &RunData, lc: &str, on: &str) -> Option<RegimeMap> {
     regime_map_of(data, lc, title, None)
 }
 
-/// The arch of an arch axis: half-angle α in degrees and voussoir count (None: continuum).
-pub type ArchKey = (f64, Option<u32>);
+/// The arch of the arch axes: half-angle, voussoir count, eccentricity and joint planes.
+pub type ArchKey = crate::store::RowArch;
 
 fn arch_matches(arch: Option<ArchKey>, a: Option<&crate::store::RowArch>) -> bool {
     match arch {
         None => true,
-        Some(key) => a.is_some_and(|a| (a.half_angle_deg, a.voussoirs) == key),
+        Some(key) => a.is_some_and(|a| *a == key),
     }
+}
+
+/// Whether a row of bifurcations.parquet belongs to an arch (its columns as stored; a table
+/// without the eccentricity or joints column holds the manifest's arch only).
+fn group_matches(g: &crate::store::BifurcationGroup, a: ArchKey) -> bool {
+    g.half_angle_deg.unwrap_or(90.0) == a.half_angle_deg
+        && g.voussoirs.flatten() == a.voussoirs
+        && (g.joints.is_none() || g.eccentricity == a.eccentricity)
+        && g.joints.as_deref().is_none_or(|j| j == a.joints.as_str())
 }
 
 /// The regime of every grid point, K-major (None where no case gives one).
@@ -100,10 +109,10 @@ pub fn bifurcations_of_arch<'a>(
         .enumerate()
         .filter(|(i, b)| {
             b.load_case == lc
-                && arch.is_none_or(|(a, n)| {
-                    data.bifurcation_groups.get(*i).is_some_and(|g| {
-                        g.half_angle_deg.unwrap_or(90.0) == a && g.voussoirs.flatten() == n
-                    })
+                && arch.is_none_or(|a| {
+                    data.bifurcation_groups
+                        .get(*i)
+                        .is_some_and(|g| group_matches(g, a))
                 })
         })
         .map(|(_, b)| b)

@@ -441,6 +441,14 @@ fn group_text(data: &RunData, g: &crate::store::BifurcationGroup) -> String {
     {
         parts.push(format!("α = {}°", given(a)));
     }
+    if has("eccentricity") {
+        parts.push(format!("e = {}", given(g.eccentricity.unwrap_or(0.0))));
+    }
+    if has("joints")
+        && let Some(j) = &g.joints
+    {
+        parts.push(format!("{j} joints"));
+    }
     if has("voussoirs") {
         parts.push(match g.voussoirs.flatten() {
             Some(n) => format!("N = {n}"),

@@ -50,20 +50,21 @@ const SAME_ANGLE_DEG: f64 = 1e-6;
 /// first radial joints: the edges of the crown wedge, which holds no joint but the vertical
 /// crown joint and so slides as one block.
 fn crown_wedge(data: &RunData) -> Option<String> {
-    let arch = &data.manifest.arch;
-    let e = arch.eccentricity.filter(|_| arch.shape == "pointed")?;
-    if arch.joints != "radial" {
-        return None;
-    }
-    let psi1 = |k: f64| (e * (1.0 + k) / 2.0).asin().to_degrees();
+    // The form of each mechanism is its state's (it varies along eccentricity and joints
+    // axes).
+    let psi1 = |m: &crate::store::MechanismRow| -> Option<f64> {
+        let s = data.states.iter().find(|s| s.state_id == m.state_id)?;
+        (s.shape == "pointed" && s.joint_orientation == "radial")
+            .then(|| (s.eccentricity * (1.0 + m.k) / 2.0).asin().to_degrees())
+    };
     let on_edge: Vec<&crate::store::MechanismRow> = data
         .mechanisms
         .iter()
         .filter(|m| m.flow_rule == "non_associative")
         .filter(|m| {
-            m.sliding_angles_deg
-                .iter()
-                .any(|a| (a.abs() - psi1(m.k)).abs() <= SAME_ANGLE_DEG)
+            psi1(m).is_some_and(|p| {
+                (m.sliding_angles_deg.iter()).any(|a| (a.abs() - p).abs() <= SAME_ANGLE_DEG)
+            })
         })
         .collect();
     let first = on_edge.first()?;
@@ -82,7 +83,7 @@ fn crown_wedge(data: &RunData) -> Option<String> {
         first.state_id,
         compact(first.k),
         compact(first.mu),
-        psi1(first.k),
+        psi1(first).unwrap_or(f64::NAN),
     ))
 }
 
@@ -206,12 +207,12 @@ fn never_stands(data: &RunData) -> Option<String> {
 /// the grid varies the arch (a half-angle or voussoir axis: the arch of each K is not one).
 fn friction_needed(data: &RunData, ks: &[f64]) -> Option<Vec<String>> {
     let arch = &data.manifest.arch;
-    if data
-        .manifest
-        .grid
-        .iter()
-        .any(|a| a.name == "half_angle_deg" || a.name == "voussoirs")
-    {
+    if data.manifest.grid.iter().any(|a| {
+        matches!(
+            a.name.as_str(),
+            "half_angle_deg" | "voussoirs" | "eccentricity" | "joints"
+        )
+    }) {
         return None;
     }
     let needed = ks

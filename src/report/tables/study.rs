@@ -83,6 +83,7 @@ fn finds_text(m: &ManifestView) -> String {
 fn axis_value(axis: &str, v: Option<f64>) -> String {
     match (axis, v) {
         ("voussoirs", None) => "continuum".into(),
+        ("joints", Some(x)) => crate::manifest::joints_of_axis_value(x).as_str().into(),
         (_, None) => "∞".into(),
         (_, Some(x)) => given(x),
     }
@@ -147,6 +148,10 @@ pub fn model(m: &ManifestView) -> Vec<Item> {
         joints
     };
     let eccentricity = match m.arch.eccentricity {
+        _ if m.axis("eccentricity").is_some() => format!(
+            " (eccentricity e: {})",
+            axis_words(m, "eccentricity").unwrap_or_default()
+        ),
         Some(e) if uncertain("eccentricity") => format!(" (eccentricity uncertain, nominal {e})"),
         Some(e) => format!(" (eccentricity {e})"),
         None => String::new(),
@@ -159,7 +164,19 @@ pub fn model(m: &ManifestView) -> Vec<Item> {
                 m.arch.shape,
             ),
         ),
-        item("joints", format!("{}, {joints}", m.arch.joints)),
+        item(
+            "joints",
+            match m.axis("joints") {
+                Some(a) => format!(
+                    "{} (grid axis), {joints}",
+                    (a.values.iter().flatten())
+                        .map(|&v| crate::manifest::joints_of_axis_value(v).as_str())
+                        .collect::<Vec<_>>()
+                        .join(" and ")
+                ),
+                None => format!("{}, {joints}", m.arch.joints),
+            },
+        ),
         item(
             "weight model",
             match m.arch.weight.as_str() {

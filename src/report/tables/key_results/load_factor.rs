@@ -17,7 +17,6 @@ const CHANGES: usize = 6;
 /// Where a case sits: K, μ, the load's position (angle and x/L), the arch axes and the
 /// mechanism.
 fn case_text(data: &RunData, c: &LoadFactorCase) -> String {
-    let has = |n: &str| data.manifest.grid.iter().any(|a| a.name == n);
     let mut parts = vec![
         format!("K = {}", compact(c.k)),
         format!("μ = {}", compact(c.mu)),
@@ -30,17 +29,36 @@ fn case_text(data: &RunData, c: &LoadFactorCase) -> String {
             .map_or(String::new(), |a| format!(" ({}°)", position_deg(a)));
         parts.push(format!("load at x/L = {}{angle}", given(x)));
     } else if let Some(a) = c.at_deg {
-        let xl = c
-            .at_x
-            .unwrap_or_else(|| x_over_l(&data.manifest.arch, c.k, c.half_angle_deg, a));
+        let xl = c.at_x.unwrap_or_else(|| {
+            let arch = (data.manifest.arch).with_form(c.eccentricity, c.joints.as_str());
+            x_over_l(&arch, c.k, c.half_angle_deg, a)
+        });
         parts.push(format!(
             "load at {}° (x/L = {})",
             position_deg(a),
             short(xl)
         ));
     }
+    parts.extend(arch_parts(data, c));
+    if let Some(m) = &c.mechanism {
+        parts.push(format!("{m} collapse"));
+    }
+    parts.join(", ")
+}
+
+/// The case's values on the study's arch axes: `α = 60°`, `e = 0.2`, `vertical joints`,
+/// `N = 9` or `continuum`.
+fn arch_parts(data: &RunData, c: &LoadFactorCase) -> Vec<String> {
+    let has = |n: &str| data.manifest.grid.iter().any(|a| a.name == n);
+    let mut parts = Vec::new();
     if has("half_angle_deg") {
         parts.push(format!("α = {}°", given(c.half_angle_deg)));
+    }
+    if has("eccentricity") {
+        parts.push(format!("e = {}", given(c.eccentricity.unwrap_or(0.0))));
+    }
+    if has("joints") {
+        parts.push(format!("{} joints", c.joints.as_str()));
     }
     if has("voussoirs") {
         parts.push(
@@ -48,10 +66,7 @@ fn case_text(data: &RunData, c: &LoadFactorCase) -> String {
                 .map_or("continuum".into(), |n| format!("N = {n}")),
         );
     }
-    if let Some(m) = &c.mechanism {
-        parts.push(format!("{m} collapse"));
-    }
-    parts.join(", ")
+    parts
 }
 
 fn distinct(vals: impl Iterator<Item = f64>) -> Vec<f64> {
@@ -81,7 +96,7 @@ fn study_cases<'a>(data: &'a RunData, lc: &str) -> Vec<&'a LoadFactorCase> {
 /// with `singled` the cases singled out over every case too.
 fn summary_cases<'a>(data: &'a RunData, lc: &str, singled: bool) -> Vec<&'a LoadFactorCase> {
     let bounded = study_cases(data, lc);
-    let group = |c: &LoadFactorCase| (c.half_angle_deg.to_bits(), c.voussoirs);
+    let group = |c: &LoadFactorCase| c.arch();
     let chosen = bounded
         .iter()
         .find(|c| c.voussoirs.is_none())
@@ -187,9 +202,15 @@ impl Rows {
             };
             format!("; the grid's weakest: {} at {p}", short(l))
         });
+        let arch: String = grid
+            .map(|c| arch_parts(data, c))
+            .unwrap_or_default()
+            .iter()
+            .map(|p| format!(", {p}"))
+            .collect();
         self.push(
             format!(
-                "λ_max at the weakest load position refined between grid points{on} (K = {}, μ = {}, load at {place}{against})",
+                "λ_max at the weakest load position refined between grid points{on} (K = {}, μ = {}{arch}, load at {place}{against})",
                 compact(st.k),
                 compact(st.mu),
             ),
