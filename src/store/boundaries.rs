@@ -66,14 +66,24 @@ impl StateColumns {
 }
 
 /// The form's columns, as results.parquet writes them: shape, eccentricity (null for a
-/// circular arch) and joint planes.
-fn form_columns(f: &crate::model::ArchForm) -> (String, Option<f64>, String) {
-    let e = match f.shape {
-        crate::model::Shape::Pointed { eccentricity } => Some(eccentricity),
-        crate::model::Shape::Circular => None,
-    };
-    let shape = if e.is_some() { "pointed" } else { "circular" };
-    (shape.to_string(), e, f.joints.as_str().to_string())
+/// circular arch) and joint planes, one row per form.
+fn with_form_columns<'a>(
+    t: TableBuilder,
+    forms: impl Iterator<Item = &'a crate::model::ArchForm>,
+) -> TableBuilder {
+    let (mut shape, mut e, mut joints) = (Vec::new(), Vec::new(), Vec::new());
+    for f in forms {
+        let ecc = match f.shape {
+            crate::model::Shape::Pointed { eccentricity } => Some(eccentricity),
+            crate::model::Shape::Circular => None,
+        };
+        shape.push(if ecc.is_some() { "pointed" } else { "circular" }.to_string());
+        e.push(ecc);
+        joints.push(f.joints.as_str().to_string());
+    }
+    t.str("shape", shape)
+        .opt_f64("eccentricity", e)
+        .str("joints", joints)
 }
 
 fn load_case_name(plan: &Plan, i: usize) -> String {
@@ -122,22 +132,14 @@ pub fn boundaries_frame(plan: &Plan, located: &Located) -> Result<DataFrame> {
                 .map(|p| p.mechanism.map(|m| m.as_str().to_string()))
                 .collect(),
         );
-    StateColumns::of(b.iter().map(|p| p.state.as_ref()))
+    let t = StateColumns::of(b.iter().map(|p| p.state.as_ref()))
         .add(t)
         .f64(
             "half_angle_deg",
             b.iter().map(|p| p.half_angle_deg).collect(),
         )
-        .opt_u32("voussoirs", b.iter().map(|p| p.voussoirs).collect())
-        .str("shape", b.iter().map(|p| form_columns(&p.form).0).collect())
-        .opt_f64(
-            "eccentricity",
-            b.iter().map(|p| form_columns(&p.form).1).collect(),
-        )
-        .str(
-            "joints",
-            b.iter().map(|p| form_columns(&p.form).2).collect(),
-        )
+        .opt_u32("voussoirs", b.iter().map(|p| p.voussoirs).collect());
+    with_form_columns(t, b.iter().map(|p| &p.form))
         .opt_f64("at_deg", b.iter().map(|p| p.at_deg).collect())
         .opt_f64("at_x", b.iter().map(|p| p.at_x).collect())
         .finish()
@@ -168,22 +170,14 @@ pub fn bifurcations_frame(plan: &Plan, located: &Located) -> Result<DataFrame> {
                 .map(|p| p.mechanism_b.as_str().to_string())
                 .collect(),
         );
-    StateColumns::of(b.iter().map(|p| Some(&p.state)))
+    let t = StateColumns::of(b.iter().map(|p| Some(&p.state)))
         .add(t)
         .f64(
             "half_angle_deg",
             b.iter().map(|p| p.half_angle_deg).collect(),
         )
-        .opt_u32("voussoirs", b.iter().map(|p| p.voussoirs).collect())
-        .str("shape", b.iter().map(|p| form_columns(&p.form).0).collect())
-        .opt_f64(
-            "eccentricity",
-            b.iter().map(|p| form_columns(&p.form).1).collect(),
-        )
-        .str(
-            "joints",
-            b.iter().map(|p| form_columns(&p.form).2).collect(),
-        )
+        .opt_u32("voussoirs", b.iter().map(|p| p.voussoirs).collect());
+    with_form_columns(t, b.iter().map(|p| &p.form))
         .opt_f64("at_deg", b.iter().map(|p| p.at_deg).collect())
         .opt_f64("at_x", b.iter().map(|p| p.at_x).collect())
         .opt_str(

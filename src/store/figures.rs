@@ -414,6 +414,13 @@ fn f64_or_null(df: &DataFrame, name: &str) -> Vec<Option<f64>> {
 }
 
 /// A string column that older run directories may lack: all null then.
+/// The joint planes of a stored `joints` value (radial where the table has none).
+fn joints_or_radial(v: &Option<String>) -> crate::model::JointOrientation {
+    v.as_deref()
+        .and_then(crate::model::JointOrientation::parse)
+        .unwrap_or_default()
+}
+
 fn str_or_null(df: &DataFrame, name: &str) -> Vec<Option<String>> {
     str_column(df, name).unwrap_or_else(|_| vec![None; df.height()])
 }
@@ -549,10 +556,7 @@ pub fn read_row_arches(path: &Path) -> Result<Vec<RowArch>> {
             half_angle_deg: half[i].unwrap_or(90.0),
             voussoirs: nv[i].map(|v| v as u32),
             eccentricity: e[i],
-            joints: joints[i]
-                .as_deref()
-                .and_then(crate::model::JointOrientation::parse)
-                .unwrap_or_default(),
+            joints: joints_or_radial(&joints[i]),
         })
         .collect())
 }
@@ -711,10 +715,7 @@ fn load_factor_cases_of_frame(
             half_angle_deg: half[i].unwrap_or(90.0),
             voussoirs: nv[i].map(|v| v as u32),
             eccentricity: e[i],
-            joints: joints[i]
-                .as_deref()
-                .and_then(crate::model::JointOrientation::parse)
-                .unwrap_or_default(),
+            joints: joints_or_radial(&joints[i]),
             at_deg: at[i],
             at_x: at_x[i],
             load_factor: lf[i],
