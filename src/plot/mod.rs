@@ -219,11 +219,25 @@ pub(crate) fn draw_mu_k_mesh<DB: DrawingBackend>(
     } else {
         TRANSPARENT.stroke_width(1)
     };
+    // Only the labels at multiples of a round step that leaves half a label's width between
+    // them: a narrow panel of small multiples labels 0.2, 0.4, ..., not 0.2, 0.3, ...
+    let (xr, _) = chart.plotting_area().get_pixel_range();
+    let (label_w, _) = style::text_block_size(&ctx.font(13.0), &[fmt_mu(&mu1)], 1.0);
+    let fit = f64::from(xr.end - xr.start) / (1.5 * f64::from(label_w.max(1)));
+    let step = style::round_step_at_least((mu1 - mu0) / fit.max(1.0));
+    let fmt_mu_thinned = |v: &f64| {
+        let q = v / step;
+        if (q - q.round()).abs() < 1e-6 {
+            fmt_mu(v)
+        } else {
+            String::new()
+        }
+    };
     chart
         .configure_mesh()
         .x_desc("friction coefficient μ")
         .y_desc("thickness ratio K = R/r")
-        .x_label_formatter(&fmt_mu)
+        .x_label_formatter(&fmt_mu_thinned)
         .y_label_formatter(&fmt_k)
         .label_style(ctx.font(13.0))
         .axis_desc_style(ctx.font(14.0))

@@ -536,6 +536,19 @@ impl LabelPlacer {
     }
 }
 
+/// The smallest of 1, 2 and 5 times a power of ten that is at least `v` (> 0).
+pub fn round_step_at_least(v: f64) -> f64 {
+    if !(v > 0.0) || !v.is_finite() {
+        return 1.0;
+    }
+    let p = 10f64.powf(v.log10().floor());
+    [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .map(|m| m * p)
+        .find(|&s| s >= v * (1.0 - 1e-12))
+        .unwrap_or(10.0 * p)
+}
+
 /// Positions on rings around `(x, y)`, nearest first: steps of a quarter of the box's
 /// smaller side, out to three times its larger side, 16 directions a ring.
 pub fn rings_around((x, y): (i32, i32), w: i32, h: i32) -> Vec<(i32, i32)> {
@@ -791,6 +804,16 @@ pub fn nice_step(span: f64, n: usize) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_round_step_is_one_two_or_five_times_a_power_of_ten() {
+        assert_eq!(round_step_at_least(0.16), 0.2);
+        assert_eq!(round_step_at_least(0.033), 0.05);
+        assert_eq!(round_step_at_least(0.1), 0.1);
+        assert_eq!(round_step_at_least(3.0), 5.0);
+        assert_eq!(round_step_at_least(7.0), 10.0);
+        assert_eq!(round_step_at_least(0.0), 1.0);
+    }
 
     #[test]
     fn a_short_log_axis_labels_only_the_powers_of_ten() {

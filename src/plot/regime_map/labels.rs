@@ -97,6 +97,27 @@ fn label_cells(m: &RegimeMap, dx: f64, dy: f64) -> Vec<(String, usize, usize, f6
     out
 }
 
+/// Where along a collapse segment its label is tried, as fractions of its drawn length:
+/// the middle first, then outwards.
+const ALONG: [f64; 9] = [0.5, 0.4, 0.6, 0.3, 0.7, 0.2, 0.8, 0.1, 0.9];
+
+/// The point at fraction `f` of the length of a polyline in pixels.
+fn point_along(line: &[(i32, i32)], f: f64) -> (i32, i32) {
+    let len = |a: (i32, i32), b: (i32, i32)| f64::from(a.0 - b.0).hypot(f64::from(a.1 - b.1));
+    let total: f64 = line.windows(2).map(|w| len(w[0], w[1])).sum();
+    let mut left = f * total;
+    for w in line.windows(2) {
+        let l = len(w[0], w[1]);
+        if left <= l && l > 0.0 {
+            let t = left / l;
+            let at = |a: i32, b: i32| a + (f64::from(b - a) * t).round() as i32;
+            return (at(w[0].0, w[1].0), at(w[0].1, w[1].1));
+        }
+        left -= l;
+    }
+    line[line.len() - 1]
+}
+
 /// The labels of the map, placed so that they do not overlap each other, the bifurcation
 /// markers or the curves: bifurcations first (most important), then curve segments, then
 /// regions.
@@ -237,38 +258,44 @@ impl<'a, 'c, DB: DrawingBackend> Labels<'a, 'c, DB> {
         Ok(())
     }
 
-    /// Each segment of the collapse curve named by its mechanism, near its middle.
+    /// Each segment of the collapse curve named by its mechanism, beside the curve: at its
+    /// middle if there is room, else at the nearest free place along it (never away from it:
+    /// where no place beside the curve is free, the legend's line style names the segment).
     pub(super) fn draw_segments(&mut self, root: &DrawingArea<DB, Shift>) -> DrawResult<(), DB> {
         let ctx = self.ctx;
         let ((mu0, mu1), (k0, k1)) = self.window;
         let seg_font = ctx.font_with(13.0, FontStyle::Italic);
         for seg in &self.map.collapse {
-            let inside: Vec<(f64, f64)> = seg
+            let inside: Vec<(i32, i32)> = seg
                 .points
                 .iter()
                 .copied()
                 .filter(|&(x, y)| x >= mu0 && x <= mu1 && y >= k0 && y <= k1)
+                .map(|p| self.chart.backend_coord(&p))
                 .collect();
             if inside.len() < 2 {
                 continue;
             }
-            let mid = self.chart.backend_coord(&inside[inside.len() / 2]);
             let text = format!("{} collapse", seg.mechanism);
             let color = palette::mechanism(&seg.mechanism);
             let (tw, th) = style::text_block_size(&seg_font, std::slice::from_ref(&text), 1.0);
             let g = ctx.px(8.0);
-            let mut near = vec![
-                (mid.0 - tw / 2, mid.1 - g - th),
-                (mid.0 + g, mid.1 - th / 2),
-                (mid.0 + g, mid.1 - g - th),
-                (mid.0 - tw / 2, mid.1 + g),
-                (mid.0 - g - tw, mid.1 - th / 2),
-                (mid.0 + g, mid.1 + g),
-                (mid.0 - tw / 2, mid.1 - 3 * g - th),
-                (mid.0 + 3 * g, mid.1 - th / 2),
-            ];
-            near.extend(style::rings_around(near[0], tw, th));
-            // Where no place is free the legend's line style names the segment.
+            let beside = |c: (i32, i32)| {
+                [
+                    (c.0 - tw / 2, c.1 - g - th),
+                    (c.0 + g, c.1 - th / 2),
+                    (c.0 + g, c.1 - g - th),
+                    (c.0 - tw / 2, c.1 + g),
+                    (c.0 - g - tw, c.1 - th / 2),
+                    (c.0 + g, c.1 + g),
+                    (c.0 - g - tw, c.1 - g - th),
+                    (c.0 - g - tw, c.1 + g),
+                ]
+            };
+            let near: Vec<(i32, i32)> = ALONG
+                .iter()
+                .flat_map(|&f| beside(point_along(&inside, f)))
+                .collect();
             let Some(at) = self.placer.try_place(tw, th, &near) else {
                 continue;
             };
@@ -335,5 +362,20 @@ impl<'a, 'c, DB: DrawingBackend> Labels<'a, 'c, DB> {
             // a name over another label reads as neither.
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::point_along;
+
+    #[test]
+    fn a_point_along_a_polyline_is_at_its_fraction_of_the_length() {
+        // An L of lengths 30 and 10: the middle lies on the first leg, 0.9 on the second.
+        let l = [(0, 0), (30, 0), (30, 10)];
+        assert_eq!(point_along(&l, 0.5), (20, 0));
+        assert_eq!(point_along(&l, 0.9), (30, 6));
+        assert_eq!(point_along(&l, 0.0), (0, 0));
+        assert_eq!(point_along(&l, 1.0), (30, 10));
     }
 }
