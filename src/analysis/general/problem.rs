@@ -113,8 +113,9 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
     }
 
     pub(super) fn solve(&self, settings: &Settings) -> Solved {
-        let mut s = match self.geom.discrete_joints() {
-            Some(thetas) => self.solve_discrete(&thetas, settings),
+        let joints = self.geom.discrete_joints();
+        let mut s = match &joints {
+            Some(thetas) => self.solve_discrete(thetas, settings),
             None => self.solve_continuum(settings),
         };
         // Only a limit state names a mechanism: τ ≈ 0 for a margin, any λ_max.
@@ -126,8 +127,8 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
         };
         if s.outcome == Outcome::Solved && limit && !s.active.is_empty() {
             self.keep_necessary(&mut s, settings);
-            if let Some(thetas) = self.geom.discrete_joints() {
-                thin_bands(&mut s, &thetas, settings.band_joint_spacing);
+            if let Some(thetas) = &joints {
+                thin_bands(&mut s, thetas, settings.band_joint_spacing);
             }
         }
         s
@@ -185,7 +186,10 @@ impl<G: ArchGeometry + ?Sized> Problem<'_, G> {
 /// `spacing` (the one of least slack): the thrust line touches the boundary once there, and
 /// its neighbours are active only because their slack is below the tolerance.
 pub(super) fn thin_bands(s: &mut Solved, thetas: &[f64], spacing: f64) {
-    let index = |t: f64| thetas.iter().position(|&x| x == t);
+    // Each active row's place among the joints, found once.
+    let index: Vec<Option<usize>> = (s.active.iter())
+        .map(|r| thetas.iter().position(|&x| x == r.theta))
+        .collect();
     let n = s.active.len();
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&a, &b| {
@@ -211,7 +215,7 @@ pub(super) fn thin_bands(s: &mut Solved, thetas: &[f64], spacing: f64) {
             let (a, b) = (&s.active[j], &s.active[i]);
             a.condition == b.condition
                 && (b.theta - a.theta).abs() < spacing
-                && matches!((index(a.theta), index(b.theta)), (Some(x), Some(y)) if y == x + 1)
+                && matches!((index[j], index[i]), (Some(x), Some(y)) if y == x + 1)
         });
         if !joined {
             close_run(&mut run, &mut keep);
