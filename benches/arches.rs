@@ -37,7 +37,7 @@ const LOADS: [&str; 3] = ["self_weight", "horizontal", "point"];
 fn load(name: &str) -> Load {
     match name {
         "horizontal" => Load::Horizontal,
-        "point" => Load::Point { at_deg: 30.0 },
+        "point" => Load::point(30.0),
         _ => Load::SelfWeight,
     }
 }
@@ -235,7 +235,7 @@ mod load_factor {
     /// The whole analysis of the continuum, point load at 30°, μ = ∞.
     #[divan::bench]
     fn continuum_point_30(bencher: Bencher) {
-        let g = loaded(Discretisation::Continuum, Load::Point { at_deg: 30.0 });
+        let g = loaded(Discretisation::Continuum, Load::point(30.0));
         let phi = std::f64::consts::FRAC_PI_2;
         bencher.bench(|| general::load_factor(black_box(&g), phi, &Settings::default()).lambda);
     }

@@ -46,9 +46,7 @@ fn draw_scene(d: &mut Draw) -> Option<Scene> {
     let half = d.range(30.0, if pointed { 80.0 } else { 90.0 });
     let load = match (find, d.pick(&[0, 1, 2])) {
         (Find::LoadFactor, 0) | (_, 1) => Load::Horizontal,
-        (_, 2) | (Find::LoadFactor, _) => Load::Point {
-            at_deg: d.range(-0.9 * half, 0.9 * half),
-        },
+        (_, 2) | (Find::LoadFactor, _) => Load::point(d.range(-0.9 * half, 0.9 * half)),
         _ => Load::SelfWeight,
     };
     let lambda = match load {

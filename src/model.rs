@@ -454,7 +454,9 @@ impl ArchForm {
         let e = self.shape.eccentricity();
         let on_keystone = self.keystone && self.joints == JointOrientation::Radial;
         match load {
-            Load::Point { at_deg } if at_deg != 0.0 && e > 0.0 && !on_keystone => {
+            // A patch needs no joint under its centre.
+            _ if load.is_patch() => k,
+            Load::Point { at_deg, .. } if at_deg != 0.0 && e > 0.0 && !on_keystone => {
                 let s = at_deg
                     .to_radians()
                     .abs()
@@ -462,7 +464,7 @@ impl ArchForm {
                     .sin();
                 k.min(2.0 * s / e - 1.0)
             }
-            Load::PointX { at_x } if at_x != 0.5 && e > 0.0 && !on_keystone => {
+            Load::PointX { at_x, .. } if at_x != 0.5 && e > 0.0 && !on_keystone => {
                 k.min(self.max_k_at_x(half_angle, at_x, k))
             }
             _ => k,
@@ -482,18 +484,23 @@ pub enum Load {
     Horizontal,
     /// A vertical point load λ·W_total at the extrados end of the joint at `at_deg` from the
     /// crown. A load exactly at a joint belongs to the part nearer the crown; a load at the
-    /// crown itself to the right half.
+    /// crown itself to the right half. With a `width` > 0 it is a patch load centred on that
+    /// extrados point ([`Load::width`]).
     Point {
         /// Position, degrees from the crown, positive to the right.
         at_deg: f64,
+        /// Patch width as a fraction of the extrados span (0: concentrated).
+        width: f64,
     },
     /// A vertical point load λ·W_total at the extrados point at a fraction `at_x` of the
     /// span: x/L ∈ [0, 1] measured horizontally from the left extrados springing, L the
     /// extrados span (0.5 is the crown). Its joint angle depends on K and the form
-    /// ([`ArchForm::extrados_at_x`]).
+    /// ([`ArchForm::extrados_at_x`]). With a `width` > 0 it is a patch load centred there.
     PointX {
         /// Position as x/L.
         at_x: f64,
+        /// Patch width as a fraction of the extrados span (0: concentrated).
+        width: f64,
     },
 }
 
@@ -511,7 +518,7 @@ impl Load {
     /// position given as x/L, whose angle depends on K and the form).
     pub fn at_deg(self) -> Option<f64> {
         match self {
-            Load::Point { at_deg } => Some(at_deg),
+            Load::Point { at_deg, .. } => Some(at_deg),
             _ => None,
         }
     }
@@ -519,7 +526,7 @@ impl Load {
     /// The position of a point load given as x/L, `None` for the other loads.
     pub fn at_x(self) -> Option<f64> {
         match self {
-            Load::PointX { at_x } => Some(at_x),
+            Load::PointX { at_x, .. } => Some(at_x),
             _ => None,
         }
     }
@@ -527,5 +534,30 @@ impl Load {
     /// True when the load case has a live part scaled by λ.
     pub fn is_live(self) -> bool {
         self != Load::SelfWeight
+    }
+
+    /// A concentrated point load at `at_deg` from the crown.
+    pub fn point(at_deg: f64) -> Self {
+        Load::Point { at_deg, width: 0.0 }
+    }
+
+    /// A concentrated point load at x/L = `at_x`.
+    pub fn point_x(at_x: f64) -> Self {
+        Load::PointX { at_x, width: 0.0 }
+    }
+
+    /// The width of a point load spread over the extrados, as a fraction of the extrados
+    /// span L: the load λ·W_total is spread uniformly over the horizontal length width·L
+    /// centred on its position. 0 for a concentrated load; `None` for the other loads.
+    pub fn width(self) -> Option<f64> {
+        match self {
+            Load::Point { width, .. } | Load::PointX { width, .. } => Some(width),
+            _ => None,
+        }
+    }
+
+    /// True for a point load spread over a length of the extrados (a patch load).
+    pub fn is_patch(self) -> bool {
+        self.width().is_some_and(|w| w > 0.0)
     }
 }

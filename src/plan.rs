@@ -233,8 +233,14 @@ pub fn with_sample(mut scene: Scene, s: &crate::manifest::Sampling, values: &[f6
             ParamName::HalfAngleDeg => half = v,
             ParamName::Eccentricity => scene.form.shape = Shape::Pointed { eccentricity: v },
             ParamName::Voussoirs => joints = discretisation(v),
-            ParamName::AtDeg => scene.load = Load::Point { at_deg: v },
-            ParamName::AtX => scene.load = Load::PointX { at_x: v },
+            ParamName::AtDeg => {
+                let width = scene.load.width().unwrap_or(0.0);
+                scene.load = Load::Point { at_deg: v, width };
+            }
+            ParamName::AtX => {
+                let width = scene.load.width().unwrap_or(0.0);
+                scene.load = Load::PointX { at_x: v, width };
+            }
             ParamName::Lambda => scene.lambda = v,
         }
     }

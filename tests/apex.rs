@@ -26,7 +26,7 @@ fn apex_both(joints: Discretisation) -> (f64, Option<f64>) {
             joints: JointOrientation::Radial,
             keystone: false,
         },
-        load: Load::Point { at_deg: 0.0 },
+        load: Load::point(0.0),
         lambda: 0.166277,
     };
     let sol = scene::solve(&s);
@@ -90,7 +90,7 @@ fn apex_load_split_is_bounded_by_one_half_and_the_free_split() {
 fn only_an_apex_load_on_a_pointed_arch_reports_the_free_split() {
     let arch = Arch::new(1.3, 90.0, WeightModel::Annular, Discretisation::Continuum).unwrap();
     let mut s = Scene::new(arch, Friction::new(0.5).unwrap(), Find::LoadFactor);
-    s.load = Load::Point { at_deg: 0.0 };
+    s.load = Load::point(0.0);
     assert_eq!(scene::solve(&s).critical_apex_shared, None);
     s.form.shape = Shape::Pointed { eccentricity: 0.1 };
     let at_apex = scene::solve(&s);
@@ -100,7 +100,7 @@ fn only_an_apex_load_on_a_pointed_arch_reports_the_free_split() {
     );
     // A free split can only help: λ_max with it is at least the one-half value.
     assert!(shared >= lambda - 1e-9, "{shared} < {lambda}");
-    s.load = Load::Point { at_deg: 30.0 };
+    s.load = Load::point(30.0);
     assert_eq!(scene::solve(&s).critical_apex_shared, None);
 }
 

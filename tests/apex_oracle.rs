@@ -304,7 +304,7 @@ fn margin(arch: &Pointed, us: &[f64], lambda: f64, apex: Apex, mu: f64) -> Optio
 }
 
 /// A compressed-column matrix from (row, column, value) triplets.
-fn csc(m: usize, n: usize, trip: &[(usize, usize, f64)]) -> CscMatrix<f64> {
+pub(crate) fn csc(m: usize, n: usize, trip: &[(usize, usize, f64)]) -> CscMatrix<f64> {
     let mut cols: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n];
     for &(r, c, v) in trip {
         cols[c].push((r, v));
@@ -392,7 +392,7 @@ fn scene_of(joints: Discretisation) -> Scene {
             keystone: false,
             joints: JointOrientation::Radial,
         },
-        load: Load::Point { at_deg: 0.0 },
+        load: Load::point(0.0),
         lambda: LAMBDA,
     }
 }

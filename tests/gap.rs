@@ -286,9 +286,7 @@ fn the_first_complete_load_factor_is_the_lowest_of_every_candidate_mechanism() {
         let load = if draw.next() < 0.5 {
             Load::Horizontal
         } else {
-            Load::Point {
-                at_deg: draw.range(-0.9 * half, 0.9 * half),
-            }
+            Load::point(draw.range(-0.9 * half, 0.9 * half))
         };
         let Ok(arch) = Arch::new(k, half, WeightModel::Annular, Discretisation::Voussoirs(n))
         else {
@@ -587,9 +585,7 @@ fn every_reported_collapse_mechanism_obeys_the_flow_rules() {
         let load = if draw.next() < 0.5 {
             Load::Horizontal
         } else {
-            Load::Point {
-                at_deg: draw.range(-0.8 * half, 0.8 * half),
-            }
+            Load::point(draw.range(-0.8 * half, 0.8 * half))
         };
         let lambda = if find == Find::LoadFactor {
             0.0

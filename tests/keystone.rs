@@ -22,7 +22,7 @@ fn apex_mu(joints: Discretisation, keystone: bool) -> f64 {
         friction: Friction::new(f64::INFINITY).unwrap(),
         find: Find::Friction,
         form: pointed(0.1213, keystone),
-        load: Load::Point { at_deg: 0.0 },
+        load: Load::point(0.0),
         lambda: 0.166277,
     };
     let sol = scene::solve(&s);
@@ -55,7 +55,7 @@ fn keystone_lambda(at_deg: f64, joints: Discretisation) -> f64 {
         friction: Friction::new(0.6).unwrap(),
         find: Find::LoadFactor,
         form: pointed(0.3, true),
-        load: Load::Point { at_deg },
+        load: Load::point(at_deg),
         lambda: 0.0,
     };
     let sol = scene::solve(&s);
@@ -94,7 +94,7 @@ fn keystone_refusals() {
     use archstudy::model::KeystoneRefusal;
     let arch = |joints| Arch::new(1.15, 90.0, WeightModel::Annular, joints).unwrap();
     let c = Discretisation::Continuum;
-    let at = |at_deg| Load::Point { at_deg };
+    let at = Load::point;
     assert!(matches!(
         ArchModel::new(arch(c), pointed(0.3, false), at(17.0)),
         Err(FormError::LoadInsideKeystone { .. })
@@ -224,7 +224,7 @@ fn thickness_at_the_keystone_edge_is_a_threshold_without_a_mechanism() {
         friction: Friction::new(0.25).unwrap(),
         find,
         form: pointed(e, true),
-        load: Load::Point { at_deg },
+        load: Load::point(at_deg),
         lambda: if find == Find::LoadFactor { 0.0 } else { 0.2 },
     };
     let k_star = 2.0 * at_deg.to_radians().sin() / e - 1.0;
@@ -268,7 +268,7 @@ fn x_over_l_converges(
             friction: Friction::new(mu).unwrap(),
             find: Find::LoadFactor,
             form,
-            load: Load::PointX { at_x },
+            load: Load::point_x(at_x),
             lambda: 0.0,
         });
         assert_eq!(

@@ -143,7 +143,7 @@ fn vertical_and_radial_joints_agree_where_the_joints_coincide() {
             (
                 Find::LoadFactor,
                 Friction::INFINITE,
-                Load::Point { at_deg: 0.0 },
+                Load::point(0.0),
             ),
         ] {
             let r = scene::solve(&scene(a, m, find, ArchForm::default(), load));
@@ -266,7 +266,7 @@ fn point_load_goes_straight_into_the_support_near_the_springings() {
             a,
             Friction::INFINITE,
             ArchForm::default(),
-            Load::Point { at_deg: at },
+            Load::point(at),
         )
     };
     let edge = (1.0 / k).asin().to_degrees();
@@ -311,8 +311,8 @@ fn continuum_and_fine_voussoirs_agree() {
     let cases = [
         (1.3, Friction::INFINITE, Load::Horizontal),
         (1.3, mu(0.6), Load::Horizontal),
-        (1.3, Friction::INFINITE, Load::Point { at_deg: 22.5 }),
-        (1.25, mu(0.5), Load::Point { at_deg: -22.5 }),
+        (1.3, Friction::INFINITE, Load::point(22.5)),
+        (1.25, mu(0.5), Load::point(-22.5)),
     ];
     for (k, m, load) in cases {
         let at = |joints| {
@@ -534,7 +534,7 @@ boundaries: {tolerance: 1.0e-8}
         let l = if i < 16 {
             Load::Horizontal
         } else {
-            Load::Point { at_deg: -45.0 }
+            Load::point(-45.0)
         };
         let f = if m.is_infinite() {
             Friction::INFINITE
@@ -565,7 +565,7 @@ boundaries: {tolerance: 1.0e-8}
         let l = if case[i].as_deref() == Some("seismic") {
             Load::Horizontal
         } else {
-            Load::Point { at_deg: -45.0 }
+            Load::point(-45.0)
         };
         let at = |k: f64, m: f64| {
             lambda_max(
@@ -666,7 +666,7 @@ fn the_weakest_load_position_is_refined_between_grid_positions() {
         arch(1.15, Discretisation::Continuum),
         mu(0.5),
         pointed(0.2),
-        Load::Point { at_deg: -15.0 },
+        Load::point(-15.0),
     )
     .load_factor
     .unwrap();
@@ -674,7 +674,7 @@ fn the_weakest_load_position_is_refined_between_grid_positions() {
         arch(1.15, Discretisation::Continuum),
         mu(0.5),
         pointed(0.2),
-        Load::Point { at_deg: at },
+        Load::point(at),
     )
     .load_factor
     .unwrap();
@@ -944,13 +944,13 @@ fn load_factor_agrees_with_the_work_equation_of_its_mechanism() {
             1.3,
             Discretisation::Continuum,
             ArchForm::default(),
-            Load::Point { at_deg: 30.0 },
+            Load::point(30.0),
         ),
         (
             1.25,
             Discretisation::Continuum,
             ArchForm::default(),
-            Load::Point { at_deg: -22.5 },
+            Load::point(-22.5),
         ),
         (
             1.2,
@@ -993,7 +993,7 @@ fn load_factor_agrees_with_the_work_equation_of_its_mechanism() {
     // joints (eq. 11) for the state the programme found.
     for (m, load) in [
         (0.6, Load::Horizontal),
-        (0.5, Load::Point { at_deg: -22.5 }),
+        (0.5, Load::point(-22.5)),
     ] {
         let s = lambda_max(
             arch(1.3, Discretisation::Continuum),

@@ -20,6 +20,7 @@ mod loads;
 mod mechanisms;
 mod merge_forged;
 mod paper;
+mod patch_loads;
 mod reading_notes;
 mod report;
 mod report_arches;

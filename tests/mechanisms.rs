@@ -120,24 +120,18 @@ impl Drawn {
         let u = self.u;
         if by_x {
             let half_span = k * alpha.sin() - d;
-            return Some(Load::PointX {
-                at_x: 0.5 + 0.5 * u * x_first / half_span,
-            });
+            return Some(Load::point_x(0.5 + 0.5 * u * x_first / half_span));
         }
         let a = from + u.abs() * (first - from);
-        Some(Load::Point {
-            at_deg: a.to_degrees().copysign(u),
-        })
+        Some(Load::point(a.to_degrees().copysign(u)))
     }
 
     fn load(&self, form: &ArchForm, joints: Discretisation) -> Option<Load> {
         Some(match (self.load, self.place) {
             (0, _) => Load::SelfWeight,
             (1, _) => Load::Horizontal,
-            (_, Place::Angle) => Load::Point {
-                at_deg: self.at_deg * self.half_angle / 90.0,
-            },
-            (_, Place::X) => Load::PointX { at_x: self.at_x },
+            (_, Place::Angle) => Load::point(self.at_deg * self.half_angle / 90.0),
+            (_, Place::X) => Load::point_x(self.at_x),
             (_, Place::KeystoneAngle) => self.on_keystone(form, joints, false)?,
             (_, Place::KeystoneX) => self.on_keystone(form, joints, true)?,
             (_, Place::Wedge) => {
@@ -146,9 +140,7 @@ impl Drawn {
                 let half_span = k * alpha.sin() - d;
                 let inner = (alpha.sin() - d) / half_span;
                 let v = inner + self.u.abs() * (1.0 - inner);
-                Load::PointX {
-                    at_x: 0.5 + 0.5 * v.copysign(self.u),
-                }
+                Load::point_x(0.5 + 0.5 * v.copysign(self.u))
             }
         })
     }
@@ -269,7 +261,7 @@ fn inconsistency(scene: &Scene, s: &Solution) -> Option<String> {
         return Some(format!("found without a finite value: {value:?}"));
     }
     match scene.load {
-        Load::PointX { at_x } if s.at_x.is_none_or(|x| (x - at_x).abs() > 1e-12) => {
+        Load::PointX { at_x, .. } if s.at_x.is_none_or(|x| (x - at_x).abs() > 1e-12) => {
             Some(format!("x/L {at_x} reported as {:?}", s.at_x))
         }
         Load::PointX { .. } | Load::Point { .. } if s.at_deg.is_none() => {
@@ -325,7 +317,7 @@ fn keystones_and_span_positions_have_their_share() {
         }
         let on_key = d.load == 2 && matches!(d.place, Place::KeystoneAngle | Place::KeystoneX);
         let wedge = match (scene.form.joints, scene.load) {
-            (JointOrientation::Vertical, Load::PointX { at_x }) => {
+            (JointOrientation::Vertical, Load::PointX { at_x, .. }) => {
                 let (k, a) = (scene.arch.k, scene.arch.half_angle);
                 let dd = scene.form.centre_offset(k);
                 (2.0 * at_x - 1.0).abs() * (k * a.sin() - dd) + dd > a.sin()
@@ -355,7 +347,7 @@ fn keystones_and_span_positions_have_their_share() {
 fn point_load_la_hire_mechanism_satisfies_the_work_equation() {
     let arch = Arch::new(1.3, 90.0, WeightModel::Annular, Discretisation::Continuum).unwrap();
     let mut s = Scene::new(arch, Friction::new(0.5).unwrap(), Find::LoadFactor);
-    s.load = Load::Point { at_deg: 30.0 };
+    s.load = Load::point(30.0);
     let c = scene::solve(&s);
     assert!(
         c.work_residual.unwrap() <= TOL_WORK,
@@ -486,7 +478,7 @@ fn mechanism_labels_at_very_large_load_factors_are_those_of_the_kinematics() {
         (
             continuum(1.3, 90.0),
             ArchForm::default(),
-            Load::Point { at_deg: 50.2 },
+            Load::point(50.2),
             f64::INFINITY,
             MechanismKind::Rotational,
             246.4518227,
@@ -494,7 +486,7 @@ fn mechanism_labels_at_very_large_load_factors_are_those_of_the_kinematics() {
         (
             continuum(1.3, 90.0),
             ArchForm::default(),
-            Load::Point { at_deg: 50.28 },
+            Load::point(50.28),
             5.0,
             MechanismKind::Rotational,
             4304.8312996,
@@ -502,7 +494,7 @@ fn mechanism_labels_at_very_large_load_factors_are_those_of_the_kinematics() {
         (
             continuum(1.35, 60.0),
             vertical,
-            Load::PointX { at_x: 0.97 },
+            Load::point_x(0.97),
             0.55,
             MechanismKind::Mixed,
             55.6503316,

@@ -28,13 +28,13 @@ fn x_over_l_on_the_semicircle_is_the_angle_of_the_closed_form() {
     let by_x = load_factor(
         arch,
         ArchForm::default(),
-        Load::PointX { at_x: 0.75 },
+        Load::point_x(0.75),
         f64::INFINITY,
     );
     let by_deg = load_factor(
         arch,
         ArchForm::default(),
-        Load::Point { at_deg: 30.0 },
+        Load::point(30.0),
         f64::INFINITY,
     );
     approx::assert_abs_diff_eq!(by_x.load_factor.unwrap(), 0.927921894, epsilon = 1e-9);
@@ -49,7 +49,7 @@ fn x_over_l_on_the_semicircle_is_the_angle_of_the_closed_form() {
     let left = load_factor(
         arch,
         ArchForm::default(),
-        Load::PointX { at_x: 0.25 },
+        Load::point_x(0.25),
         f64::INFINITY,
     );
     approx::assert_abs_diff_eq!(left.at_deg.unwrap(), -30.0, epsilon = 1e-12);
@@ -69,10 +69,10 @@ fn x_over_l_with_vertical_joints_takes_the_vertical_joint_through_the_point() {
         joints: JointOrientation::Vertical,
         ..ArchForm::default()
     };
-    let by_x = load_factor(arch, vertical, Load::PointX { at_x: 0.75 }, f64::INFINITY);
+    let by_x = load_factor(arch, vertical, Load::point_x(0.75), f64::INFINITY);
     let theta = 0.65f64.asin().to_degrees();
     approx::assert_abs_diff_eq!(by_x.at_deg.unwrap(), theta, epsilon = 1e-12);
-    let by_deg = load_factor(arch, vertical, Load::Point { at_deg: theta }, f64::INFINITY);
+    let by_deg = load_factor(arch, vertical, Load::point(theta), f64::INFINITY);
     assert_eq!(by_x.outcome, Some(Outcome::Found));
     approx::assert_abs_diff_eq!(
         by_x.load_factor.unwrap(),
@@ -98,16 +98,14 @@ fn x_over_l_on_a_keystone_matches_fine_voussoirs() {
         assert_eq!(s.outcome, Some(Outcome::Found), "{joints:?}");
         s
     };
-    let at = Load::PointX { at_x: 0.505 };
+    let at = Load::point_x(0.505);
     let c = solve(Discretisation::Continuum, at);
     approx::assert_abs_diff_eq!(c.at_deg.unwrap(), 16.716146667, epsilon = 1e-8);
     let lc = c.load_factor.unwrap();
     approx::assert_abs_diff_eq!(lc, 0.6947039, epsilon = 1e-6);
     let by_deg = solve(
         Discretisation::Continuum,
-        Load::Point {
-            at_deg: c.at_deg.unwrap(),
-        },
+        Load::point(c.at_deg.unwrap()),
     );
     approx::assert_abs_diff_eq!(by_deg.load_factor.unwrap(), lc, epsilon = 1e-9);
     approx::assert_abs_diff_eq!(by_deg.at_x.unwrap(), 0.505, epsilon = 1e-12);
@@ -225,7 +223,7 @@ fn x_over_l_bounds_the_thickness_where_the_point_meets_the_first_joint() {
         keystone: false,
     };
     let half = std::f64::consts::FRAC_PI_2;
-    let k = form.max_k_with_load(half, Load::PointX { at_x: 0.52 });
+    let k = form.max_k_with_load(half, Load::point_x(0.52));
     assert!(k > 1.0 && k < form.max_k(half), "{k}");
     let (_, _, psi) = form.extrados_at_x(k, half, 0.52).unwrap();
     approx::assert_abs_diff_eq!(psi, form.centre_offset(k).asin(), epsilon = 1e-12);
@@ -239,7 +237,7 @@ fn x_over_l_bounds_the_thickness_where_the_point_meets_the_first_joint() {
         ..form
     };
     assert_eq!(
-        keystone.max_k_with_load(half, Load::PointX { at_x: 0.52 }),
+        keystone.max_k_with_load(half, Load::point_x(0.52)),
         keystone.max_k(half)
     );
 }

@@ -113,7 +113,7 @@ fn a_voussoir_arch_with_a_point_load_stands_in_two_windows() {
         Discretisation::Voussoirs(33),
         form(Some(0.3865), false),
         0.55525,
-        Load::Point { at_deg: -44.611 },
+        Load::point(-44.611),
         3.356281,
         Find::Thickness,
     );
@@ -176,9 +176,7 @@ impl Drawn {
         let load = match self.load {
             0 => Load::SelfWeight,
             1 => Load::Horizontal,
-            _ => Load::Point {
-                at_deg: self.at * self.half_angle,
-            },
+            _ => Load::point(self.at * self.half_angle),
         };
         let find = match self.find {
             0 => Find::Thickness,

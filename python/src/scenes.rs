@@ -198,6 +198,7 @@ fn load_case(base: &SceneOptions, first: Option<&Scene>) -> LoadCase {
         kind,
         at_deg: None,
         at_x: None,
+        width: None,
         lambda: None,
         find: first.map_or_else(
             || archstudy::scene::Find::parse(&base.find).unwrap_or_default(),

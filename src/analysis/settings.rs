@@ -341,6 +341,9 @@ pub struct GeometrySettings {
     pub tol_vertical_alpha: f64,
     /// Relative slack on |θ| ≤ α when checking the position of a point load (default 1e-15).
     pub tol_joint_range: f64,
+    /// A patch load may reach this far, as a fraction of the span, past a springing: the
+    /// rounding of a centre given in degrees (default 1e-12).
+    pub tol_patch_span: f64,
 }
 
 impl GeometrySettings {
@@ -353,6 +356,7 @@ impl GeometrySettings {
         max_newton_steps: 100,
         tol_vertical_alpha: 1e-12,
         tol_joint_range: 1e-15,
+        tol_patch_span: 1e-12,
     };
 }
 

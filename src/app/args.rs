@@ -237,6 +237,11 @@ pub struct SolveArgs {
     /// springing over the extrados span (0.5 is the crown; α ≤ 90°). Instead of --at.
     #[arg(long = "at-x", value_name = "X/L", allow_hyphen_values = true)]
     pub at_x: Option<f64>,
+    /// Spread the point load uniformly over this width of the extrados, as a fraction of
+    /// the extrados span measured horizontally (a patch load centred on its position;
+    /// α ≤ 90°). Without it the load is concentrated.
+    #[arg(long, value_name = "W/L")]
+    pub width: Option<f64>,
     /// Load factor λ ≥ 0 of the live load (multiples of the total weight), for every find
     /// but load-factor.
     #[arg(long, value_name = "L", allow_hyphen_values = true)]
@@ -280,6 +285,7 @@ impl SolveArgs {
             load: self.load.clone(),
             at_deg: self.at,
             at_x: self.at_x,
+            width: self.width,
             lambda: self.lambda,
         };
         options
@@ -305,6 +311,7 @@ fn flag(option: &'static str) -> &'static str {
         "load" => "--load",
         "at" => "--at",
         "at_x" => "--at-x",
+        "width" => "--width",
         "lambda" => "--lambda",
         other => other,
     }

@@ -221,6 +221,7 @@ impl Query {
             load: text("load", &d.load),
             at_deg: self.number("at", false)?,
             at_x: self.number("at_x", false)?,
+            width: self.number("width", false)?,
             lambda: self.number("lambda", false)?,
         })
     }

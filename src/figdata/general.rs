@@ -57,12 +57,16 @@ impl CrownForce {
 pub fn load_of_state(s: &StateRow) -> Load {
     match s.load.as_str() {
         "horizontal" => Load::Horizontal,
-        "point" => match s.at_x {
-            Some(at_x) => Load::PointX { at_x },
-            None => Load::Point {
-                at_deg: s.at_deg.unwrap_or(0.0),
-            },
-        },
+        "point" => {
+            let width = s.load_width.unwrap_or(0.0);
+            match s.at_x {
+                Some(at_x) => Load::PointX { at_x, width },
+                None => Load::Point {
+                    at_deg: s.at_deg.unwrap_or(0.0),
+                    width,
+                },
+            }
+        }
         _ => Load::SelfWeight,
     }
 }

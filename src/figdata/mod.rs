@@ -294,6 +294,7 @@ fn blank_state(manifest: &Manifest, lc: &LoadCase, group: ArchGroup, id: String)
         load: lc.kind.as_str().into(),
         at_deg: lc.at_deg,
         at_x: lc.at_x,
+        load_width: lc.width,
         load_factor: lc.lambda,
         regime: None,
         mechanism: None,

@@ -140,6 +140,7 @@ pub(super) struct RawLoadCase {
     pub(super) kind: Spanned<String>,
     pub(super) at_deg: Option<Spanned<f64>>,
     pub(super) at_x: Option<Spanned<f64>>,
+    pub(super) width: Option<Spanned<f64>>,
     pub(super) lambda: Option<Spanned<f64>>,
     pub(super) find: Option<Spanned<String>>,
 }

@@ -66,6 +66,9 @@ pub struct SceneOptions {
     pub at_deg: Option<f64>,
     /// Position of a point load as x/L ∈ [0, 1].
     pub at_x: Option<f64>,
+    /// Width of a point load spread over the extrados (a patch load), as a fraction of
+    /// the extrados span; `None` for a concentrated load.
+    pub width: Option<f64>,
     /// Load factor λ ≥ 0 of the live load (every find but `load_factor`).
     pub lambda: Option<f64>,
 }
@@ -88,6 +91,7 @@ impl Default for SceneOptions {
             load: "self-weight".into(),
             at_deg: None,
             at_x: None,
+            width: None,
             lambda: None,
         }
     }
@@ -244,7 +248,34 @@ impl SceneOptions {
         })
     }
 
+    /// The load, a point load spread over the width given.
     fn load(&self) -> Result<Load, SceneOptionError> {
+        let load = self.concentrated_load()?;
+        let Some(w) = self.width else {
+            return Ok(load);
+        };
+        if !load.is_live() || load == Load::Horizontal {
+            return Err(bad(
+                "width",
+                w,
+                "--width spreads a point load over the extrados: add --load point",
+            ));
+        }
+        if !(w >= 0.0 && w <= 1.0) {
+            return Err(bad(
+                "width",
+                w,
+                "a fraction of the extrados span in [0, 1] (0: a concentrated load)",
+            ));
+        }
+        Ok(match load {
+            Load::Point { at_deg, .. } => Load::Point { at_deg, width: w },
+            Load::PointX { at_x, .. } => Load::PointX { at_x, width: w },
+            other => other,
+        })
+    }
+
+    fn concentrated_load(&self) -> Result<Load, SceneOptionError> {
         if let Some(x) = self.at_x {
             return match (self.load.as_str(), self.at_deg) {
                 (_, Some(a)) => Err(bad(
@@ -252,7 +283,7 @@ impl SceneOptions {
                     a,
                     "give the position once: --at DEG or --at-x X/L, not both",
                 )),
-                ("point", None) if (0.0..=1.0).contains(&x) => Ok(Load::PointX { at_x: x }),
+                ("point", None) if (0.0..=1.0).contains(&x) => Ok(Load::point_x(x)),
                 ("point", None) => Err(bad(
                     "at_x",
                     x,
@@ -268,7 +299,7 @@ impl SceneOptions {
         let load = match (self.load.as_str(), self.at_deg) {
             ("self-weight" | "self_weight", None) => Load::SelfWeight,
             ("horizontal", None) => Load::Horizontal,
-            ("point", Some(a)) if a.is_finite() => Load::Point { at_deg: a },
+            ("point", Some(a)) if a.is_finite() => Load::point(a),
             ("point", Some(a)) => return Err(bad("at", a, "a finite angle in degrees")),
             ("point", None) => {
                 return Err(bad(
@@ -373,6 +404,7 @@ fn form_error(e: FormError, t_over_r: Option<f64>) -> SceneOptionError {
         FormError::LoadOffSpan { at_x, .. } | FormError::XInsideKeystone { at_x, .. } => {
             bad("at_x", at_x, e.to_string())
         }
+        FormError::PatchOffSpan { width, .. } => bad("width", width, e.to_string()),
     }
 }
 

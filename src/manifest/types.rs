@@ -49,6 +49,10 @@ pub struct LoadCase {
     /// for other kinds).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub at_x: Option<f64>,
+    /// Width of a point load spread over the extrados (a patch load), as a fraction of the
+    /// extrados span L; `None` for a concentrated point load and for other kinds.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub width: Option<f64>,
     /// The given load factor λ of the live part (state, thickness and friction studies).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lambda: Option<f64>,
@@ -69,9 +73,13 @@ impl LoadCase {
             LoadKind::SelfWeight => Load::SelfWeight,
             LoadKind::Horizontal => Load::Horizontal,
             LoadKind::Point => match self.at_x.or(axis_at_x) {
-                Some(at_x) if self.at_deg.or(axis_at_deg).is_none() => Load::PointX { at_x },
+                Some(at_x) if self.at_deg.or(axis_at_deg).is_none() => Load::PointX {
+                    at_x,
+                    width: self.width.unwrap_or(0.0),
+                },
                 _ => Load::Point {
                     at_deg: self.at_deg.or(axis_at_deg).unwrap_or(0.0),
+                    width: self.width.unwrap_or(0.0),
                 },
             },
         }

@@ -106,6 +106,39 @@ pub enum DrawnLoad {
         /// Its label (λ).
         label: String,
     },
+    /// A vertical load spread over a length of the extrados (a patch load), drawn as
+    /// arrows onto points spread over it, their tails joined by a bar.
+    Patch {
+        /// The points of the extrados the arrows end at, from left to right (the first and
+        /// last are the patch's ends).
+        at: Vec<Xy>,
+        /// Its label (λ).
+        label: String,
+    },
+}
+
+impl DrawnLoad {
+    /// The points the arrows end at.
+    pub fn heads(&self) -> &[Xy] {
+        match self {
+            DrawnLoad::Point { at, .. } => std::slice::from_ref(at),
+            DrawnLoad::Horizontal { at, .. } | DrawnLoad::Patch { at, .. } => at,
+        }
+    }
+
+    /// The label (λ).
+    pub fn label(&self) -> &str {
+        match self {
+            DrawnLoad::Point { label, .. }
+            | DrawnLoad::Horizontal { label, .. }
+            | DrawnLoad::Patch { label, .. } => label,
+        }
+    }
+
+    /// True for arrows pointing down (a point or patch load).
+    fn is_vertical(&self) -> bool {
+        !matches!(self, DrawnLoad::Horizontal { .. })
+    }
 }
 
 /// What a state drawing shows. Lengths over the intrados radius r.
@@ -174,6 +207,11 @@ impl StateDrawing {
         match &self.load {
             Some(DrawnLoad::Point { at, .. }) => vec![(at.0, at.1 + l)],
             Some(DrawnLoad::Horizontal { at, .. }) => at.iter().map(|p| (p.0 - l, p.1)).collect(),
+            // Shorter arrows, their tails on one level above the patch's highest point.
+            Some(DrawnLoad::Patch { at, .. }) => {
+                let top = at.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max);
+                at.iter().map(|p| (p.0, top + 0.6 * l)).collect()
+            }
             None => Vec::new(),
         }
     }
@@ -426,10 +464,14 @@ impl StateDrawing {
             return Ok(());
         };
         let tails = self.load_tails();
-        let (heads, label) = match load {
-            DrawnLoad::Point { at, label } => (std::slice::from_ref(at), label),
-            DrawnLoad::Horizontal { at, label } => (at.as_slice(), label),
-        };
+        let (heads, label) = (load.heads(), load.label());
+        if let (DrawnLoad::Patch { .. }, Some(first), Some(last)) = (load, tails.first(), tails.last())
+        {
+            root.draw(&PathElement::new(
+                vec![chart.backend_coord(first), chart.backend_coord(last)],
+                palette::GREEN.stroke_width(ctx.upx(2.6)),
+            ))?;
+        }
         for (t, h) in tails.iter().zip(heads) {
             style::arrow(
                 root,
@@ -443,15 +485,16 @@ impl StateDrawing {
         if let Some(t) = tails.iter().max_by(|a, b| a.1.total_cmp(&b.1)) {
             // Right of the top of a vertical arrow; above the highest tail of horizontal ones.
             let p = chart.backend_coord(t);
-            let (pos, at) = match load {
-                DrawnLoad::Point { .. } => (
+            let (pos, at) = if load.is_vertical() {
+                (
                     Pos::new(HPos::Left, VPos::Bottom),
                     (p.0 + ctx.px(6.0), p.1 - ctx.px(2.0)),
-                ),
-                DrawnLoad::Horizontal { .. } => (
+                )
+            } else {
+                (
                     Pos::new(HPos::Right, VPos::Center),
                     (p.0 - ctx.px(6.0), p.1),
-                ),
+                )
             };
             let f = ctx.font(13.0).color(&palette::GREEN).pos(pos);
             root.draw(&Text::new(label.to_string(), at, f))?;
@@ -561,6 +604,10 @@ impl StateDrawing {
             )),
             Some(DrawnLoad::Horizontal { .. }) => items.push(LegendItem::new(
                 "horizontal body force λ·weight",
+                Mark::Arrow(palette::GREEN),
+            )),
+            Some(DrawnLoad::Patch { .. }) => items.push(LegendItem::new(
+                "patch load λ·W_total, spread over the bar",
                 Mark::Arrow(palette::GREEN),
             )),
             None => {}

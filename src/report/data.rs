@@ -99,6 +99,9 @@ pub struct LoadCaseView {
     /// Position of a point load as x/L of the span, when the load case gives it so.
     #[serde(default)]
     pub at_x: Option<f64>,
+    /// Width of a patch load, a fraction of the extrados span (`None`: concentrated).
+    #[serde(default)]
+    pub width: Option<f64>,
 }
 
 /// A scene of the resolved manifest.

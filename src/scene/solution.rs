@@ -123,6 +123,9 @@ pub struct Solution {
     pub at_deg: Option<f64>,
     /// Position of a point load as x/L (null for other loads, and when α > 90°).
     pub at_x: Option<f64>,
+    /// Width of a point load spread over the extrados, as a fraction of the extrados span
+    /// (0 for a concentrated point load, null for other loads).
+    pub load_width: Option<f64>,
     /// The given load factor λ of the live part (null for self-weight and for `load_factor`).
     pub lambda: Option<f64>,
     /// `found`, `never_stands` or `always_stands` for critical finds (`found` or `never_stands`
@@ -365,6 +368,7 @@ impl Solution {
             load: scene.load.as_str(),
             at_deg: scene.load.at_deg(),
             at_x: scene.load.at_x(),
+            load_width: scene.load.width(),
             lambda: (scene.load.is_live() && scene.find != Find::LoadFactor)
                 .then_some(scene.lambda),
             outcome: None,

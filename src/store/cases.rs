@@ -266,13 +266,14 @@ const STRS: [&str; 13] = [
     "message",
 ];
 /// The other numeric input columns, and `mechanism_dof` and `solve_time_us`.
-const NUMS: [&str; 9] = [
+const NUMS: [&str; 10] = [
     "mu",
     "half_angle_deg",
     "voussoirs",
     "eccentricity",
     "at_deg",
     "at_x",
+    "load_width",
     "lambda",
     "mechanism_dof",
     "solve_time_us",
@@ -376,6 +377,7 @@ impl Stored {
             load: same("load", self.s("load", i), planned.load)?,
             at_deg: self.n("at_deg", i),
             at_x: self.n("at_x", i),
+            load_width: self.n("load_width", i),
             lambda: self.n("lambda", i),
             outcome: opt_name(
                 &Outcome::ALL,

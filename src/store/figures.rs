@@ -69,6 +69,9 @@ pub struct StateRow {
     /// places the load at this extrados point, which on the springing wedge of a
     /// vertical-joint arch the angle (±α there) does not name.
     pub at_x: Option<f64>,
+    /// Width of a point load spread over the extrados, as a fraction of the span (`None`
+    /// for other loads and for a concentrated one).
+    pub load_width: Option<f64>,
     /// Load factor λ of the live load at the drawn state (`None` for self-weight alone).
     pub load_factor: Option<f64>,
     /// Regime of the scene at (scene_k, scene_mu).
@@ -298,6 +301,7 @@ pub fn states_frame(rows: &[StateRow]) -> Result<DataFrame> {
         .str("load", s(&|r| r.load.clone()))
         .opt_f64("at_deg", o(&|r| r.at_deg))
         .opt_f64("at_x", o(&|r| r.at_x))
+        .opt_f64("load_width", o(&|r| r.load_width))
         .opt_f64("load_factor", o(&|r| r.load_factor))
         .opt_str("regime", rows.iter().map(|r| r.regime.clone()).collect())
         .opt_str(
@@ -387,6 +391,7 @@ pub fn read_states(path: &Path) -> Result<Vec<StateRow>> {
             load: arch.load[i].clone().unwrap_or_else(|| "self_weight".into()),
             at_deg: arch.at_deg[i],
             at_x: arch.at_x[i],
+            load_width: arch.load_width[i],
             load_factor: arch.load_factor[i],
             regime: regime[i].clone(),
             mechanism: mech[i].clone(),
@@ -435,6 +440,7 @@ struct StateArchColumns {
     load: Vec<Option<String>>,
     at_deg: Vec<Option<f64>>,
     at_x: Vec<Option<f64>>,
+    load_width: Vec<Option<f64>>,
     load_factor: Vec<Option<f64>>,
     crown_shear: Vec<Option<f64>>,
     case_id: Vec<Option<f64>>,
@@ -451,6 +457,7 @@ impl StateArchColumns {
             load: str_or_null(df, "load"),
             at_deg: f64_or_null(df, "at_deg"),
             at_x: f64_or_null(df, "at_x"),
+            load_width: f64_or_null(df, "load_width"),
             load_factor: f64_or_null(df, "load_factor"),
             crown_shear: f64_or_null(df, "crown_shear"),
             case_id: f64_or_null(df, "case_id"),

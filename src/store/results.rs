@@ -291,6 +291,7 @@ fn input_columns<'a>(load_cases: &'a [LoadCase]) -> Vec<Spec<'a>> {
         str_col("load", |r| r.solution.load),
         opt_f64("at_deg", |r| r.solution.at_deg),
         opt_f64("at_x", |r| r.solution.at_x),
+        opt_f64("load_width", |r| r.solution.load_width),
         opt_f64("lambda", |r| r.solution.lambda),
     ]
 }

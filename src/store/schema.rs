@@ -115,6 +115,11 @@ const COLUMN_DOCS: &[(&str, &str, &str)] = &[
         "L",
         "position of the point load as x/L: horizontally from the left extrados springing over the extrados span (0.5: the crown)",
     ),
+    (
+        "load_width",
+        "L",
+        "width of the extrados a point load is spread over (a patch load centred on its position), over the extrados span; 0 for a concentrated load",
+    ),
     ("lambda", "W_total", "given load factor λ of the live load"),
     (
         "outcome",

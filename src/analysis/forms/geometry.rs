@@ -199,7 +199,12 @@ impl ArchModel {
             iso.push(self.support_param(-1.0));
             iso.push(self.support_param(1.0));
         }
-        if let Some((p, _)) = self.point {
+        if let Some(patch) = self.patch {
+            // The resultant is continuous with kinks at the ends: each side a family.
+            for p in patch.ends.into_iter().flatten() {
+                fam = split(&fam, p);
+            }
+        } else if let Some((p, _)) = self.point {
             fam = split(&fam, p);
         }
         (fam, iso)

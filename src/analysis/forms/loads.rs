@@ -3,8 +3,116 @@
 use super::{ArchModel, FormError, GEOMETRY};
 use crate::analysis::statics::{ArchGeometry, Condition, Joint, Point, Resultant};
 use crate::model::{Discretisation, JointOrientation, Load};
+use std::f64::consts::FRAC_PI_2;
+
+/// A point load spread uniformly over a horizontal length of the extrados.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Patch {
+    /// The extrados x range it covers, over r (x = 0 at the crown).
+    pub(super) x: [f64; 2],
+    /// The joint parameters whose extrados ends are the patch's ends, where such joints
+    /// exist (not over a keystone, nor over the springing wedge of a vertical-joint arch).
+    pub(super) ends: [Option<f64>; 2],
+}
 
 impl ArchModel {
+    /// The centre (parameter and extrados point, as [`ArchModel::point_position`] reports
+    /// it) and the extent of a patch load: the load's width·L of the extrados, L the
+    /// extrados span, centred on its position. Needs α ≤ 90° (where a vertical meets the
+    /// extrados once) and the patch within the span.
+    pub(super) fn place_patch(&self, load: Load) -> Result<((f64, Point), Patch), FormError> {
+        let alpha = self.arch.half_angle;
+        let half_span = self.arch.k * alpha.sin() - self.d;
+        let (centre, width) = match load {
+            Load::Point { at_deg, width } => (self.place_centre_deg(at_deg)?, width),
+            Load::PointX { at_x, width } => (self.place_centre_x(at_x)?, width),
+            Load::SelfWeight | Load::Horizontal => unreachable!("only a point load has a width"),
+        };
+        let at_x = 0.5 + 0.5 * centre.1[0] / half_span;
+        let (from, to) = (at_x - 0.5 * width, at_x + 0.5 * width);
+        let tol = GEOMETRY.tol_patch_span;
+        if alpha > FRAC_PI_2 + GEOMETRY.tol_vertical_alpha || from < -tol || to > 1.0 + tol {
+            return Err(FormError::PatchOffSpan {
+                width,
+                at_x,
+                from,
+                to,
+                half_angle_deg: self.arch.half_angle_deg(),
+            });
+        }
+        let x = [from, to].map(|f| ((2.0 * f - 1.0) * half_span).clamp(-half_span, half_span));
+        let ends = x.map(|x| self.param_under(x));
+        Ok((centre, Patch { x, ends }))
+    }
+
+    /// The extrados point at abscissa `x` (over r; |x| at most the half span, α ≤ 90°).
+    pub fn extrados_above(&self, x: f64) -> Point {
+        let k = self.arch.k;
+        let s = ((x.abs() + self.d) / k).min(1.0);
+        self.extrados_point(x.signum() * s.asin())
+    }
+
+    /// The centre of a patch given in degrees: the point a concentrated load there would
+    /// take, or on a keystone-less pointed crown the extrados point at that angle.
+    fn place_centre_deg(&self, at_deg: f64) -> Result<(f64, Point), FormError> {
+        let a = at_deg.to_radians();
+        match self.place_point(at_deg) {
+            Err(FormError::LoadInsideKeystone { .. }) if a.abs() >= self.psi_e0 => {
+                Ok((a, self.extrados_point(a)))
+            }
+            other => other,
+        }
+    }
+
+    /// The centre of a patch given as x/L, as [`ArchModel::place_centre_deg`].
+    fn place_centre_x(&self, at_x: f64) -> Result<(f64, Point), FormError> {
+        match self.place_point_x(at_x) {
+            Err(FormError::XInsideKeystone { at_deg, .. }) => {
+                let a = at_deg.to_radians();
+                Ok((a, self.extrados_point(a)))
+            }
+            other => other,
+        }
+    }
+
+    /// The parameter of the joint whose extrados end lies at abscissa `x`, where one does.
+    fn param_under(&self, x: f64) -> Option<f64> {
+        let (k, alpha) = (self.arch.k, self.arch.half_angle);
+        let side = if x < 0.0 { -1.0 } else { 1.0 };
+        let s = x.abs() + self.d;
+        let psi = match self.form.joints {
+            JointOrientation::Radial => (s / k).min(1.0).asin(),
+            JointOrientation::Vertical => (s <= alpha.sin()).then(|| s.asin())?,
+        };
+        let jointed = x == 0.0 || (psi >= self.psi_1 && psi <= alpha);
+        jointed.then_some(side * psi)
+    }
+
+    /// The resultant (per unit λ) of the part of a patch load between the crown and joint
+    /// θ: the share of the load over [0, x_θ], x_θ the abscissa of θ's extrados end,
+    /// signed as the resultants of the parts on the left (∫ from 0 to θ).
+    fn patch_resultant(&self, patch: &Patch, theta: f64) -> Resultant {
+        if theta == 0.0 {
+            return Resultant::default();
+        }
+        let [lo, hi] = patch.x;
+        let xe = self.joint_at(theta).extrados[0];
+        let (u, v, sign) = if theta > 0.0 {
+            (lo.max(0.0), hi.min(xe), 1.0)
+        } else {
+            (lo.max(xe), hi.min(0.0), -1.0)
+        };
+        if v <= u {
+            return Resultant::default();
+        }
+        let len = hi - lo;
+        Resultant {
+            fx: 0.0,
+            fy: -2.0 * sign * (v - u) / len,
+            m: -sign * (v * v - u * u) / len,
+        }
+    }
+
     /// The parameter a (radians) and the extrados point X of a point load at `at_deg`: the
     /// extrados end of the joint at a. On the keystone of a pointed arch with radial joints
     /// (0 < |a| < ψ₁, where no joint exists) X is the extrados point at angle |a| from its
@@ -157,6 +265,9 @@ impl ArchGeometry for ArchModel {
                 }
             }
             Load::Point { .. } | Load::PointX { .. } => {
+                if let Some(patch) = &self.patch {
+                    return self.patch_resultant(patch, theta);
+                }
                 let Some((a, x)) = self.point else {
                     return Resultant::default();
                 };

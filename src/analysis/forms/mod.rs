@@ -39,6 +39,10 @@
 //!   crown to the right half: R(θ) contains it iff 0 ≤ a ≤ θ (θ > 0) or θ ≤ a < 0 (θ < 0).
 //!   The continuum has both sides of the load as joints: the joint at a (load on the crown
 //!   side) and the joint at the adjacent float on the far side.
+//! - patch: the same P spread uniformly over the horizontal length w·L of the extrados
+//!   centred on the load's position ([x₀, x₁]); between the crown and θ its resultant is
+//!   −2·(share of [x₀, x₁] between x = 0 and the extrados end of θ) with the matching first
+//!   moment, continuous in θ, so no sliver carries a finite part of it.
 
 use super::settings::GeometrySettings;
 use super::statics::Point;
@@ -46,6 +50,7 @@ use crate::model::{
     Arch, ArchForm, Discretisation, JointOrientation, KeystoneRefusal, Load, WeightModel,
 };
 use geometry::{arc_primitive, segment};
+use loads::Patch;
 use std::f64::consts::FRAC_PI_2;
 
 /// The numerical thresholds of the forms (see [`GeometrySettings`]).
@@ -134,6 +139,22 @@ pub enum FormError {
         /// α in degrees.
         half_angle_deg: f64,
     },
+    /// A patch load on an arch beyond a semicircle, or running past a springing.
+    #[error(
+        "a point load spread over {width} of the span at x/L = {at_x} runs from x/L = {from} to {to}: a patch load must lie within the span [0, 1] of an arch with α ≤ 90° (α = {half_angle_deg}°)"
+    )]
+    PatchOffSpan {
+        /// Width given, a fraction of the extrados span.
+        width: f64,
+        /// Its centre as x/L.
+        at_x: f64,
+        /// Its ends as x/L.
+        from: f64,
+        /// Its ends as x/L.
+        to: f64,
+        /// α in degrees.
+        half_angle_deg: f64,
+    },
     /// A point load given as x/L above the wedge between the crown and the first joints of a
     /// pointed arch without a keystone.
     #[error(
@@ -188,8 +209,11 @@ pub struct ArchModel {
     crown_ext: Moments,
     /// The crown joint's own contribution (the segment from Ec down to Ic).
     crown_seg: Moments,
-    /// The point load's parameter a (radians) and position X.
+    /// The point load's parameter a (radians) and position X; for a patch load, its centre.
     point: Option<(f64, Point)>,
+    /// A patch load: the extrados x range (over r) it is spread over, and the joint
+    /// parameters at its ends where joints exist there.
+    patch: Option<Patch>,
     /// True when a point load at the apex of a pointed arch with radial joints is shared
     /// freely between the halves ([`ArchModel::with_shared_apex`]).
     shared_apex: bool,
@@ -250,15 +274,22 @@ impl ArchModel {
             crown_ext: arc_primitive(k, d, psi_e0),
             crown_seg: segment(crown_e, crown_i),
             point: None,
+            patch: None,
             shared_apex: false,
         };
         form.check_keystone(arch.joints)
             .map_err(FormError::NoKeystone)?;
-        m.point = match load {
-            Load::Point { at_deg } => Some(m.place_point(at_deg)?),
-            Load::PointX { at_x } => Some(m.place_point_x(at_x)?),
-            Load::SelfWeight | Load::Horizontal => None,
-        };
+        if load.is_patch() {
+            let (centre, patch) = m.place_patch(load)?;
+            m.point = Some(centre);
+            m.patch = Some(patch);
+        } else {
+            m.point = match load {
+                Load::Point { at_deg, .. } => Some(m.place_point(at_deg)?),
+                Load::PointX { at_x, .. } => Some(m.place_point_x(at_x)?),
+                Load::SelfWeight | Load::Horizontal => None,
+            };
+        }
         if weigh {
             m.w_half = match arch.weight {
                 WeightModel::Annular => m.region(&m.support()).0[0],
@@ -283,6 +314,7 @@ impl ArchModel {
         !self.has_keystone()
             && self.psi_1 > 0.0
             && self.form.joints == JointOrientation::Radial
+            && self.patch.is_none()
             && self.point.is_some_and(|(a, _)| a == 0.0)
     }
 
@@ -325,9 +357,19 @@ impl ArchModel {
 
     /// The point load's joint parameter a (radians; the support's parameter for a load on the
     /// springing wedge of a vertical-joint arch) and its own point X on the extrados, where
-    /// it acts. `None` without a point load.
+    /// it acts. `None` without a concentrated point load (a patch load has no such point:
+    /// [`ArchModel::patch_load`]).
     pub fn point_load(&self) -> Option<(f64, Point)> {
+        if self.patch.is_some() {
+            return None;
+        }
         self.point
+    }
+
+    /// The extrados x range (over r, x = 0 at the crown) a patch load is spread over;
+    /// `None` without one.
+    pub fn patch_load(&self) -> Option<[f64; 2]> {
+        self.patch.map(|p| p.x)
     }
 
     /// ψ₁ = asin d: the angle (radians) of the first joint after the crown of a pointed arch

@@ -159,7 +159,7 @@ fn total_weight_and_continuity() {
 #[test]
 fn point_load_belongs_to_the_crown_side_of_its_joint() {
     let a = arch(1.3, 90.0, WeightModel::Annular, Discretisation::Continuum);
-    let m = ArchModel::new(a, ArchForm::default(), Load::Point { at_deg: 30.0 }).unwrap();
+    let m = ArchModel::new(a, ArchForm::default(), Load::point(30.0)).unwrap();
     let at = 30f64.to_radians();
     assert_eq!(m.live_load(at).fy, -2.0);
     assert_eq!(m.live_load(at.next_down()).fy, 0.0);
@@ -167,16 +167,16 @@ fn point_load_belongs_to_the_crown_side_of_its_joint() {
         m.families(),
         vec![[-FRAC_PI_2, at.next_down()], [at, FRAC_PI_2]]
     );
-    let m = ArchModel::new(a, ArchForm::default(), Load::Point { at_deg: -30.0 }).unwrap();
+    let m = ArchModel::new(a, ArchForm::default(), Load::point(-30.0)).unwrap();
     assert_eq!(m.live_load(-at).fy, 2.0);
     assert_eq!(m.live_load((-at).next_up()).fy, 0.0);
-    let m = ArchModel::new(a, ArchForm::default(), Load::Point { at_deg: 0.0 }).unwrap();
+    let m = ArchModel::new(a, ArchForm::default(), Load::point(0.0)).unwrap();
     assert_eq!(m.live_load(0.0).fy, 0.0);
     assert_eq!(m.live_load(1e-300).fy, -2.0);
     assert_eq!(m.live_load(-1e-300).fy, 0.0);
     // Its moment is that of P at the extrados point.
     let x = 1.3 * at.sin();
-    let m = ArchModel::new(a, ArchForm::default(), Load::Point { at_deg: 30.0 }).unwrap();
+    let m = ArchModel::new(a, ArchForm::default(), Load::point(30.0)).unwrap();
     assert_abs_diff_eq!(m.live_load(1.0).m, -2.0 * x, epsilon = 1e-15);
 }
 
@@ -194,7 +194,7 @@ fn invalid_forms_are_refused() {
     ));
     let a = arch(1.2, 60.0, WeightModel::Annular, Discretisation::Continuum);
     assert!(matches!(
-        ArchModel::new(a, ArchForm::default(), Load::Point { at_deg: 61.0 }),
+        ArchModel::new(a, ArchForm::default(), Load::point(61.0)),
         Err(FormError::LoadOutside { .. })
     ));
     let a = arch(1.2, 90.0, WeightModel::Annular, Discretisation::Continuum);
@@ -202,7 +202,7 @@ fn invalid_forms_are_refused() {
         ArchModel::new(
             a,
             form(0.5, JointOrientation::Radial),
-            Load::Point { at_deg: 10.0 }
+            Load::point(10.0)
         ),
         Err(FormError::LoadInsideKeystone { .. })
     ));
@@ -238,7 +238,7 @@ fn load_factor_programmes_agree_with_clarabel() {
         (
             a,
             ArchForm::default(),
-            Load::Point { at_deg: 22.5 },
+            Load::point(22.5),
             FRAC_PI_2,
         ),
         (
@@ -250,7 +250,7 @@ fn load_factor_programmes_agree_with_clarabel() {
         (
             a,
             form(0.3, JointOrientation::Radial),
-            Load::Point { at_deg: -45.0 },
+            Load::point(-45.0),
             0.7,
         ),
         // On the keystone of 65 voussoirs (ψ₁ = 18.8°, extrados apex 16.3°).
@@ -260,7 +260,7 @@ fn load_factor_programmes_agree_with_clarabel() {
                 keystone: true,
                 ..form(0.3, JointOrientation::Radial)
             },
-            Load::Point { at_deg: 18.5 },
+            Load::point(18.5),
             0.7,
         ),
     ] {

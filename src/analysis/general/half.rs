@@ -366,8 +366,8 @@ mod tests {
         };
         for load in [
             Load::Horizontal,
-            Load::Point { at_deg: 30.0 },
-            Load::Point { at_deg: 0.0 },
+            Load::point(30.0),
+            Load::point(0.0),
         ] {
             let m = ArchModel::new(arch, form, load).unwrap();
             assert!(!m.mirror_symmetric(), "{load:?}");

@@ -77,6 +77,20 @@ pub(super) fn check_loads(
     let alpha_max = alphas.iter().copied().fold(0.0, f64::max);
     let positions = point_positions(lcs, at_axis, grid, &written);
     check_positions_on_arch(&positions, alpha_min, cx)?;
+    for (i, lc) in lcs.iter().enumerate() {
+        let at_xs = lc
+            .at_x
+            .map(|x| vec![x])
+            .or_else(|| axis_values(grid, AxisName::AtX))
+            .unwrap_or_default();
+        let patch = Patch {
+            lc,
+            at_xs: &at_xs,
+            alpha_max,
+            at: written.lcs.get(i).and_then(|l| l.value.width.as_ref()),
+        };
+        check_patch(&patch, cx)?;
+    }
     // Every form of the study: the arch's, or one per value of its eccentricity and joints
     // axes.
     for form in study_forms(arch, grid) {
@@ -103,6 +117,51 @@ pub(super) fn check_loads(
 }
 
 pub(super) use crate::manifest::types::study_forms;
+
+/// A load case's patch, with the positions it is centred on when given as x/L.
+struct Patch<'a> {
+    lc: &'a LoadCase,
+    at_xs: &'a [f64],
+    alpha_max: f64,
+    at: Option<&'a Spanned<f64>>,
+}
+
+/// A patch load lies within the span of an arch with α ≤ 90° (where a vertical meets the
+/// extrados once). Centres given in degrees are checked where each case's model is built:
+/// their x/L moves with K on a pointed or vertical-joint arch.
+fn check_patch(p: &Patch, cx: &Ctx) -> Result<(), ManifestError> {
+    let Some(w) = p.lc.width.filter(|&w| w > 0.0) else {
+        return Ok(());
+    };
+    let refuse = |why: String| {
+        Err(cx.err(
+            p.at.map(|s| s.referenced),
+            "load_cases.width",
+            format!("value {} is not allowed: {why}", fmt_num(w)),
+        ))
+    };
+    if p.alpha_max > 90.0 {
+        return refuse(format!(
+            "a patch load is spread over a horizontal length of the extrados, which needs              half-angles of at most 90° (the grid reaches {}°)",
+            fmt_num(p.alpha_max)
+        ));
+    }
+    let tol = crate::analysis::settings::GeometrySettings::DEFAULT.tol_patch_span;
+    if let Some(&x) = p
+        .at_xs
+        .iter()
+        .find(|&&x| x - 0.5 * w < -tol || x + 0.5 * w > 1.0 + tol)
+    {
+        return refuse(format!(
+            "load case {:?} centred at x/L = {} would run from x/L = {} to {}, past a              springing: the patch must lie within [0, 1]",
+            p.lc.name,
+            fmt_num(x),
+            fmt_num(x - 0.5 * w),
+            fmt_num(x + 0.5 * w)
+        ));
+    }
+    Ok(())
+}
 
 fn axis_values(grid: &[GridAxis], n: AxisName) -> Option<Vec<f64>> {
     grid.iter().find(|a| a.name == n).map(|a| a.values.clone())

@@ -20,6 +20,7 @@ pub(super) fn validate_load_cases(
             kind: LoadKind::SelfWeight,
             at_deg: None,
             at_x: None,
+            width: None,
             lambda: None,
             find,
             sampled: false,
@@ -38,12 +39,14 @@ pub(super) fn validate_load_cases(
         let kind = kind(lc, cx)?;
         check_position(lc, kind, cx)?;
         check_position_x(lc, kind, cx)?;
+        check_width(lc, kind, cx)?;
         check_lambda(lc, kind, cx)?;
         out.push(LoadCase {
             name: name.value.clone(),
             kind,
             at_deg: lc.value.at_deg.as_ref().map(|a| a.value),
             at_x: lc.value.at_x.as_ref().map(|a| a.value),
+            width: lc.value.width.as_ref().map(|w| w.value),
             lambda: lc.value.lambda.as_ref().map(|l| l.value),
             find: match &lc.value.find {
                 None => find,
@@ -157,6 +160,34 @@ fn check_position_x(
     if !(0.0..=1.0).contains(&x.value) {
         return refuse(
             "x/L must lie in [0, 1] (0 and 1 the extrados springings, 0.5 the crown)".into(),
+        );
+    }
+    Ok(())
+}
+
+/// Only a point load has a width, a fraction of the extrados span in [0, 1].
+fn check_width(lc: &Spanned<RawLoadCase>, kind: LoadKind, cx: &Ctx) -> Result<(), ManifestError> {
+    let Some(w) = &lc.value.width else {
+        return Ok(());
+    };
+    let refuse = |why: String| {
+        Err(cx.err(
+            Some(w.referenced),
+            "load_cases.width",
+            format!("value {} is not allowed: {why}", fmt_num(w.value)),
+        ))
+    };
+    if kind != LoadKind::Point {
+        return refuse(format!(
+            "only a `point` load case can be spread over a width (load case {:?} is {})",
+            lc.value.name.value,
+            kind.as_str()
+        ));
+    }
+    if !(0.0..=1.0).contains(&w.value) {
+        return refuse(
+            "the width is a fraction of the extrados span in [0, 1] (0: a concentrated load)"
+                .into(),
         );
     }
     Ok(())

@@ -3,7 +3,7 @@
 //! Placed in device pixels (text has a pixel size) and reported in data coordinates too, so
 //! that the layout can be checked against the arch's geometry.
 
-use super::{DrawnLoad, DrawnSupport, StateDrawing, Xy};
+use super::{DrawnSupport, StateDrawing, Xy};
 use crate::plot::style::{self, LabelPlacer, PixelBox, palette};
 use crate::plot::{PlotContext, Window};
 use plotters::style::RGBColor;
@@ -216,16 +216,15 @@ impl StateDrawing {
 
     /// Device-pixel boxes of the load's arrows and label, kept clear of the angle labels.
     fn load_boxes(&self, map: PixelMap, ctx: &PlotContext) -> Vec<PixelBox> {
-        let heads: Vec<Xy> = match &self.load {
-            Some(DrawnLoad::Point { at, .. }) => vec![*at],
-            Some(DrawnLoad::Horizontal { at, .. }) => at.clone(),
-            None => return Vec::new(),
+        let Some(load) = &self.load else {
+            return Vec::new();
         };
+        let heads = load.heads();
         let pad = ctx.px(6.0);
         let mut out: Vec<PixelBox> = self
             .load_tails()
             .iter()
-            .zip(&heads)
+            .zip(heads)
             .map(|(t, h)| {
                 let (a, b) = (map.to_px(*t), map.to_px(*h));
                 (
@@ -239,7 +238,7 @@ impl StateDrawing {
         if let Some(t) = self.load_tails().iter().max_by(|a, b| a.1.total_cmp(&b.1)) {
             let p = map.to_px(*t);
             out.push(match &self.load {
-                Some(DrawnLoad::Point { .. }) => {
+                Some(l) if l.is_vertical() => {
                     (p.0 - pad, p.1 - ctx.px(30.0), p.0 + ctx.px(110.0), p.1)
                 }
                 _ => (

@@ -383,6 +383,22 @@ pub(super) fn gap_sentence(own: &[&LoadFactorCase], marks: &str) -> String {
     )
 }
 
+/// " spread over w of the span …" for a patch load case, empty for a concentrated load.
+fn spread_phrase(data: &RunData, lc: &str) -> String {
+    data.manifest
+        .load_cases
+        .iter()
+        .find(|l| l.name == lc)
+        .and_then(|l| l.width)
+        .filter(|&w| w > 0.0)
+        .map_or(String::new(), |w| {
+            format!(
+                ", spread uniformly over {} of the extrados span (measured horizontally) centred on its position",
+                given(w)
+            )
+        })
+}
+
 /// The influence line: λ against the position of the point load, for a few (K, μ).
 fn influence_line(
     data: &RunData,
@@ -459,7 +475,8 @@ fn influence_line(
         stem: format!("influence-line{stem}"),
         title: format!("Influence line of the point load{}{on}", lc.title_suffix),
         caption: format!(
-            "The collapse load factor λ_max of a point load λ·W_total on the extrados (results.parquet) against its position: left, the angle θ of its joint from the crown (negative to the left); right, the horizontal position x/L of the load's point from the left springing of the extrados over the distance between the extrados springings. One line per (K, μ), for up to four of the study's (and the line of the weakest case); each point coloured by the collapse mechanism at λ_max; a break in a line is a position where λ is unbounded or no state stands.{}{}",
+            "The collapse load factor λ_max of a point load λ·W_total on the extrados{} (results.parquet) against its position: left, the angle θ of its joint from the crown (negative to the left); right, the horizontal position x/L of the load's point from the left springing of the extrados over the distance between the extrados springings. One line per (K, μ), for up to four of the study's (and the line of the weakest case); each point coloured by the collapse mechanism at λ_max; a break in a line is a position where λ is unbounded or no state stands.{}{}",
+            spread_phrase(data, lc.name),
             refined_sentence(refined),
             gap_sentence(own, BARS)
         ),

@@ -43,6 +43,7 @@ pub fn state_row(sol: &Solution) -> StateRow {
         load: sol.load.into(),
         at_deg: sol.at_deg,
         at_x: sol.at_x,
+        load_width: sol.load_width,
         load_factor: sol.lambda.or(sol.load_factor),
         regime: sol.regime.map(|r| r.as_str().to_string()),
         thrust_r_min: sol.thrust_r_min,

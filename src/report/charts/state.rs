@@ -119,7 +119,14 @@ pub fn arch_text(s: &StateRow) -> String {
         let lambda = s
             .load_factor
             .map_or(String::new(), |l| format!(", λ = {}", short(l)));
-        parts.push(format!("{} load{at}{lambda}", s.load.replace('_', " ")));
+        let spread = s
+            .load_width
+            .filter(|&w| w > 0.0)
+            .map_or(String::new(), |w| format!(" spread over {} L", given(w)));
+        parts.push(format!(
+            "{} load{spread}{at}{lambda}",
+            s.load.replace('_', " ")
+        ));
     }
     parts.join(", ")
 }

@@ -114,8 +114,8 @@ fn slivers(data: &RunData) -> Option<String> {
          of the cases drawn (results.parquet row {} first: K = {}, μ = {}, load at {at}, \
          λ_max = {lambda}): the mechanism slides on both sides of the load's joint, so λ_max \
          is what the friction of those two joints alone carries, and it does not change with \
-         the thickness. A load spread over a length of the extrados, or an arch of voussoirs \
-         (`voussoirs`), has no such sliver.",
+         the thickness. A load spread over a length of the extrados (`width` on the load \
+         case), or an arch of voussoirs (`voussoirs`), has no such sliver.",
         punched.len(),
         first.row,
         compact(first.k),

@@ -240,6 +240,12 @@ pub fn load_cases(m: &ManifestView) -> Vec<String> {
                 .map(|a| axis_name(&a.name))
                 .collect();
             let mut d = format!("{} ({}", l.name, l.kind.replace('_', "-"));
+            if let Some(w) = l.width.filter(|&w| w > 0.0) {
+                d.push_str(&format!(
+                    " spread over {} of the extrados span",
+                    crate::report::format::given(w)
+                ));
+            }
             if !skipped.is_empty() {
                 d.push_str(&format!(
                     "; its find, {}, finds {} itself",

@@ -85,11 +85,23 @@ fn support(model: &ArchModel, side: f64) -> DrawnSupport {
     }
 }
 
+/// Arrows drawn over a patch load, its ends included.
+const PATCH_ARROWS: usize = 6;
+
 /// The live load of the state, labelled with its λ.
 fn load(model: &ArchModel, s: &StateRow) -> Option<DrawnLoad> {
     let label = format!("λ = {}", s.load_factor.map_or("—".into(), short));
     match s.load.as_str() {
         "point" => {
+            if let Some([x0, x1]) = model.patch_load() {
+                let at = (0..PATCH_ARROWS)
+                    .map(|i| {
+                        let x = x0 + (x1 - x0) * i as f64 / (PATCH_ARROWS - 1) as f64;
+                        xy(model.extrados_above(x))
+                    })
+                    .collect();
+                return Some(DrawnLoad::Patch { at, label });
+            }
             // The load's own extrados point (on a keystone or on the springing wedge of a
             // vertical-joint arch it is not the extrados end of a joint).
             let (_, at) = model.point_load()?;
