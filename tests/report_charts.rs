@@ -229,7 +229,7 @@ fn lambda_map_draws_the_stored_load_factors_and_the_located_mechanism_changes() 
             .load_factor
     };
     // K = 1.1 lies below K_c = 1.1136 of the semicircle: no state stands, no λ. The cells
-    // nearer K = 1.1 than K = 1.15 are grey; the others up to K = 1.15 take the λ of 1.15.
+    // below K_c are grey; the others up to K = 1.15 take the λ of 1.15.
     assert_eq!(inf(1.1), None);
     let (Some(l155), Some(l160), Some(l115)) = (inf(1.55), inf(1.6), inf(1.15)) else {
         panic!("λ at μ = ∞ for K = 1.15, 1.55 and 1.6");
@@ -238,14 +238,14 @@ fn lambda_map_draws_the_stored_load_factors_and_the_located_mechanism_changes() 
     let mut grey = 0;
     for (j, l) in strip.lambda.iter().enumerate() {
         let k = centre(j);
-        if k < 1.125 {
+        if k < crate::common::reference::K_C {
             assert!(l.is_nan(), "K = {k}: {l}");
             grey += 1;
         } else if k < 1.15 {
             assert!((l - l115).abs() < 1e-12, "K = {k}: {l}");
         }
     }
-    assert!(grey > 0, "no grey cell below K = 1.125");
+    assert!(grey > 0, "no grey cell below K_c");
     let half = 0.5 / map.ny as f64 * 0.5 / 0.05;
     let expect_last = l160 - (l160 - l155) * half;
     let last = strip.lambda[map.ny - 1];
@@ -524,4 +524,47 @@ fn load_factor_lines_bar_the_gap_from_the_collapse_up_to_the_static_limit() {
         "{}",
         figure.caption
     );
+}
+
+#[test]
+fn the_lambda_map_bounds_its_grey_region_by_where_the_arch_starts_to_stand() {
+    use archstudy::figdata::stand_limit::{ALONG_K, ALONG_MU};
+    use crate::common::reference::{K_C, MU_MIN};
+    let run = run_study(&scratch("lambda-map-stand"), "horizontal.yaml", HORIZONTAL_MAP);
+    let layout = RunLayout::at(&run);
+    let curves = store::read_curves(&layout.curves()).expect("curves.parquet");
+    let along = |s: &str| -> Vec<(f64, f64)> {
+        (curves.iter())
+            .filter(|p| p.figure.starts_with("stand-limit-horizontal") && p.series == s)
+            .map(|p| (p.x, p.y))
+            .collect()
+    };
+    // Along K, at every μ from 0.4 up (and ∞) the semicircle starts to stand at K_c; along μ,
+    // at every K from 1.25 up at μ_min, and at K = 1.2 at μ_c(1.2) of the friction find.
+    let k_edges = along(ALONG_K);
+    assert!(k_edges.iter().filter(|p| p.0 >= 0.4).count() == 6, "{k_edges:?}");
+    for p in k_edges.iter().filter(|p| p.0 >= 0.4) {
+        assert!((p.1 - K_C).abs() < 1e-6, "{p:?}");
+    }
+    let mu_edges = along(ALONG_MU);
+    for p in mu_edges.iter().filter(|p| p.1 >= 1.25) {
+        assert!((p.0 - MU_MIN).abs() < 1e-6, "{p:?}");
+    }
+    let at_12 = mu_edges.iter().find(|p| (p.1 - 1.2).abs() < 1e-12).expect("K = 1.2");
+    assert!((at_12.0 - 0.3232251).abs() < 1e-6, "{at_12:?}");
+    // The map is grey on the near side of the limit and coloured on the far side, not at the
+    // grid cell's edge: the raster cells just either side of K_c at μ = 0.7, and of μ_min at
+    // K = 1.5.
+    let map = lambda_map(&run);
+    let ((mu0, mu1), (k0, k1)) = map.window;
+    let pixel = |mu: f64, k: f64| {
+        let i = ((mu - mu0) / (mu1 - mu0) * map.nx as f64) as usize;
+        let j = ((k - k0) / (k1 - k0) * map.ny as f64) as usize;
+        map.lambda[j * map.nx + i]
+    };
+    let (dk, dmu) = ((k1 - k0) / map.ny as f64, (mu1 - mu0) / map.nx as f64);
+    assert!(pixel(0.7, K_C - 1.5 * dk).is_nan());
+    assert!(pixel(0.7, K_C + 1.5 * dk).is_finite());
+    assert!(pixel(MU_MIN - 1.5 * dmu, 1.5).is_nan());
+    assert!(pixel(MU_MIN + 1.5 * dmu, 1.5).is_finite());
 }

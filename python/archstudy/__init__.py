@@ -144,6 +144,7 @@ class Solution:
     load: str
     at_deg: float | None
     at_x: float | None
+    load_width: float | None
     lambda_: float | None
     outcome: str | None
     regime: str | None
@@ -258,6 +259,7 @@ def _options(
     at: float | None,
     at_x: float | None,
     lambda_: float | None,
+    width: float | None,
 ) -> dict[str, Any]:
     if voussoirs is not None and (isinstance(voussoirs, bool) or int(voussoirs) != voussoirs):
         raise ValueError(f"invalid value '{voussoirs}' for 'voussoirs': N must be an integer ≥ 1")
@@ -277,6 +279,7 @@ def _options(
         at=None if at is None else float(at),
         at_x=None if at_x is None else float(at_x),
         lambda_=None if lambda_ is None else float(lambda_),
+        width=None if width is None else float(width),
     )
 
 
@@ -297,6 +300,7 @@ def solve(
     at: float | None = None,
     at_x: float | None = None,
     lambda_: float | None = None,
+    width: float | None = None,
 ) -> Solution:
     """Analyse one scene, as ``archstudy solve --json`` does.
 
@@ -318,6 +322,8 @@ def solve(
         at: Position of the point load, degrees from the crown (positive to the right).
         at_x: Position of the point load as x/L ∈ [0, 1], instead of ``at``.
         lambda_: Load factor λ ≥ 0 of the live load, for every find but ``load_factor``.
+        width: Spread the point load uniformly over this fraction of the extrados span,
+            measured horizontally and centred on its position (a patch load; α ≤ 90°).
 
     Returns:
         The :class:`Solution`.
@@ -326,7 +332,7 @@ def solve(
         ValueError: A bad value, naming the keyword, the value and what is allowed.
     """
     o = _options(k, t_over_r, mu, half_angle, weight, voussoirs, find, shape, eccentricity,
-                 joints, keystone, load, at, at_x, lambda_)
+                 joints, keystone, load, at, at_x, lambda_, width)
     text, svg = _archstudy.solve(*o.values())
     return Solution._of(text, svg)
 
@@ -405,7 +411,7 @@ class Table:
 
 
 _NUMBERS = ("k", "t_over_r", "mu", "half_angle", "voussoirs", "eccentricity", "at", "at_x",
-            "lambda_")
+            "lambda_", "width")
 
 
 def solve_many(
@@ -425,21 +431,22 @@ def solve_many(
     at: ArrayLike = None,
     at_x: ArrayLike = None,
     lambda_: ArrayLike = None,
+    width: ArrayLike = None,
     jobs: int | None = None,
 ) -> Table:
     """Solve many scenes at once, in parallel with the GIL released: one row per scene.
 
     The numeric options take NumPy arrays, sequences or scalars, broadcast together (NumPy's
     rules); NaN in an optional one (``k``, ``t_over_r``, ``voussoirs``, ``eccentricity``,
-    ``at``, ``at_x``, ``lambda_``) means "not given" for that scene. The kinds (``find``,
+    ``at``, ``at_x``, ``lambda_``, ``width``) means "not given" for that scene. The kinds (``find``,
     ``weight``, ``shape``, ``joints``, ``keystone``, ``load``) are one for all scenes. Each
     scene is the one :func:`solve` answers for the same values; self-weight ``state`` scenes
     of a circular arch with radial joints share their thrust domains, as in ``archstudy
     run``. Ctrl-C stops it within a second (``KeyboardInterrupt``).
 
     Args:
-        k, t_over_r, mu, half_angle, voussoirs, eccentricity, at, at_x, lambda_: As in
-            :func:`solve`, one value or one per scene.
+        k, t_over_r, mu, half_angle, voussoirs, eccentricity, at, at_x, lambda_, width: As
+            in :func:`solve`, one value or one per scene.
         find, weight, shape, joints, keystone, load: As in :func:`solve`, one for all.
         jobs: Worker threads (default: one per core).
 
@@ -452,7 +459,7 @@ def solve_many(
     """
     given = {"k": k, "t_over_r": t_over_r, "mu": mu, "half_angle": half_angle,
              "voussoirs": voussoirs, "eccentricity": eccentricity, "at": at, "at_x": at_x,
-             "lambda_": lambda_}
+             "lambda_": lambda_, "width": width}
     arrays = {n: np.asarray(v, dtype=np.float64) for n, v in given.items() if v is not None}
     dims = np.broadcast_shapes(*(a.shape for a in arrays.values()))
     n = int(np.prod(dims, dtype=np.int64))

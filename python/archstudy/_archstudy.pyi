@@ -26,6 +26,7 @@ def solve(
     at: float | None,
     at_x: float | None,
     lambda_: float | None,
+    width: float | None,
     /,
 ) -> tuple[str, Callable[[], str]]: ...
 def solve_many(

@@ -42,7 +42,7 @@ type Native = fn(&Bound<'_, PyTuple>) -> PyResult<Py<PyAny>>;
 const FUNCTIONS: [(&CStr, &CStr, Native); 4] = [
     (
         c"solve",
-        c"solve(k, t_over_r, mu, half_angle, weight, voussoirs, find, shape, eccentricity, joints, keystone, load, at, at_x, lambda_, /)\n--\n\nOne scene solved: (json, svg), svg a function that draws it.",
+        c"solve(k, t_over_r, mu, half_angle, weight, voussoirs, find, shape, eccentricity, joints, keystone, load, at, at_x, lambda_, width, /)\n--\n\nOne scene solved: (json, svg), svg a function that draws it.",
         scenes::solve,
     ),
     (

@@ -35,6 +35,7 @@ pub fn solve(args: &Bound<'_, PyTuple>) -> PyResult<Py<PyAny>> {
         at_deg: arg(args, 12)?,
         at_x: arg(args, 13)?,
         lambda: arg(args, 14)?,
+        width: arg(args, 15)?,
     };
     let scene = options.scene().map_err(crate::value_error)?;
     let sol = py
@@ -61,7 +62,7 @@ pub fn solve(args: &Bound<'_, PyTuple>) -> PyResult<Py<PyAny>> {
 }
 
 /// The numeric options of `solve_many`, one float64 array each (NaN: not given).
-const NUMBERS: [&str; 9] = [
+const NUMBERS: [&str; 10] = [
     "k",
     "t_over_r",
     "mu",
@@ -71,6 +72,7 @@ const NUMBERS: [&str; 9] = [
     "at",
     "at_x",
     "lambda_",
+    "width",
 ];
 
 /// One value of a numeric column at a row; NaN is "not given".
@@ -179,6 +181,7 @@ fn scenes_of(
                 o.at_deg = v(6);
                 o.at_x = v(7);
                 o.lambda = v(8);
+                o.width = v(9);
                 o.scene()
                     .map_err(|e| anyhow::Error::new(e).context(format!("scene {i}")))
             },

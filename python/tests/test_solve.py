@@ -29,7 +29,25 @@ SCENES = [
       "point", "--at-x", "0.3", "--lambda", "0.05"]),
     (dict(find="friction", k=1.3, joints="vertical", half_angle=80.0),
      ["--find", "friction", "--k", "1.3", "--joints", "vertical", "--half-angle", "80"]),
+    (dict(find="load_factor", k=1.25, mu=0.3, half_angle=60.0, load="point", at_x=0.25,
+          width=0.05),
+     ["--find", "load-factor", "--k", "1.25", "--mu", "0.3", "--half-angle", "60", "--load",
+      "point", "--at-x", "0.25", "--width", "0.05"]),
 ]
+
+
+def test_a_patch_load_replaces_the_sliver_by_the_block_under_it():
+    # α = 60°, x/L = 0.25, μ = 0.3: concentrated, λ_max 0.4893568 at every K (a sliver);
+    # spread over 0.05 of the span, 0.5427678 (the block under the patch slides).
+    point = archstudy.solve(find="load_factor", k=1.25, mu=0.3, half_angle=60.0,
+                            load="point", at_x=0.25)
+    patch = archstudy.solve(find="load_factor", k=1.25, mu=0.3, half_angle=60.0,
+                            load="point", at_x=0.25, width=0.05)
+    assert abs(point.load_factor - 0.4893567758) < 1e-9
+    assert abs(patch.load_factor - 0.5427678387) < 1e-9
+    assert patch.to_dict()["load_width"] == 0.05
+    with pytest.raises(ValueError, match="width"):
+        archstudy.solve(load="horizontal", width=0.1)
 
 
 def close(a, b, tol: float) -> bool:

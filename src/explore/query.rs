@@ -30,7 +30,7 @@ impl QueryError {
 }
 
 /// The parameters of a scene, by the keywords of `archstudy.solve`.
-pub const SCENE_PARAMETERS: [&str; 14] = [
+pub const SCENE_PARAMETERS: [&str; 15] = [
     "k",
     "t_over_r",
     "mu",
@@ -44,6 +44,7 @@ pub const SCENE_PARAMETERS: [&str; 14] = [
     "load",
     "at",
     "at_x",
+    "width",
     "lambda",
 ];
 

@@ -12,6 +12,7 @@ pub mod load_factors;
 pub mod mechanisms;
 mod reference;
 pub mod sampled;
+pub mod stand_limit;
 pub mod weakest_position;
 pub use general_states::mechanism_of_state;
 pub use reference::find_of_quantity;
@@ -524,16 +525,19 @@ pub fn run(manifest: &Manifest, layout: &RunLayout) -> Result<FigureDataSummary>
     let mut out = Collector { points: Vec::new() };
     let mut states = Vec::new();
     let mut mechs = Vec::new();
-    let load_factor_cases = if manifest
+    let (load_factor_cases, every_case) = if manifest
         .load_cases
         .iter()
         .any(|l| l.find == Find::LoadFactor)
     {
         // The states drawn are those of the weakest cases: singled out while results.parquet
-        // is read a block at a time, not every case held.
-        load_factors::LoadFactorCases::read(&layout.results(), |_| false)?.singled()
+        // is read a block at a time, not every case held. A grid coarse enough for its cells
+        // to show in the λ map keeps every case, for where the arch starts to stand.
+        let small = store::parquet_rows(&layout.results())? <= stand_limit::MAX_POINTS;
+        let read = load_factors::LoadFactorCases::read(&layout.results(), |_| small)?;
+        (read.singled(), read.kept)
     } else {
-        Vec::new()
+        (Vec::new(), Vec::new())
     };
     // Self-weight on the circular arch with radial joints has the symmetric closed forms
     // (H^r, H^s and the paper's Fig. 2); every other form and load is drawn from the general
@@ -546,6 +550,8 @@ pub fn run(manifest: &Manifest, layout: &RunLayout) -> Result<FigureDataSummary>
             .filter(|(_, b)| b.load_case == lc.name)
             .map(|(i, b)| (b, groups.get(i)))
             .collect();
+        let every: Vec<&store::LoadFactorCase> = every_case.iter().collect();
+        stand_limit::push(manifest, lc, &every, &mut out);
         if !symmetric || lc.kind.is_live() || lc.find == Find::LoadFactor {
             let general = general_states::LoadCaseStates {
                 manifest,

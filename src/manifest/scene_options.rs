@@ -261,7 +261,7 @@ impl SceneOptions {
                 "--width spreads a point load over the extrados: add --load point",
             ));
         }
-        if !(w >= 0.0 && w <= 1.0) {
+        if !(0.0..=1.0).contains(&w) {
             return Err(bad(
                 "width",
                 w,

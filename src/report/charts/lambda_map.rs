@@ -12,11 +12,13 @@ use super::load_factor::{
 };
 use super::regime_map::{ArchKey, bifurcations_of_arch};
 use super::{Chart, FigureSpec, LoadCaseFigure};
+use crate::figdata::stand_limit;
 use crate::plan;
 use crate::plot::lambda_map::{LambdaMap, LambdaStrip};
 use crate::plot::regime_map::{Crossing, RegimeMap};
 use crate::report::data::RunData;
 use crate::store::LoadFactorCase;
+use std::collections::HashMap;
 use std::sync::Arc;
 
 /// The fewest distinct values of finite μ and of K for which the map is drawn: with fewer,
@@ -66,24 +68,106 @@ fn corners(g: &Grid, at: (f64, f64)) -> [(usize, f64); 4] {
     ]
 }
 
+/// Where the arch starts to stand on the grid's edges (figdata's stand limit): on edges
+/// along K, keyed by (μ index, lower K index), the K; on edges along μ, keyed by (lower μ
+/// index, K index), the μ. The μ = ∞ column's edges have the μ index `mu.len()`.
+#[derive(Debug, Default)]
+struct StandLimit {
+    along_k: HashMap<(usize, usize), f64>,
+    along_mu: HashMap<(usize, usize), f64>,
+}
+
+impl StandLimit {
+    /// The stored crossings of one load case on one arch.
+    fn of(data: &RunData, lc: &str, g: &Grid, c: &LoadFactorCase) -> Self {
+        let fig = stand_limit::stand_limit_figure(
+            lc,
+            c.half_angle_deg,
+            c.eccentricity,
+            c.joints,
+            c.voussoirs,
+        );
+        let mut out = StandLimit::default();
+        for p in data.curves.iter().filter(|p| p.figure == fig) {
+            let (mu, k) = (p.x, p.y);
+            if p.series == stand_limit::ALONG_K {
+                let i = if mu.is_infinite() {
+                    Some(g.mu.len())
+                } else {
+                    plan::axis_index(&g.mu, mu)
+                };
+                if let Some(i) = i {
+                    out.along_k.insert((i, cell(&g.k, k).0), k);
+                }
+            } else if p.series == stand_limit::ALONG_MU
+                && let Some(j) = plan::axis_index(&g.k, k)
+            {
+                out.along_mu.insert((cell(&g.mu, mu).0, j), mu);
+            }
+        }
+        out
+    }
+
+    /// Whether (μ, K) in the grid cell (i, j) lies where the arch does not stand: `None` when
+    /// the cell is not crossed by the limit on exactly two of its edges.
+    fn never(&self, g: &Grid, (i, j): (usize, usize), at: (f64, f64)) -> Option<bool> {
+        let (m0, m1, k0, k1) = (g.mu[i], g.mu[i + 1], g.k[j], g.k[j + 1]);
+        let unit = |p: (f64, f64)| ((p.0 - m0) / (m1 - m0), (p.1 - k0) / (k1 - k0));
+        let lam = |i: usize, j: usize| g.lambda[j * g.mu.len() + i];
+        // Each crossed edge: its crossing and the end of it that does not stand.
+        let mut cuts: Vec<((f64, f64), (f64, f64))> = Vec::new();
+        for (ii, jj) in [(i, j), (i + 1, j)] {
+            if let Some(&k) = self.along_k.get(&(ii, j)) {
+                let never_at = if lam(ii, jj).is_finite() { (g.mu[ii], k1) } else { (g.mu[ii], k0) };
+                cuts.push(((g.mu[ii], k), never_at));
+            }
+        }
+        for jj in [j, j + 1] {
+            if let Some(&mu) = self.along_mu.get(&(i, jj)) {
+                let never_at = if lam(i, jj).is_finite() { (m1, g.k[jj]) } else { (m0, g.k[jj]) };
+                cuts.push(((mu, g.k[jj]), never_at));
+            }
+        }
+        let [(a, never_at), (b, _)] = cuts.as_slice() else {
+            return None;
+        };
+        let (a, b, c, p) = (unit(*a), unit(*b), unit(*never_at), unit(at));
+        let side = |q: (f64, f64)| (b.0 - a.0) * (q.1 - a.1) - (b.1 - a.1) * (q.0 - a.0);
+        Some(side(p) * side(c) > 0.0)
+    }
+
+    /// The same on the μ = ∞ column, between its K values j and j + 1.
+    fn never_infinite(&self, g: &Grid, col: &[f64], j: usize, k: f64) -> Option<bool> {
+        let &limit = self.along_k.get(&(g.mu.len(), j))?;
+        Some(if col[j].is_finite() { k > limit } else { k < limit })
+    }
+}
+
 /// λ at (μ, K) of a point whose collapse mechanism is `mechanism` (from the located
 /// regions): bilinear between the four grid points round it (over those with a finite λ)
 /// when they all collapse by one mechanism, or when none of them collapses by the point's;
 /// otherwise bilinear in the λ of the point's own mechanism (`branches`, see [`branch`]), so
 /// that a mechanism's region is drawn up to the located change with its own values, never
-/// with another mechanism's. NaN (no finite λ)
-/// when the nearest grid point has none, so that a grid line where the arch never stands (or
-/// stands under every λ) is drawn as such, not blended from its neighbours.
+/// with another mechanism's. NaN (no finite λ) where the arch does not stand (bounded by
+/// the stand limit where a cell is crossed by it) and otherwise when the nearest grid point
+/// has none, so that a grid line where the arch stands under every λ is drawn as such, not
+/// blended from its neighbours.
 fn lambda_at(
     g: &Grid,
+    limit: &StandLimit,
     branches: &[(&str, Vec<f64>)],
     mechanism: Option<&str>,
     at: (f64, f64),
 ) -> f64 {
     let c = corners(g, at);
-    match c.iter().max_by(|a, b| a.1.total_cmp(&b.1)) {
-        Some(nearest) if g.lambda[nearest.0].is_finite() => {}
-        _ => return f64::NAN,
+    let cell_of = (cell(&g.mu, at.0).0, cell(&g.k, at.1).0);
+    match limit.never(g, cell_of, at) {
+        Some(true) => return f64::NAN,
+        Some(false) => {}
+        None => match c.iter().max_by(|a, b| a.1.total_cmp(&b.1)) {
+            Some(nearest) if g.lambda[nearest.0].is_finite() => {}
+            _ => return f64::NAN,
+        },
     }
     let raw = || weighted(&c.map(|(p, w)| (g.lambda[p], w)));
     let one_mechanism = c
@@ -164,6 +248,7 @@ fn branch(g: &Grid, m: &str) -> Vec<f64> {
 /// λ from that mechanism's own values ([`lambda_at`]).
 fn raster<'a>(
     g: &Grid,
+    limit: &StandLimit,
     classified: &'a RegimeMap,
     (nx, ny): (usize, usize),
 ) -> (Vec<f64>, Vec<Option<&'a str>>) {
@@ -181,7 +266,7 @@ fn raster<'a>(
     for j in 0..ny {
         for i in 0..nx {
             let at = (centre(i, nx, mu0, mu1), centre(j, ny, k0, k1));
-            lambda.push(lambda_at(g, &branches, mechanisms[j * nx + i], at));
+            lambda.push(lambda_at(g, limit, &branches, mechanisms[j * nx + i], at));
         }
     }
     (lambda, mechanisms)
@@ -205,7 +290,7 @@ pub fn figures(data: &RunData, lc: &LoadCaseFigure) -> Vec<FigureSpec> {
             continue;
         };
         let mut caption = format!(
-            "The collapse load factor λ_max of every case (results.parquet) as a colour over the friction coefficient μ and the thickness ratio K, bilinear between the grid points (grey where the nearest grid point has no finite λ) and drawn at the figure's resolution; where a located change of the collapse mechanism crosses a grid cell, each side takes the λ of its own mechanism only, carried up to the change from the nearest grid points collapsing by it, so that λ is not blended across a change; {}.",
+            "The collapse load factor λ_max of every case (results.parquet) as a colour over the friction coefficient μ and the thickness ratio K, bilinear between the grid points (grey where the arch does not stand under its own weight, bounded by the thickness and friction at which it starts to stand, found between the grid points either side (curves.parquet); and where the nearest grid point's λ is unbounded) and drawn at the figure's resolution; where a located change of the collapse mechanism crosses a grid cell, each side takes the λ of its own mechanism only, carried up to the change from the nearest grid points collapsing by it, so that λ is not blended across a change; {}.",
             if map.log {
                 "a logarithmic colour scale over two decades below the largest λ (smaller values take its lowest colour)"
             } else {
@@ -323,7 +408,10 @@ pub fn lambda_map(
     let (k0, k1) = (g.k[0], g.k[g.k.len() - 1]);
     let centre = |i: usize, n: usize, a: f64, b: f64| a + (b - a) * (i as f64 + 0.5) / n as f64;
     let classified = mechanism_map(&g, &changes);
-    let (lambda, drawn) = raster(&g, &classified, (nx, ny));
+    let limit = own
+        .first()
+        .map_or_else(StandLimit::default, |c| StandLimit::of(data, lc, &g, c));
+    let (lambda, drawn) = raster(&g, &limit, &classified, (nx, ny));
     let mechanisms: Vec<String> = ["rotational", "mixed", "sliding"]
         .into_iter()
         .filter(|m| g.mechanism.iter().any(|x| x.as_deref() == Some(m)))
@@ -339,10 +427,16 @@ pub fn lambda_map(
     let infinite = g.infinite.as_ref().map(|col| LambdaStrip {
         lambda: (0..ny)
             .map(|j| {
-                let (jj, t) = cell(&g.k, centre(j, ny, k0, k1));
-                // As on the map: grey where the nearest grid point has no finite λ.
+                let k = centre(j, ny, k0, k1);
+                let (jj, t) = cell(&g.k, k);
+                // As on the map: grey where the arch does not stand, and otherwise where the
+                // nearest grid point has no finite λ.
                 let nearest = if t < 0.5 { col[jj] } else { col[jj + 1] };
-                if nearest.is_finite() {
+                let stands = match limit.never_infinite(&g, col, jj, k) {
+                    Some(never) => !never,
+                    None => nearest.is_finite(),
+                };
+                if stands {
                     weighted(&[(col[jj], 1.0 - t), (col[jj + 1], t)])
                 } else {
                     f64::NAN
