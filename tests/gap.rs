@@ -170,30 +170,16 @@ fn moves(m: &ArchModel, moving: &[(f64, Motion)]) -> bool {
     sol.status == lp::Status::Optimal && sol.max_violation <= 1e-9
 }
 
-/// The lowest λ ≥ 0 at which a candidate mechanism of at most four moving joints (each a hinge,
-/// a slide, a La Hire joint or a lift-off) moves ([`moves`]) from an admissible state whose
-/// rows are tight where it moves (a linear programme in the state): an enumeration of every
-/// candidate, independent of the route's twists and walk.
-fn oracle_load_factor(m: &ArchModel, phi: f64) -> Option<f64> {
+/// The candidate mechanisms of `m`: every assignment of a motion (or none) to each joint, two
+/// to four of them moving, that the joint geometry lets move ([`moves`]), each as the rows
+/// (4 per joint, in [`Condition::ALL`] order) that are tight in every state it may start from.
+/// The geometry alone decides, not the friction.
+fn candidates(m: &ArchModel) -> Vec<Vec<usize>> {
     let thetas = m.discrete_joints().expect("voussoirs");
-    let mut base_a: Vec<[f64; 4]> = Vec::new();
-    let mut base_b: Vec<f64> = Vec::new();
-    for &theta in &thetas {
-        for r in joint_rows(m, theta, phi) {
-            base_a.push([r.a[0], r.a[1], r.a[2], r.a_lambda]);
-            base_b.push(r.b);
-        }
-    }
-    base_a.push([0.0, 0.0, 0.0, -1.0]);
-    base_b.push(0.0);
-    base_a.push([0.0, 0.0, 0.0, 1.0]);
-    base_b.push(1e3);
     let nj = thetas.len();
-    let mut best: Option<f64> = None;
-    // Every assignment of a motion (or none) to each joint, at most four moving.
     let choices = Motion::ALL.len() + 1;
-    let total = choices.pow(nj as u32);
-    for code in 0..total {
+    let mut out = Vec::new();
+    for code in 0..choices.pow(nj as u32) {
         let mut c = code;
         let mut moving: Vec<(f64, Motion)> = Vec::new();
         let mut tight: Vec<usize> = Vec::new();
@@ -213,25 +199,149 @@ fn oracle_load_factor(m: &ArchModel, phi: f64) -> Option<f64> {
             }
             moving.push((theta, motion));
         }
-        if moving.len() < 2 || moving.len() > 4 || !moves(m, &moving) {
-            continue;
+        if (2..=4).contains(&moving.len()) && moves(m, &moving) {
+            out.push(tight);
         }
-        let mut a = base_a.clone();
-        let mut b = base_b.clone();
-        for &i in &tight {
-            a.push(base_a[i].map(|v| -v));
-            b.push(-base_b[i] + 1e-9 * (1.0 + base_b[i].abs()));
+    }
+    out
+}
+
+/// The rows a·(F_x, F_y, M₀, λ) ≤ b of every joint of `m` at friction angle φ, each relaxed
+/// by 1e-10 of its size (at a static limit the admissible states are one point, which a
+/// programme must not lose to rounding), with 0 ≤ λ ≤ 1000.
+fn state_rows(m: &ArchModel, phi: f64) -> (Vec<[f64; 4]>, Vec<f64>) {
+    let mut a: Vec<[f64; 4]> = Vec::new();
+    let mut b: Vec<f64> = Vec::new();
+    for theta in m.discrete_joints().expect("voussoirs") {
+        for r in joint_rows(m, theta, phi) {
+            a.push([r.a[0], r.a[1], r.a[2], r.a_lambda]);
+            b.push(r.b + 1e-10 * (1.0 + r.b.abs()));
         }
-        let Ok(sol) = lp::maximise(
-            &[0.0, 0.0, 0.0, -1.0],
-            &a,
-            &b,
-            &lp::Settings::for_rows(a.len()),
-        ) else {
-            continue;
+    }
+    a.push([0.0, 0.0, 0.0, -1.0]);
+    b.push(0.0);
+    a.push([0.0, 0.0, 0.0, 1.0]);
+    b.push(1e3);
+    (a, b)
+}
+
+/// The least λ of an admissible state whose rows `tight` hold with equality (within 1e-9),
+/// with λ at most `cap`: `None` when there is none.
+fn least_lambda(rows: &(Vec<[f64; 4]>, Vec<f64>), tight: &[usize], cap: f64) -> Option<f64> {
+    let (base_a, base_b) = rows;
+    let mut a = base_a.clone();
+    let mut b = base_b.clone();
+    for &i in tight {
+        a.push(base_a[i].map(|v| -v));
+        b.push(-base_b[i] + 1e-9 * (1.0 + base_b[i].abs()));
+    }
+    a.push([0.0, 0.0, 0.0, 1.0]);
+    b.push(cap);
+    let sol = lp::maximise(
+        &[0.0, 0.0, 0.0, -1.0],
+        &a,
+        &b,
+        &lp::Settings::for_rows(a.len()),
+    )
+    .ok()?;
+    (sol.status == lp::Status::Optimal).then(|| sol.x[3])
+}
+
+/// The lowest λ ≥ 0 at which a candidate mechanism of at most four moving joints (each a hinge,
+/// a slide, a La Hire joint or a lift-off) moves ([`moves`]) from an admissible state whose
+/// rows are tight where it moves (a linear programme in the state): an enumeration of every
+/// candidate, independent of the route's twists and walk.
+fn oracle_load_factor(m: &ArchModel, phi: f64) -> Option<f64> {
+    let rows = state_rows(m, phi);
+    candidates(m)
+        .iter()
+        .filter_map(|t| least_lambda(&rows, t, 1e3))
+        .min_by(f64::total_cmp)
+}
+
+/// Whether the candidate with tight rows `tight` moves from a state at the load factor λ
+/// itself, with μ = tan φ.
+fn candidate_moves_at(m: &ArchModel, tight: &[usize], phi: f64, lambda: f64) -> bool {
+    let (mut a, mut b) = state_rows(m, phi);
+    // λ fixed: −λ ≤ −λ₀ beside λ ≤ λ₀ (the cap of the programme).
+    a.push([0.0, 0.0, 0.0, -1.0]);
+    b.push(-lambda + 1e-12);
+    least_lambda(&(a, b), tight, lambda + 1e-12).is_some()
+}
+
+/// The signed consistency of four tight rows at λ: the determinant of [a_xyz | b − λ a_λ],
+/// zero where the four rows meet in one state (three unknowns, four equations).
+fn consistency(m: &ArchModel, tight: &[usize], phi: f64, lambda: f64) -> f64 {
+    let (a, b) = state_rows(m, phi);
+    let rows: Vec<f64> = tight
+        .iter()
+        .flat_map(|&i| [a[i][0], a[i][1], a[i][2], b[i] - lambda * a[i][3]])
+        .collect();
+    nalgebra::Matrix4::from_row_slice(&rows).determinant()
+}
+
+/// The first μ, going down from `mu_start` to `mu_static`, at which some candidate mechanism
+/// moves at the fixed λ. A candidate with at most three tight rows moves over intervals of μ:
+/// a scan in the friction angle (160 equal steps, and μ_static·(1 + 2⁻ʲ) for j up to 40,
+/// next to the static limit) and bisection to the first angle where it moves. One with four
+/// tight rows (three unknowns) moves only where its rows meet in one state, at isolated μ:
+/// the sign changes of their consistency determinant on the same scan and the scan's own
+/// angles (the static limit's among them), each checked for admissibility. Candidates with more tight rows (a lift-off beside another motion) are
+/// left out. `None` when none moves on the way.
+fn oracle_friction(m: &ArchModel, lambda: f64, mu_start: f64, mu_static: f64) -> Option<f64> {
+    let cands = candidates(m);
+    let (top, bottom) = (mu_start.atan(), mu_static.atan());
+    let steps = 160;
+    let mut scan: Vec<f64> = (0..=steps)
+        .map(|s| top + (bottom - top) * f64::from(s) / f64::from(steps))
+        .chain((0..=40).map(|j| (mu_static * (1.0 + 0.5f64.powi(j))).atan()))
+        .filter(|&phi| phi <= top)
+        .collect();
+    scan.sort_by(|a, b| b.total_cmp(a));
+    scan.dedup();
+    let bisect = |mut hi: f64, mut lo: f64, inside: &dyn Fn(f64) -> bool| {
+        while hi - lo > 1e-14 {
+            let mid = 0.5 * (hi + lo);
+            if inside(mid) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        lo
+    };
+    let mut best: Option<f64> = None;
+    for t in &cands {
+        let first = match t.len() {
+            0..=3 => {
+                let moves = |phi: f64| candidate_moves_at(m, t, phi, lambda);
+                let hit = scan.iter().position(|&phi| moves(phi));
+                hit.map(|i| match i {
+                    0 => scan[0],
+                    _ => bisect(scan[i - 1], scan[i], &moves),
+                })
+            }
+            4 => {
+                let positive = |phi: f64| consistency(m, t, phi, lambda) > 0.0;
+                scan.windows(2)
+                    .filter(|w| positive(w[0]) != positive(w[1]))
+                    .map(|w| {
+                        // The root between w[0] and w[1]: the side of w[1] is "inside".
+                        let upper = positive(w[0]);
+                        bisect(w[0], w[1], &|phi| positive(phi) != upper)
+                    })
+                    // The scan's own angles too: the static limit's, where the rows meet
+                    // at the end of the path.
+                    .chain(scan.iter().copied())
+                    .filter(|&phi| candidate_moves_at(m, t, phi, lambda))
+                    .max_by(f64::total_cmp)
+            }
+            _ => None,
         };
-        if sol.status == lp::Status::Optimal && best.is_none_or(|v| sol.x[3] < v) {
-            best = Some(sol.x[3]);
+        if let Some(phi) = first
+            && best.is_none_or(|b| phi.tan() > b)
+        {
+            best = Some(phi.tan());
         }
     }
     best
@@ -330,6 +440,95 @@ fn the_first_complete_load_factor_is_the_lowest_of_every_candidate_mechanism() {
         compared += 1;
     }
     assert_eq!(compared, 24, "too few scenes drawn");
+    assert!(gaps > 0, "no scene with a gap among those drawn");
+}
+
+/// Along decreasing μ at a fixed λ the route's first complete solution is the first μ at which
+/// some candidate mechanism of the enumeration moves (random scenes of two and three voussoirs,
+/// circular and pointed, radial and vertical joints, horizontal and point loads).
+#[test]
+fn the_first_complete_friction_is_the_first_at_which_a_candidate_mechanism_moves() {
+    let mut draw = Draw(20261202);
+    let (mut compared, mut found, mut gaps, mut tries) = (0, 0, 0, 0);
+    while compared < 8 && tries < 200 {
+        tries += 1;
+        let n = 2 + (draw.next() * 2.0) as u32;
+        let pointed = draw.next() < 0.4;
+        let vertical = draw.next() < 0.4;
+        let half = draw.range(35.0, if pointed { 75.0 } else { 90.0 });
+        let k = draw.range(1.1, 1.7);
+        let load = if draw.next() < 0.5 {
+            Load::Horizontal
+        } else {
+            Load::point(draw.range(-0.9 * half, 0.9 * half))
+        };
+        let e = draw.range(0.1, 0.5);
+        let f = form(pointed, vertical, e);
+        let Ok(arch) = Arch::new(k, half, WeightModel::Annular, Discretisation::Voussoirs(n))
+        else {
+            continue;
+        };
+        let Ok(m) = ArchModel::new(arch, f, load) else {
+            continue;
+        };
+        // A load factor the arch carries at μ = ∞, so that the path has a static limit.
+        let Some(l_inf) = solve(Case {
+            find: Find::LoadFactor,
+            k,
+            half,
+            joints: Discretisation::Voussoirs(n),
+            form: f,
+            mu: f64::INFINITY,
+            load,
+        })
+        .load_factor
+        else {
+            continue;
+        };
+        let lambda = draw.range(0.2, 0.9) * l_inf;
+        let route = solve_at(
+            Case {
+                find: Find::Friction,
+                k,
+                half,
+                joints: Discretisation::Voussoirs(n),
+                form: f,
+                mu: 0.0,
+                load,
+            },
+            lambda,
+        );
+        let Some(mu_static) = route.mu_crit else {
+            continue;
+        };
+        let oracle = oracle_friction(&m, lambda, Settings::DEFAULT.mu_start, mu_static);
+        let what = format!(
+            "N = {n}, pointed {pointed} (e = {e}), vertical {vertical}, α = {half}, K = {k}, \
+             {load:?}, λ = {lambda}: route {:?} {:?} (μ_crit {mu_static}), oracle {oracle:?}",
+            route.gap, route.collapse_value
+        );
+        let lifted = !route.collapse_lifted_joints.is_empty();
+        match (route.collapse_value, oracle) {
+            (Some(r), Some(o)) => {
+                let tol = 1e-6 * (1.0 + o.abs());
+                assert!(r >= o - tol, "{what}");
+                if !lifted {
+                    assert!((r - o).abs() <= tol, "{what}");
+                }
+                assert_checked(&route);
+                found += 1;
+            }
+            (None, Some(_)) => panic!("the route misses a complete solution: {what}"),
+            (Some(_), None) => assert!(lifted, "{what}"),
+            (None, None) => {}
+        }
+        if route.gap == Some(GapStatus::Gap) {
+            gaps += 1;
+        }
+        compared += 1;
+    }
+    assert_eq!(compared, 8, "too few scenes drawn");
+    assert!(found >= 4, "only {found} scenes with a complete solution");
     assert!(gaps > 0, "no scene with a gap among those drawn");
 }
 

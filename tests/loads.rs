@@ -140,11 +140,7 @@ fn vertical_and_radial_joints_agree_where_the_joints_coincide() {
             (Find::Friction, Friction::INFINITE, Load::SelfWeight),
             (Find::LoadFactor, Friction::INFINITE, Load::Horizontal),
             (Find::LoadFactor, mu(0.3), Load::Horizontal),
-            (
-                Find::LoadFactor,
-                Friction::INFINITE,
-                Load::point(0.0),
-            ),
+            (Find::LoadFactor, Friction::INFINITE, Load::point(0.0)),
         ] {
             let r = scene::solve(&scene(a, m, find, ArchForm::default(), load));
             let v = scene::solve(&scene(a, m, find, vertical(), load));
@@ -261,14 +257,7 @@ fn point_load_goes_straight_into_the_support_near_the_springings() {
     // arch, i.e. iff K sin a ≥ 1; otherwise λ is finite.
     let k = 1.3;
     let a = arch(k, Discretisation::Continuum);
-    let p = |at: f64| {
-        lambda_max(
-            a,
-            Friction::INFINITE,
-            ArchForm::default(),
-            Load::point(at),
-        )
-    };
+    let p = |at: f64| lambda_max(a, Friction::INFINITE, ArchForm::default(), Load::point(at));
     let edge = (1.0 / k).asin().to_degrees();
     for at in [90.0, -90.0, edge + 0.5, -(edge + 0.5)] {
         let s = p(at);
@@ -991,10 +980,7 @@ fn load_factor_agrees_with_the_work_equation_of_its_mechanism() {
     }
     // Mixed mechanisms: the loads' work balances the friction dissipated at the sliding
     // joints (eq. 11) for the state the programme found.
-    for (m, load) in [
-        (0.6, Load::Horizontal),
-        (0.5, Load::point(-22.5)),
-    ] {
+    for (m, load) in [(0.6, Load::Horizontal), (0.5, Load::point(-22.5))] {
         let s = lambda_max(
             arch(1.3, Discretisation::Continuum),
             mu(m),

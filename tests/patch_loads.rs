@@ -40,8 +40,7 @@ impl Discrete {
         let (t0, t1) = (self.joint(b), self.joint(b + 1));
         let (dt, mid) = (t1 - t0, 0.5 * (t0 + t1));
         let area = 0.5 * (self.k * self.k - 1.0) * dt;
-        let rho = 2.0 / 3.0 * (self.k.powi(3) - 1.0) / (self.k * self.k - 1.0)
-            * (0.5 * dt).sin()
+        let rho = 2.0 / 3.0 * (self.k.powi(3) - 1.0) / (self.k * self.k - 1.0) * (0.5 * dt).sin()
             / (0.5 * dt);
         [0.0, -area, -area * rho * mid.sin()]
     }
@@ -100,7 +99,11 @@ impl Discrete {
                 rhs.push(-sign * cst);
             };
             let comb = |a: [f64; 3], x: f64, b: [f64; 3], y: f64| {
-                [a[0] * x + b[0] * y, a[1] * x + b[1] * y, a[2] * x + b[2] * y]
+                [
+                    a[0] * x + b[0] * y,
+                    a[1] * x + b[1] * y,
+                    a[2] * x + b[2] * y,
+                ]
             };
             row(comb(m_of, 1.0, n_of, 1.0), 1.0); // M + N ≤ 0
             row(comb(m_of, -1.0, n_of, -self.k), 1.0); // −M − K N ≤ 0
@@ -195,10 +198,16 @@ fn voussoirs_under_a_patch_agree_with_an_independent_discrete_programme() {
                 found += 1;
             }
             (Some(Outcome::Unbounded | Outcome::NeverStands), None) => {}
-            (o, l) => panic!("{d:?}: archstudy {o:?} {:?}, oracle {l:?}", ours.load_factor),
+            (o, l) => panic!(
+                "{d:?}: archstudy {o:?} {:?}, oracle {l:?}",
+                ours.load_factor
+            ),
         }
     }
-    assert!(found >= 45, "only {found} of {compared} scenes had a finite λ_max");
+    assert!(
+        found >= 45,
+        "only {found} of {compared} scenes had a finite λ_max"
+    );
 }
 
 /// α = 60°, load at x/L = 0.25, μ = 0.3: concentrated, the load punches a sliver of zero
@@ -229,7 +238,11 @@ fn a_patch_replaces_the_sliver_by_the_block_under_it() {
     // The sliding joints are the patch's ends: sin θ = (2 x/L − 1) sin α.
     let ends: Vec<f64> = [0.225f64, 0.275]
         .iter()
-        .map(|x| ((2.0 * x - 1.0) * 60f64.to_radians().sin()).asin().to_degrees())
+        .map(|x| {
+            ((2.0 * x - 1.0) * 60f64.to_radians().sin())
+                .asin()
+                .to_degrees()
+        })
         .collect();
     let sliding: Vec<f64> = patch.sliding_joints.iter().map(|j| j.angle_deg).collect();
     for e in &ends {
@@ -287,9 +300,15 @@ fn the_width_key_and_option_are_checked_and_stored() {
         stderr(&out)
     };
     let e = bad(", at_x: 0.05, width: 0.2", "");
-    assert!(e.contains("load_cases.width") && e.contains("past a"), "{e}");
+    assert!(
+        e.contains("load_cases.width") && e.contains("past a"),
+        "{e}"
+    );
     let e = bad(", at_x: 0.5, width: 1.5", "");
-    assert!(e.contains("load_cases.width") && e.contains("[0, 1]"), "{e}");
+    assert!(
+        e.contains("load_cases.width") && e.contains("[0, 1]"),
+        "{e}"
+    );
     let e = bad(", width: 0.1", "  at_x: {values: [0.5, 0.97]}\n");
     assert!(e.contains("x/L = 0.97"), "{e}");
     let m = manifest(
@@ -328,8 +347,17 @@ fn the_width_key_and_option_are_checked_and_stored() {
     let out = archstudy(&["solve", "--load", "horizontal", "--width", "0.1"]);
     assert!(stderr(&out).contains("--width"), "{}", stderr(&out));
     let out = archstudy(&[
-        "solve", "--find", "load-factor", "--load", "point", "--at-x", "0.02", "--width", "0.1",
-        "--half-angle", "60",
+        "solve",
+        "--find",
+        "load-factor",
+        "--load",
+        "point",
+        "--at-x",
+        "0.02",
+        "--width",
+        "0.1",
+        "--half-angle",
+        "60",
     ]);
     assert!(!out.status.success());
     assert!(stderr(&out).contains("--width"), "{}", stderr(&out));

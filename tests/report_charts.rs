@@ -528,9 +528,13 @@ fn load_factor_lines_bar_the_gap_from_the_collapse_up_to_the_static_limit() {
 
 #[test]
 fn the_lambda_map_bounds_its_grey_region_by_where_the_arch_starts_to_stand() {
-    use archstudy::figdata::stand_limit::{ALONG_K, ALONG_MU};
     use crate::common::reference::{K_C, MU_MIN};
-    let run = run_study(&scratch("lambda-map-stand"), "horizontal.yaml", HORIZONTAL_MAP);
+    use archstudy::figdata::stand_limit::{ALONG_K, ALONG_MU};
+    let run = run_study(
+        &scratch("lambda-map-stand"),
+        "horizontal.yaml",
+        HORIZONTAL_MAP,
+    );
     let layout = RunLayout::at(&run);
     let curves = store::read_curves(&layout.curves()).expect("curves.parquet");
     let along = |s: &str| -> Vec<(f64, f64)> {
@@ -542,7 +546,10 @@ fn the_lambda_map_bounds_its_grey_region_by_where_the_arch_starts_to_stand() {
     // Along K, at every μ from 0.4 up (and ∞) the semicircle starts to stand at K_c; along μ,
     // at every K from 1.25 up at μ_min, and at K = 1.2 at μ_c(1.2) of the friction find.
     let k_edges = along(ALONG_K);
-    assert!(k_edges.iter().filter(|p| p.0 >= 0.4).count() == 6, "{k_edges:?}");
+    assert!(
+        k_edges.iter().filter(|p| p.0 >= 0.4).count() == 6,
+        "{k_edges:?}"
+    );
     for p in k_edges.iter().filter(|p| p.0 >= 0.4) {
         assert!((p.1 - K_C).abs() < 1e-6, "{p:?}");
     }
@@ -550,7 +557,10 @@ fn the_lambda_map_bounds_its_grey_region_by_where_the_arch_starts_to_stand() {
     for p in mu_edges.iter().filter(|p| p.1 >= 1.25) {
         assert!((p.0 - MU_MIN).abs() < 1e-6, "{p:?}");
     }
-    let at_12 = mu_edges.iter().find(|p| (p.1 - 1.2).abs() < 1e-12).expect("K = 1.2");
+    let at_12 = mu_edges
+        .iter()
+        .find(|p| (p.1 - 1.2).abs() < 1e-12)
+        .expect("K = 1.2");
     assert!((at_12.0 - 0.3232251).abs() < 1e-6, "{at_12:?}");
     // The map is grey on the near side of the limit and coloured on the far side, not at the
     // grid cell's edge: the raster cells just either side of K_c at μ = 0.7, and of μ_min at

@@ -31,12 +31,7 @@ fn x_over_l_on_the_semicircle_is_the_angle_of_the_closed_form() {
         Load::point_x(0.75),
         f64::INFINITY,
     );
-    let by_deg = load_factor(
-        arch,
-        ArchForm::default(),
-        Load::point(30.0),
-        f64::INFINITY,
-    );
+    let by_deg = load_factor(arch, ArchForm::default(), Load::point(30.0), f64::INFINITY);
     approx::assert_abs_diff_eq!(by_x.load_factor.unwrap(), 0.927921894, epsilon = 1e-9);
     approx::assert_abs_diff_eq!(
         by_x.load_factor.unwrap(),
@@ -103,10 +98,7 @@ fn x_over_l_on_a_keystone_matches_fine_voussoirs() {
     approx::assert_abs_diff_eq!(c.at_deg.unwrap(), 16.716146667, epsilon = 1e-8);
     let lc = c.load_factor.unwrap();
     approx::assert_abs_diff_eq!(lc, 0.6947039, epsilon = 1e-6);
-    let by_deg = solve(
-        Discretisation::Continuum,
-        Load::point(c.at_deg.unwrap()),
-    );
+    let by_deg = solve(Discretisation::Continuum, Load::point(c.at_deg.unwrap()));
     approx::assert_abs_diff_eq!(by_deg.load_factor.unwrap(), lc, epsilon = 1e-9);
     approx::assert_abs_diff_eq!(by_deg.at_x.unwrap(), 0.505, epsilon = 1e-12);
     let a = solve(Discretisation::Voussoirs(2001), at)

@@ -134,7 +134,12 @@ fn crossing(
 }
 
 /// Pushes the crossings of every load_factor load case and arch of the study.
-pub(super) fn push(manifest: &Manifest, lc: &LoadCase, cases: &[&LoadFactorCase], out: &mut Collector) {
+pub(super) fn push(
+    manifest: &Manifest,
+    lc: &LoadCase,
+    cases: &[&LoadFactorCase],
+    out: &mut Collector,
+) {
     if lc.find != Find::LoadFactor {
         return;
     }
@@ -155,9 +160,9 @@ pub(super) fn push(manifest: &Manifest, lc: &LoadCase, cases: &[&LoadFactorCase]
     }
     for (fig, (group, own)) in groups {
         let Some(l) = Lattice::of(&own) else { continue };
-        let edges_k = l.mu.iter().flat_map(|&mu| {
-            l.k.windows(2).map(move |w| ((mu, w[0]), (mu, w[1])))
-        });
+        let edges_k =
+            l.mu.iter()
+                .flat_map(|&mu| l.k.windows(2).map(move |w| ((mu, w[0]), (mu, w[1]))));
         // Along μ between finite values only: μ = ∞ is a column of its own.
         let edges_mu = l.k.iter().flat_map(|&k| {
             (l.mu.windows(2))

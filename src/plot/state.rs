@@ -465,7 +465,8 @@ impl StateDrawing {
         };
         let tails = self.load_tails();
         let (heads, label) = (load.heads(), load.label());
-        if let (DrawnLoad::Patch { .. }, Some(first), Some(last)) = (load, tails.first(), tails.last())
+        if let (DrawnLoad::Patch { .. }, Some(first), Some(last)) =
+            (load, tails.first(), tails.last())
         {
             root.draw(&PathElement::new(
                 vec![chart.backend_coord(first), chart.backend_coord(last)],

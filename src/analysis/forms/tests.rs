@@ -199,11 +199,7 @@ fn invalid_forms_are_refused() {
     ));
     let a = arch(1.2, 90.0, WeightModel::Annular, Discretisation::Continuum);
     assert!(matches!(
-        ArchModel::new(
-            a,
-            form(0.5, JointOrientation::Radial),
-            Load::point(10.0)
-        ),
+        ArchModel::new(a, form(0.5, JointOrientation::Radial), Load::point(10.0)),
         Err(FormError::LoadInsideKeystone { .. })
     ));
 }
@@ -235,12 +231,7 @@ fn load_factor_programmes_agree_with_clarabel() {
     let a = voussoirs(1.3, 64);
     for (a, f, load, phi) in [
         (a, ArchForm::default(), Load::Horizontal, 0.6f64.atan()),
-        (
-            a,
-            ArchForm::default(),
-            Load::point(22.5),
-            FRAC_PI_2,
-        ),
+        (a, ArchForm::default(), Load::point(22.5), FRAC_PI_2),
         (
             a,
             form(0.3, JointOrientation::Vertical),

@@ -364,11 +364,7 @@ mod tests {
             joints,
             keystone,
         };
-        for load in [
-            Load::Horizontal,
-            Load::point(30.0),
-            Load::point(0.0),
-        ] {
+        for load in [Load::Horizontal, Load::point(30.0), Load::point(0.0)] {
             let m = ArchModel::new(arch, form, load).unwrap();
             assert!(!m.mirror_symmetric(), "{load:?}");
             assert!(!m.with_shared_apex().mirror_symmetric(), "{load:?}");

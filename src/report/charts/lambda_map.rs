@@ -118,13 +118,21 @@ impl StandLimit {
         let mut cuts: Vec<((f64, f64), (f64, f64))> = Vec::new();
         for (ii, jj) in [(i, j), (i + 1, j)] {
             if let Some(&k) = self.along_k.get(&(ii, j)) {
-                let never_at = if lam(ii, jj).is_finite() { (g.mu[ii], k1) } else { (g.mu[ii], k0) };
+                let never_at = if lam(ii, jj).is_finite() {
+                    (g.mu[ii], k1)
+                } else {
+                    (g.mu[ii], k0)
+                };
                 cuts.push(((g.mu[ii], k), never_at));
             }
         }
         for jj in [j, j + 1] {
             if let Some(&mu) = self.along_mu.get(&(i, jj)) {
-                let never_at = if lam(i, jj).is_finite() { (m1, g.k[jj]) } else { (m0, g.k[jj]) };
+                let never_at = if lam(i, jj).is_finite() {
+                    (m1, g.k[jj])
+                } else {
+                    (m0, g.k[jj])
+                };
                 cuts.push(((mu, g.k[jj]), never_at));
             }
         }
@@ -139,7 +147,11 @@ impl StandLimit {
     /// The same on the μ = ∞ column, between its K values j and j + 1.
     fn never_infinite(&self, g: &Grid, col: &[f64], j: usize, k: f64) -> Option<bool> {
         let &limit = self.along_k.get(&(g.mu.len(), j))?;
-        Some(if col[j].is_finite() { k > limit } else { k < limit })
+        Some(if col[j].is_finite() {
+            k > limit
+        } else {
+            k < limit
+        })
     }
 }
 
@@ -627,7 +639,7 @@ mod tests {
         let (g, changes) = jump();
         let classified = mechanism_map(&g, &changes);
         let (nx, ny) = (120, 60);
-        let (lambda, mechanism) = raster(&g, &classified, (nx, ny));
+        let (lambda, mechanism) = raster(&g, &StandLimit::default(), &classified, (nx, ny));
         let (mut mixed_beyond_midline, mut checked) = (0, 0);
         for j in 0..ny {
             for i in 0..nx {
@@ -663,13 +675,31 @@ mod tests {
             .into_iter()
             .map(|m| (m, branch(&g, m)))
             .collect();
-        let l = lambda_at(&g, &branches, Some("mixed"), (0.7, 1.45));
+        let l = lambda_at(
+            &g,
+            &StandLimit::default(),
+            &branches,
+            Some("mixed"),
+            (0.7, 1.45),
+        );
         assert!((l - 3.625).abs() < 1e-12, "{l}");
         // Across the change, the mixed side of the cell (0.8, 1.0) × (1.4, 1.5) takes the
         // mixed λ of μ = 0.8 carried on at both its μ = 1.0 corners: 3.5 + 0.25 · 1.5.
-        let l = lambda_at(&g, &branches, Some("mixed"), (0.93, 1.45));
+        let l = lambda_at(
+            &g,
+            &StandLimit::default(),
+            &branches,
+            Some("mixed"),
+            (0.93, 1.45),
+        );
         assert!((l - 3.875).abs() < 1e-12, "{l}");
-        let l = lambda_at(&g, &branches, Some("rotational"), (0.97, 1.45));
+        let l = lambda_at(
+            &g,
+            &StandLimit::default(),
+            &branches,
+            Some("rotational"),
+            (0.97, 1.45),
+        );
         assert!((l - 151.5).abs() < 1e-12, "{l}");
     }
 }
