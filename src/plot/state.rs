@@ -382,22 +382,7 @@ impl StateDrawing {
                 vec![j.intrados, j.extrados],
                 palette::SLIDING_LINE.stroke_width(ctx.upx(3.5)),
             ))?;
-            // Sized by the arch's thickness (the springing joint), not by the joint: a
-            // vertical joint near a springing is much longer than the arch is thick.
-            let s0 = &self.supports[1];
-            let thick = (s0.extrados.0 - s0.intrados.0)
-                .hypot(s0.extrados.1 - s0.intrados.1)
-                .max(0.15);
-            let off = 0.3 * thick;
-            let m = j.middle();
-            let c = (m.0 + off * s.crown_side.0, m.1 + off * s.crown_side.1);
-            let dir = if s.outward { 1.0 } else { -1.0 };
-            // Half the thickness, centred on the joint: the arrow stays inside the masonry
-            // and clear of a hinge at either face, however thin the arch.
-            let len = 0.5 * thick;
-            let n = j.along();
-            let a0 = (c.0 - dir * 0.5 * len * n.0, c.1 - dir * 0.5 * len * n.1);
-            let a1 = (c.0 + dir * 0.5 * len * n.0, c.1 + dir * 0.5 * len * n.1);
+            let (a0, a1) = self.sliding_arrow(s);
             style::arrow(
                 root,
                 ctx,
@@ -408,6 +393,45 @@ impl StateDrawing {
             )?;
         }
         Ok(())
+    }
+
+    /// The arrow of a sliding joint, tail and head: along the joint on its crown side, in
+    /// the sense the crown-side part moves relative to the springing-side part.
+    fn sliding_arrow(&self, s: &DrawnSlide) -> (Xy, Xy) {
+        let j = &s.joint;
+        // Sized by the arch's thickness (the springing joint), not by the joint: a
+        // vertical joint near a springing is much longer than the arch is thick.
+        let s0 = &self.supports[1];
+        let thick = (s0.extrados.0 - s0.intrados.0)
+            .hypot(s0.extrados.1 - s0.intrados.1)
+            .max(0.15);
+        let off = 0.3 * thick;
+        let m = j.middle();
+        let dir = if s.outward { 1.0 } else { -1.0 };
+        // Half the thickness, centred on the joint: the arrow stays inside the masonry
+        // and clear of a hinge at either face, however thin the arch.
+        let len = 0.5 * thick;
+        let n = j.along();
+        // A crown-side part narrower than two offsets (the wedge between the first joints
+        // of a pointed arch, sliding on both) has no room for the arrows of both its
+        // joints: each is drawn on its joint's line produced beyond the extrados, where
+        // the two lines part. (The two sides of a point load's sliver are one joint drawn
+        // twice: they keep their place.)
+        let narrow = self.sliding.iter().any(|o| {
+            let p = o.joint.middle();
+            let d = (p.0 - m.0).hypot(p.1 - m.1);
+            !std::ptr::eq(o, s) && d > 1e-6 * thick && d < 2.0 * off
+        });
+        let c = if narrow {
+            let e = j.extrados;
+            let out = 0.25 * thick + 0.5 * len;
+            (e.0 + out * n.0, e.1 + out * n.1)
+        } else {
+            (m.0 + off * s.crown_side.0, m.1 + off * s.crown_side.1)
+        };
+        let a0 = (c.0 - dir * 0.5 * len * n.0, c.1 - dir * 0.5 * len * n.1);
+        let a1 = (c.0 + dir * 0.5 * len * n.0, c.1 + dir * 0.5 * len * n.1);
+        (a0, a1)
     }
 
     /// The line of thrust and, for a discrete arch, its pressure points at the joints: only

@@ -163,6 +163,16 @@ impl StateDrawing {
             placer.block(b);
         }
         let pad = ctx.px(4.0);
+        for s in &self.sliding {
+            let (a, b) = self.sliding_arrow(s);
+            let (a, b) = (map.to_px(a), map.to_px(b));
+            placer.block((
+                a.0.min(b.0) - pad,
+                a.1.min(b.1) - pad,
+                a.0.max(b.0) + pad,
+                a.1.max(b.1) + pad,
+            ));
+        }
         for s in &self.supports {
             let b = map.pixel_box(s.hatching_box());
             placer.block((b.0 - pad, b.1 - pad, b.2 + pad, b.3 + pad));
