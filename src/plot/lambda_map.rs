@@ -214,6 +214,8 @@ impl Figure for LambdaMap {
         }
         let mut chart = builder
             .margin(ctx.px(10.0))
+            // Room above the plot for the μ = ∞ strip's heading.
+            .margin_top(ctx.px(if strip > 0.0 { 30.0 } else { 10.0 }))
             .margin_right(ctx.px(strip + BAR_GAP + BAR_WIDTH + 96.0))
             .x_label_area_size(ctx.px(50.0))
             .y_label_area_size(ctx.px(72.0))
@@ -338,6 +340,13 @@ impl LambdaMap {
             "∞".to_string(),
             ((x0 + x1) / 2, yr.end + ctx.px(8.0)),
             ctx.font(13.0).pos(Pos::new(HPos::Center, VPos::Top)),
+        ))?;
+        // Named over its top as well: a strip of colour beside a map could be read as a
+        // second colour bar.
+        root.draw(&Text::new(
+            "μ = ∞".to_string(),
+            ((x0 + x1) / 2, yr.start - ctx.px(6.0)),
+            ctx.font(13.0).pos(Pos::new(HPos::Center, VPos::Bottom)),
         ))
     }
 
