@@ -578,3 +578,61 @@ fn the_lambda_map_bounds_its_grey_region_by_where_the_arch_starts_to_stand() {
     assert!(pixel(MU_MIN - 1.5 * dmu, 1.5).is_nan());
     assert!(pixel(MU_MIN + 1.5 * dmu, 1.5).is_finite());
 }
+
+#[test]
+fn a_state_study_of_vertical_joints_draws_the_collapse_beside_its_critical_curves() {
+    use archstudy::figdata::{MU_COLLAPSE_OF_K, MU_CRIT_OF_K, critical_figure};
+    let run = run_study(
+        &scratch("state-collapse"),
+        "vertical.yaml",
+        "name: vertical\narch: {joints: vertical}\ngrid:\n  k: {from: 1.15, to: 1.5, steps: 8}\n  mu: {from: 1.0, to: 3.0, steps: 9}\nload_cases:\n  - {name: gravity, kind: self_weight}\nfind: state\n",
+    );
+    let layout = RunLayout::at(&run);
+    let curves = store::read_curves(&layout.curves()).expect("curves.parquet");
+    let fig = critical_figure("gravity");
+    let series = |s: &str| -> Vec<(f64, f64)> {
+        (curves.iter())
+            .filter(|p| p.figure == fig && p.series == s)
+            .map(|p| (p.x, p.y))
+            .collect()
+    };
+    let (col, crit) = (series(MU_COLLAPSE_OF_K), series(MU_CRIT_OF_K));
+    assert_eq!(col.len(), crit.len());
+    // The collapse lies above μ_c at every sample where both exist, and at K = 1.5 where the
+    // friction find puts it (the crown part drops, sliding inward on both springings).
+    let mut above = 0;
+    for (c, s) in col.iter().zip(&crit) {
+        assert_eq!(c.0, s.0);
+        if c.1.is_finite() && s.1.is_finite() {
+            assert!(c.1 >= s.1 - 1e-9, "{c:?} {s:?}");
+            above += usize::from(c.1 > s.1 + 1e-3);
+        }
+    }
+    assert!(above > col.len() / 2, "{above} of {}", col.len());
+    let last = col.last().expect("a sample at K = 1.5");
+    assert!((last.0 - 1.5).abs() < 1e-12);
+    let sol = archstudy::scene::solve(&archstudy::scene::Scene {
+        arch: archstudy::model::Arch::new(
+            1.5,
+            90.0,
+            archstudy::model::WeightModel::Annular,
+            archstudy::model::Discretisation::Continuum,
+        )
+        .unwrap(),
+        friction: archstudy::model::Friction::new(0.0).unwrap(),
+        find: archstudy::scene::Find::Friction,
+        form: archstudy::model::ArchForm {
+            joints: archstudy::model::JointOrientation::Vertical,
+            ..Default::default()
+        },
+        load: archstudy::model::Load::SelfWeight,
+        lambda: 0.0,
+    });
+    assert_eq!(Some(last.1), sol.collapse_value);
+    let md = std::fs::read_to_string(layout.report_md()).expect("report.md");
+    assert!(md.contains("Dashed: the collapse, the first complete solution"));
+    // The circular arch with radial joints has no gap: no collapse series at all.
+    let lf = run_study(&scratch("state-collapse-seed"), "state.yaml", STATE_MAP);
+    let curves = store::read_curves(&RunLayout::at(&lf).curves()).expect("curves.parquet");
+    assert!(!curves.iter().any(|p| p.series == MU_COLLAPSE_OF_K));
+}

@@ -44,6 +44,22 @@ pub fn critical_figure(load_case: &str) -> String {
 
 /// Series of K_c(μ) (x = μ, y = K) in the critical figure.
 pub const K_CRIT_OF_MU: &str = "k_crit_of_mu";
+
+/// Series of the collapse along decreasing K, the first complete solution K_col(μ) (x = μ,
+/// y = K), in the critical figure: stored only when it differs from K_c(μ) somewhere.
+pub const K_COLLAPSE_OF_MU: &str = "k_collapse_of_mu";
+
+/// Series of the collapse along decreasing μ, μ_col(K) (x = K, y = μ), as
+/// [`K_COLLAPSE_OF_MU`].
+pub const MU_COLLAPSE_OF_K: &str = "mu_collapse_of_k";
+
+/// Series of the samples of [`K_COLLAPSE_OF_MU`] whose first complete solution is the start of
+/// the searched path itself (y: that start, the largest K searched): the arch can move at
+/// every K searched, and the collapse curve is NaN there.
+pub const K_COLLAPSE_AT_START: &str = "k_collapse_at_start";
+
+/// The same for [`MU_COLLAPSE_OF_K`] (y: the largest μ searched).
+pub const MU_COLLAPSE_AT_START: &str = "mu_collapse_at_start";
 /// Series of μ_c(K) (x = K, y = μ) in the critical figure.
 pub const MU_CRIT_OF_K: &str = "mu_crit_of_k";
 /// Series of the line of thrust (x, y over r).
@@ -472,6 +488,60 @@ fn critical_curves(
         .map(|&k| (k, symmetric::critical_friction(&arch, form, k)))
         .collect();
     out.push(&fig, MU_CRIT_OF_K, &mu_of_k);
+    // The circular arch with radial joints has no gap under self-weight (the paper's
+    // scenes); the other forms may: their collapse beside the static limit.
+    if !form.is_circular_radial() {
+        // The collapse value at one sample (NaN where none was found), whether it comes
+        // before the static limit, and the start of the path when it is met there.
+        let collapse = |find: Find, k: f64, mu: f64| {
+            let Some(friction) = Friction::new(mu) else {
+                return (f64::NAN, false, None);
+            };
+            let sol = crate::scene::solve(&crate::scene::Scene {
+                arch: arch.with_k(k),
+                friction,
+                find,
+                form,
+                load: crate::model::Load::SelfWeight,
+                lambda: 0.0,
+            });
+            let value = sol.collapse_value.unwrap_or(f64::NAN);
+            let start = sol
+                .gap_searched_to
+                .filter(|&s| (value - s).abs() <= 1e-9 * s.abs().max(1.0));
+            (
+                value,
+                sol.gap == Some(crate::analysis::gap::GapStatus::Gap),
+                start,
+            )
+        };
+        type Sample = (f64, (f64, bool, Option<f64>));
+        let mut push = |series: [&str; 2], samples: Vec<Sample>| {
+            if !samples.iter().any(|s| s.1.1) {
+                return;
+            }
+            let curve: Samples = (samples.iter())
+                .map(|&(x, (y, _, start))| (x, if start.is_some() { f64::NAN } else { y }))
+                .collect();
+            out.push(&fig, series[0], &curve);
+            let at_start: Samples = (samples.iter())
+                .filter_map(|&(x, (_, _, start))| Some((x, start?)))
+                .collect();
+            out.push(&fig, series[1], &at_start);
+        };
+        push(
+            [K_COLLAPSE_OF_MU, K_COLLAPSE_AT_START],
+            (mus.par_iter())
+                .map(|&mu| (mu, collapse(Find::Thickness, k_hi, mu)))
+                .collect(),
+        );
+        push(
+            [MU_COLLAPSE_OF_K, MU_COLLAPSE_AT_START],
+            (ks.par_iter())
+                .map(|&k| (k, collapse(Find::Friction, k, 0.0)))
+                .collect(),
+        );
+    }
     Ok(())
 }
 

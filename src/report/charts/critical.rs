@@ -75,13 +75,19 @@ fn critical(data: &RunData, lc: &str, on: &str) -> Option<CriticalChart> {
         // A state study covers a range of K: K_c(μ) above it is off the map too.
         if data.manifest.find_of(lc) == "state" {
             panel.y_max = data.totals.k_max.get(lc).copied();
+            panel.collapse = data.curve(&figdata::critical_figure(lc), figdata::K_COLLAPSE_OF_MU);
         }
         panels.push(panel);
     }
     if let Some(b) = b {
         let mut panel = marks.panel(Axes::CRITICAL_FRICTION, b);
-        if data.manifest.find_of(lc) == "friction" {
-            panel.collapse = collapse(data, lc);
+        match data.manifest.find_of(lc) {
+            "friction" => panel.collapse = collapse(data, lc),
+            "state" => {
+                panel.collapse =
+                    data.curve(&figdata::critical_figure(lc), figdata::MU_COLLAPSE_OF_K);
+            }
+            _ => {}
         }
         panels.push(panel);
     }
@@ -163,6 +169,9 @@ fn collapse(data: &RunData, lc: &str) -> Curve {
 /// widest, or `None` when none has.
 fn gap_note(data: &RunData, lc: &str) -> Option<String> {
     let find = data.manifest.find_of(lc);
+    if find == "state" {
+        return state_gap_note(data, lc);
+    }
     let (name, path, at) = match find {
         "thickness" => ("K", "decreasing K", "μ"),
         "friction" => ("μ", "decreasing μ", "K"),
@@ -188,6 +197,67 @@ fn gap_note(data: &RunData, lc: &str) -> Option<String> {
         rows.len(),
         widest.0,
         x.map_or("?".into(), |v| format!("{v:.4}"))
+    ))
+}
+
+/// The gap of a state study's critical curves in words: where the collapse curves stored
+/// beside K_c(μ) and μ_c(K) (figure data, self-weight on forms other than the circular arch
+/// with radial joints) lie above them, and by how much at most.
+fn state_gap_note(data: &RunData, lc: &str) -> Option<String> {
+    let fig = figdata::critical_figure(lc);
+    let widest = |col: &str, crit: &str| {
+        let (c, s) = (data.curve(&fig, col), data.curve(&fig, crit));
+        c.iter()
+            .zip(&s)
+            .filter(|(a, b)| a.1.is_finite() && b.1.is_finite() && a.1 > b.1)
+            .map(|(a, b)| (a.1 - b.1, a.0, a.1))
+            .max_by(|x, y| x.0.total_cmp(&y.0))
+    };
+    // Samples whose first complete solution is the start of the path: x from, to, and the
+    // largest start.
+    let at_start = |series: &str| {
+        let s = data.curve(&fig, series);
+        let top = s.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max);
+        Some((s.first()?.0, s.last()?.0, top, s.len()))
+    };
+    let k = widest(figdata::K_COLLAPSE_OF_MU, figdata::K_CRIT_OF_MU);
+    let mu = widest(figdata::MU_COLLAPSE_OF_K, figdata::MU_CRIT_OF_K);
+    let k_start = at_start(figdata::K_COLLAPSE_AT_START);
+    let mu_start = at_start(figdata::MU_COLLAPSE_AT_START);
+    if k.is_none() && mu.is_none() && k_start.is_none() && mu_start.is_none() {
+        return None;
+    }
+    let mut parts = Vec::new();
+    if let Some((w, at, to)) = k {
+        parts.push(format!(
+            "along decreasing K it lies up to {w:.4} above K_c (at μ = {at:.4}, K = {to:.4})"
+        ));
+    }
+    if let Some((a, b, top, n)) = k_start {
+        parts.push(format!(
+            "at {n} of the samples of μ from {a:.4} to {b:.4} it is the start of the search \
+             itself (K up to {top:.4}): there the arch can move at every thickness searched, \
+             and no dashed line is drawn"
+        ));
+    }
+    if let Some((w, at, to)) = mu {
+        parts.push(format!(
+            "along decreasing μ it lies up to {w:.4} above μ_c (at K = {at:.4}, μ = {to:.4})"
+        ));
+    }
+    if let Some((a, b, top, n)) = mu_start {
+        parts.push(format!(
+            "at {n} of the samples of K from {a:.4} to {b:.4} it is the start of the search \
+             itself (μ = {top:.4}): there the arch can move at every friction searched, and \
+             no dashed line is drawn"
+        ));
+    }
+    Some(format!(
+        "Dashed: the collapse, the first complete solution from which a mechanism obeying the \
+         flow rules can start, found at the curves' samples; {}. Between the two lies the \
+         non-associative gap, in which the outcome depends on contact stiffness and initial \
+         stress: the arches of the regime map that stand there may also move.",
+        parts.join("; ")
     ))
 }
 
