@@ -150,3 +150,23 @@ pub fn leftovers(dir: &Path) -> Vec<String> {
     }
     out
 }
+
+/// A small pseudo-random generator of numbers in [0, 1): the random scenes of a test are the
+/// same on every run.
+pub struct Draw(pub u64);
+
+impl Draw {
+    /// The next number in [0, 1).
+    pub fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// The next number in [lo, hi).
+    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next()
+    }
+}

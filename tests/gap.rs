@@ -2,6 +2,7 @@
 //! find against an enumeration of candidate mechanisms, the example, the paper's
 //! scenes (no gap) and the work equation of every reported mechanism (docs/mechanics.md §4).
 
+use crate::common::Draw;
 use archstudy::analysis::Face;
 use archstudy::analysis::forms::ArchModel;
 use archstudy::analysis::gap::{self, GapStatus, Settings};
@@ -347,20 +348,15 @@ fn oracle_friction(m: &ArchModel, lambda: f64, mu_start: f64, mu_static: f64) ->
     best
 }
 
-/// A small pseudo-random generator (the scenes are the same on every run).
-struct Draw(u64);
-
-impl Draw {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
+/// A random arch of the enumeration tests: its voussoir count (2 or 3), whether it is
+/// pointed and has vertical joints, its half-angle and its K.
+fn draw_arch(draw: &mut Draw) -> (u32, bool, bool, f64, f64) {
+    let n = 2 + (draw.next() * 2.0) as u32;
+    let pointed = draw.next() < 0.4;
+    let vertical = draw.next() < 0.4;
+    let half = draw.range(35.0, if pointed { 75.0 } else { 90.0 });
+    let k = draw.range(1.1, 1.7);
+    (n, pointed, vertical, half, k)
 }
 
 fn form(pointed: bool, vertical: bool, e: f64) -> ArchForm {
@@ -387,11 +383,7 @@ fn the_first_complete_load_factor_is_the_lowest_of_every_candidate_mechanism() {
     let mut tries = 0;
     while compared < 24 && tries < 400 {
         tries += 1;
-        let n = 2 + (draw.next() * 2.0) as u32;
-        let pointed = draw.next() < 0.4;
-        let vertical = draw.next() < 0.4;
-        let half = draw.range(35.0, if pointed { 75.0 } else { 90.0 });
-        let k = draw.range(1.1, 1.7);
+        let (n, pointed, vertical, half, k) = draw_arch(&mut draw);
         let mu = draw.range(0.4, 1.3);
         let load = if draw.next() < 0.5 {
             Load::Horizontal
@@ -452,11 +444,7 @@ fn the_first_complete_friction_is_the_first_at_which_a_candidate_mechanism_moves
     let (mut compared, mut found, mut gaps, mut tries) = (0, 0, 0, 0);
     while compared < 8 && tries < 200 {
         tries += 1;
-        let n = 2 + (draw.next() * 2.0) as u32;
-        let pointed = draw.next() < 0.4;
-        let vertical = draw.next() < 0.4;
-        let half = draw.range(35.0, if pointed { 75.0 } else { 90.0 });
-        let k = draw.range(1.1, 1.7);
+        let (n, pointed, vertical, half, k) = draw_arch(&mut draw);
         let load = if draw.next() < 0.5 {
             Load::Horizontal
         } else {

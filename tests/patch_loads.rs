@@ -7,7 +7,7 @@
 //! key, the command-line option and the stored column.
 
 use crate::apex_oracle::csc;
-use crate::common::{archstudy, manifest, scratch, solve_json, stderr};
+use crate::common::{Draw, archstudy, manifest, scratch, solve_json, stderr};
 use archstudy::model::{Arch, ArchForm, Discretisation, Friction, Load, WeightModel};
 use archstudy::scene::{self, Find, Outcome, Scene, Solution};
 use clarabel::algebra::CscMatrix;
@@ -152,22 +152,6 @@ impl Discrete {
             },
             lambda: 0.0,
         })
-    }
-}
-
-/// A deterministic stream of numbers in [0, 1).
-struct Draw(u64);
-
-impl Draw {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.next()
     }
 }
 

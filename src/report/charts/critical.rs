@@ -233,25 +233,22 @@ fn state_gap_note(data: &RunData, lc: &str) -> Option<String> {
             "along decreasing K it lies up to {w:.4} above K_c (at μ = {at:.4}, K = {to:.4})"
         ));
     }
-    if let Some((a, b, top, n)) = k_start {
-        parts.push(format!(
-            "at {n} of the samples of μ from {a:.4} to {b:.4} it is the start of the search \
-             itself (K up to {top:.4}): there the arch can move at every thickness searched, \
-             and no dashed line is drawn"
-        ));
-    }
+    let from_start = |s: Option<(f64, f64, f64, usize)>, (x, y, what): (&str, &str, &str)| {
+        s.map(|(a, b, top, n)| {
+            format!(
+                "at {n} of the samples of {x} from {a:.4} to {b:.4} it is the start of the \
+                 search itself ({y} up to {top:.4}): there the arch can move at every {what} \
+                 searched, and no dashed line is drawn"
+            )
+        })
+    };
+    parts.extend(from_start(k_start, ("μ", "K", "thickness")));
     if let Some((w, at, to)) = mu {
         parts.push(format!(
             "along decreasing μ it lies up to {w:.4} above μ_c (at K = {at:.4}, μ = {to:.4})"
         ));
     }
-    if let Some((a, b, top, n)) = mu_start {
-        parts.push(format!(
-            "at {n} of the samples of K from {a:.4} to {b:.4} it is the start of the search \
-             itself (μ = {top:.4}): there the arch can move at every friction searched, and \
-             no dashed line is drawn"
-        ));
-    }
+    parts.extend(from_start(mu_start, ("K", "μ", "friction")));
     Some(format!(
         "Dashed: the collapse, the first complete solution from which a mechanism obeying the \
          flow rules can start, found at the curves' samples; {}. Between the two lies the \
