@@ -32,6 +32,22 @@ pub fn figure(data: &RunData, lc: &LoadCaseFigure) -> Option<FigureSpec> {
         caption.push_str(" The strip at the right, apart from the μ axis, is μ = ∞.");
     }
     caption.push_str(REGIONS_NOTE);
+    let fig = crate::figdata::critical_figure(lc.name);
+    let gap = [
+        crate::figdata::K_COLLAPSE_OF_MU,
+        crate::figdata::MU_COLLAPSE_OF_K,
+        crate::figdata::K_COLLAPSE_AT_START,
+        crate::figdata::MU_COLLAPSE_AT_START,
+    ]
+    .iter()
+    .any(|s| !data.curve(&fig, s).is_empty());
+    if gap {
+        caption.push_str(
+            " Stable is the static verdict: part of the stable region lies in the \
+             non-associative gap, where a mechanism obeying the flow rules can start (the \
+             collapse drawn dashed on the critical curves).",
+        );
+    }
     if !map.bifurcations.is_empty() {
         // The values stay readable where a narrow map shows only the points' numbers.
         let listed: Vec<String> = (map.bifurcations.iter())
