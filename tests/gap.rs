@@ -12,6 +12,7 @@ use archstudy::model::{
     Arch, ArchForm, Discretisation, Friction, JointOrientation, Load, Shape, WeightModel,
 };
 use archstudy::scene::{self, Find, Scene, Solution};
+use std::f64::consts::FRAC_PI_2;
 
 /// How a joint of a candidate mechanism moves.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -888,4 +889,101 @@ fn a_friction_find_under_a_live_load_says_when_the_arch_drops_on_the_way_up() {
     // above its collapse K.
     let t = solve_at(twelve(Find::Thickness, 1.5, 1.0396), 7.0);
     assert_eq!(t.collapse_on_loading, None);
+}
+
+/// An arch of many voussoirs is searched on some of its joints, completed by the exchange; on
+/// random scenes of 66 to 96 voussoirs (circular and pointed, radial and vertical joints,
+/// horizontal and point loads) it finds what the walk over every joint finds, along λ and
+/// along μ, and every mechanism it reports obeys the flow rules.
+#[test]
+fn many_voussoirs_searched_on_some_of_their_joints_agree_with_the_walk_over_every_joint() {
+    let every = Settings {
+        exchange_above: usize::MAX,
+        ..Settings::DEFAULT
+    };
+    let mut draw = Draw(20261203);
+    let (mut load_factors, mut frictions, mut gaps, mut tries) = (0, 0, 0, 0);
+    while (load_factors < 10 || frictions < 4) && tries < 200 {
+        tries += 1;
+        let n = 66 + (draw.next() * 31.0) as u32;
+        let (_, pointed, vertical, half, k) = draw_arch(&mut draw);
+        let mu = draw.range(0.4, 1.3);
+        let load = if draw.next() < 0.5 {
+            Load::Horizontal
+        } else {
+            Load::point(draw.range(-0.9 * half, 0.9 * half))
+        };
+        let e = draw.range(0.1, 0.5);
+        let f = form(pointed, vertical, e);
+        let Ok(arch) = Arch::new(k, half, WeightModel::Annular, Discretisation::Voussoirs(n))
+        else {
+            continue;
+        };
+        let Ok(m) = ArchModel::new(arch, f, load) else {
+            continue;
+        };
+        let phi = mu.atan();
+        let what = format!(
+            "N = {n}, pointed {pointed} (e = {e}), vertical {vertical}, α = {half}, K = {k}, \
+             μ = {mu}, {load:?}"
+        );
+        let agree = |a: &gap::GapSearch, b: &gap::GapSearch, path: &str| {
+            let show = |s: &gap::GapSearch| (s.status, s.first.as_ref().map(|c| c.value));
+            assert_eq!(
+                a.status,
+                b.status,
+                "{what}, {path}: {:?} {:?}",
+                show(a),
+                show(b)
+            );
+            if let (Some(x), Some(y)) = (&a.first, &b.first) {
+                let tol = 1e-7 * (1.0 + y.value.abs());
+                assert!(
+                    (x.value - y.value).abs() <= tol,
+                    "{what}, {path}: {:?} {:?}",
+                    show(a),
+                    show(b)
+                );
+                let w = x.mechanism.work;
+                assert!(
+                    w.work_residual <= 1e-9 && w.flow_violation <= 1e-9,
+                    "{what}: {w:?}"
+                );
+            }
+        };
+        if load_factors < 10 {
+            let some = gap::first_complete_load_factor(&m, phi, &Settings::DEFAULT);
+            let all = gap::first_complete_load_factor(&m, phi, &every);
+            agree(&some, &all, "λ");
+            gaps += usize::from(all.status == GapStatus::Gap);
+            load_factors += 1;
+        }
+        if frictions < 4
+            && let Some(l) = gap::first_complete_load_factor(&m, FRAC_PI_2, &Settings::DEFAULT)
+                .static_limit
+                .filter(|l| l.is_finite())
+        {
+            let lambda = 0.5 * l;
+            let route = solve_at(
+                Case {
+                    find: Find::Friction,
+                    k,
+                    half,
+                    joints: Discretisation::Voussoirs(n),
+                    form: f,
+                    mu: 0.0,
+                    load,
+                },
+                lambda,
+            );
+            if let Some(mu_static) = route.mu_crit {
+                let some = gap::first_complete_friction(&m, lambda, mu_static, &Settings::DEFAULT);
+                let all = gap::first_complete_friction(&m, lambda, mu_static, &every);
+                agree(&some, &all, "μ");
+                frictions += 1;
+            }
+        }
+    }
+    assert_eq!((load_factors, frictions), (10, 4), "too few scenes drawn");
+    assert!(gaps > 0, "no scene with a gap among those drawn");
 }

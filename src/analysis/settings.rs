@@ -392,8 +392,15 @@ pub struct GapSettings {
     /// Joints sampled per family of a continuum before the exchange adds any (default 9,
     /// ends included).
     pub continuum_joints: usize,
-    /// A discrete arch with more joints than this is not searched: its polytopes are too
-    /// large to walk in the time of a find, and the continuum is its limit (default 401).
+    /// A discrete arch with more joints than this is walked on some of its joints first
+    /// (`discrete_joints` of them, evenly spaced, the springings among them), and the joints
+    /// where the walk's answer violates a row are added until it violates none, as on a
+    /// continuum (default 65: a walk over every joint costs about the cube of their number).
+    pub exchange_above: usize,
+    /// Joints of a large discrete arch walked before the exchange adds any (default 17).
+    pub discrete_joints: usize,
+    /// Largest number of joints a walk takes: an exchange that would walk more fails rather
+    /// than run on (default 401).
     pub max_walk_joints: usize,
     /// Largest number of polytopes a friction or thickness search walks, over all its
     /// exchange rounds; beyond it the search fails rather than run on (default 3000).
@@ -438,6 +445,8 @@ impl GapSettings {
         max_vertices: 200_000,
         max_tight: 24,
         continuum_joints: 9,
+        exchange_above: 65,
+        discrete_joints: 17,
         max_walk_joints: 401,
         max_slices: 3000,
         max_exchange_rounds: 60,

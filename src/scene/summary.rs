@@ -314,8 +314,8 @@ fn gap_lines(o: &mut String, s: &Solution) {
         GapStatus::Failed => {
             let _ = writeln!(
                 o,
-                "collapse: not searched or not finished (an arch of more than 400 voussoirs is \
-                 not searched: its continuum is its limit)"
+                "collapse: the search did not finish (more vertices, polytopes or walked \
+                 joints than it may take)"
             );
             return;
         }

@@ -107,9 +107,6 @@ pub fn first_complete_load_factor<G: ArchGeometry + ?Sized>(
     settings: &Settings,
 ) -> GapSearch {
     let range = [0.0, settings.lambda_cap];
-    if joints::too_many(geom, settings) {
-        return GapSearch::failed(range);
-    }
     let general_settings = general::Settings::default();
     let discrete = geom.discrete_joints();
     let mut thetas = joints::initial(geom, settings);
@@ -138,7 +135,7 @@ pub fn first_complete_load_factor<G: ArchGeometry + ?Sized>(
             result = Some(p);
             break;
         };
-        let cuts = joints::violated(geom, phi, y);
+        let cuts = joints::violated_elsewhere(geom, phi, y, t);
         if cuts.is_empty() {
             result = Some(p);
             break;
@@ -147,7 +144,7 @@ pub fn first_complete_load_factor<G: ArchGeometry + ?Sized>(
         t.extend(cuts);
         t.sort_by(f64::total_cmp);
         t.dedup();
-        if t.len() == before {
+        if t.len() == before || joints::too_many(t, settings) {
             return GapSearch::failed(range);
         }
     }

@@ -261,9 +261,6 @@ pub fn first_complete_friction<G: ArchGeometry + Copy>(
     mu_static: f64,
     settings: &Settings,
 ) -> GapSearch {
-    if joints::too_many(geom, settings) {
-        return GapSearch::failed([mu_static, settings.mu_start]);
-    }
     let g = *geom;
     let at = move |phi: f64| Some((g, phi));
     let start = settings.mu_start.max(mu_static).atan();
@@ -290,9 +287,6 @@ pub fn first_complete_thickness<G: ArchGeometry + Copy>(
     k_start: f64,
     settings: &Settings,
 ) -> GapSearch {
-    if make(k_static).is_some_and(|g| joints::too_many(&g, settings)) {
-        return GapSearch::failed([k_static, k_start]);
-    }
     let at = |k: f64| make(k).map(|g| (g, phi));
     let (found, visited) = path::first_complete(
         &at,

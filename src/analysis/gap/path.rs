@@ -491,9 +491,12 @@ fn first_complete_counted<G: ArchGeometry + Copy>(
                 return (None, visited);
             };
             let before = t.len();
-            t.extend(joints::violated(&geom, phi, &y));
+            t.extend(joints::violated_elsewhere(&geom, phi, &y, t));
             t.sort_by(f64::total_cmp);
             t.dedup();
+            if joints::too_many(t, settings) {
+                return (None, usize::MAX);
+            }
             if t.len() == before {
                 return (None, visited);
             }
@@ -518,7 +521,7 @@ fn first_complete_counted<G: ArchGeometry + Copy>(
                 return (finish(at, r, settings), visited);
             }
         }
-        let cuts = joints::violated(&geom, phi, &f.y);
+        let cuts = joints::violated_elsewhere(&geom, phi, &f.y, t);
         if cuts.is_empty() {
             return (finish(at, f, settings), visited);
         }
@@ -526,6 +529,9 @@ fn first_complete_counted<G: ArchGeometry + Copy>(
         t.extend(cuts);
         t.sort_by(f64::total_cmp);
         t.dedup();
+        if joints::too_many(t, settings) {
+            return (None, usize::MAX);
+        }
         if t.len() == before {
             return (None, visited);
         }
