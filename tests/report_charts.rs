@@ -631,8 +631,31 @@ fn a_state_study_of_vertical_joints_draws_the_collapse_beside_its_critical_curve
     assert_eq!(Some(last.1), sol.collapse_value);
     let md = std::fs::read_to_string(layout.report_md()).expect("report.md");
     assert!(md.contains("Dashed: the collapse, the first complete solution"));
-    // The circular arch with radial joints has no gap: no collapse series at all.
+    // The regime map draws the same collapse over (μ, K), where the gap opens in its stable
+    // region, and says so.
+    let regime = |run: &std::path::Path| {
+        let data = data::load(&RunLayout::at(run)).expect("the run loads");
+        charts::build(&data)
+            .into_iter()
+            .find(|f| f.stem == "regime-map")
+            .expect("a regime map")
+    };
+    let f = regime(&run);
+    let charts::Chart::RegimeMap(m) = &f.chart else {
+        panic!("not a regime map");
+    };
+    let flipped: Vec<(f64, f64)> = col.iter().map(|&(k, mu)| (mu, k)).collect();
+    assert!(m.gap_collapse.contains(&flipped), "{:?}", m.gap_collapse);
+    assert!(f.caption.contains("drawn dashed here"), "{}", f.caption);
+    // The circular arch with radial joints has no gap: no collapse series at all, and none
+    // on its regime map.
     let lf = run_study(&scratch("state-collapse-seed"), "state.yaml", STATE_MAP);
     let curves = store::read_curves(&RunLayout::at(&lf).curves()).expect("curves.parquet");
     assert!(!curves.iter().any(|p| p.series == MU_COLLAPSE_OF_K));
+    let f = regime(&lf);
+    let charts::Chart::RegimeMap(m) = &f.chart else {
+        panic!("not a regime map");
+    };
+    assert!(m.gap_collapse.is_empty());
+    assert!(!f.caption.contains("drawn dashed here"));
 }

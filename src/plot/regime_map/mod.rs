@@ -68,6 +68,9 @@ pub struct RegimeMap {
     pub collapse: Vec<CollapseSegment>,
     /// Other regime boundaries (not on the collapse curve), as polylines (μ, K).
     pub other_boundaries: Vec<Vec<(f64, f64)>>,
+    /// The first complete solution along the study's paths where it differs from the static
+    /// limit (a non-associative gap), as polylines (μ, K) (NaN breaks a line): drawn dashed.
+    pub gap_collapse: Vec<Vec<(f64, f64)>>,
     /// Bifurcation points.
     pub bifurcations: Vec<BifurcationMark>,
     /// The grid's μ = ∞ column, drawn as its own strip right of the finite axis.
@@ -321,6 +324,16 @@ impl RegimeMap {
                 chart.draw_series(LineSeries::new(piece, color.stroke_width(ctx.upx(3.2))))?;
             }
         }
+        for line in &self.gap_collapse {
+            for piece in clip_polyline(line, window.0, window.1) {
+                chart.draw_series(DashedLineSeries::new(
+                    piece,
+                    ctx.upx(8.0),
+                    ctx.upx(5.0),
+                    palette::GAP.stroke_width(ctx.upx(2.4)),
+                ))?;
+            }
+        }
         Ok(())
     }
 }
@@ -465,6 +478,16 @@ impl RegimeMap {
                     },
                 ));
             }
+        }
+        if !self.gap_collapse.is_empty() {
+            items.push(LegendItem::new(
+                "collapse: first complete solution",
+                Mark::Line {
+                    color: palette::GAP,
+                    width: 2.4,
+                    dashed: true,
+                },
+            ));
         }
         if !self.other_boundaries.is_empty() {
             items.push(LegendItem::new(

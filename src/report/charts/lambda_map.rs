@@ -537,6 +537,7 @@ fn mechanism_map(g: &Grid, changes: &[(f64, f64, &str, &str)]) -> RegimeMap {
         crossings_along_k: along_k,
         collapse: Vec::new(),
         other_boundaries: Vec::new(),
+        gap_collapse: Vec::new(),
         bifurcations: Vec::new(),
         infinite: None,
     }

@@ -16,7 +16,10 @@ const REGIME_CAPTION: &str = "Regimes over the friction coefficient μ (horizont
 const REGIONS_NOTE: &str = " Between grid points the regions are bounded by straight lines between the located boundary points.";
 
 fn sorted_distinct(v: impl Iterator<Item = f64>) -> Vec<f64> {
-    let mut v: Vec<f64> = v.filter(|x| x.is_finite()).collect();
+    // A map's million rows hold a thousand distinct values: gather them before sorting.
+    let distinct: std::collections::HashSet<u64> =
+        v.filter(|x| x.is_finite()).map(f64::to_bits).collect();
+    let mut v: Vec<f64> = distinct.into_iter().map(f64::from_bits).collect();
     v.sort_by(f64::total_cmp);
     v.dedup();
     v
@@ -45,7 +48,8 @@ pub fn figure(data: &RunData, lc: &LoadCaseFigure) -> Option<FigureSpec> {
         caption.push_str(
             " Stable is the static verdict: part of the stable region lies in the \
              non-associative gap, where a mechanism obeying the flow rules can start (the \
-             collapse drawn dashed on the critical curves).",
+             collapse, the first complete solution along K and along μ, drawn dashed here and \
+             on the critical curves).",
         );
     }
     if !map.bifurcations.is_empty() {
@@ -223,9 +227,35 @@ pub fn regime_map_of(
         crossings_along_k,
         collapse,
         other_boundaries: other,
+        gap_collapse: gap_collapse(data, lc, arch),
         bifurcations,
         infinite,
     })
+}
+
+/// The first complete solution of a state study's thickness and friction paths, where the
+/// figure data has it (a form with a gap), as lines over (μ, K); none on a panel of one arch
+/// among several (the paths are searched for the study's own arch).
+fn gap_collapse(data: &RunData, lc: &str, arch: Option<ArchKey>) -> Vec<Vec<(f64, f64)>> {
+    if arch.is_some() {
+        return Vec::new();
+    }
+    let fig = crate::figdata::critical_figure(lc);
+    let k_of_mu = data.curve(&fig, crate::figdata::K_COLLAPSE_OF_MU);
+    let mu_of_k: Vec<(f64, f64)> = data
+        .curve(&fig, crate::figdata::MU_COLLAPSE_OF_K)
+        .into_iter()
+        .map(|(k, mu)| (mu, k))
+        .collect();
+    [k_of_mu, mu_of_k]
+        .into_iter()
+        .filter(|l| {
+            l.iter()
+                .filter(|p| p.0.is_finite() && p.1.is_finite())
+                .count()
+                >= 2
+        })
+        .collect()
 }
 
 /// The μ = ∞ column of the grid, when it has one: its regimes at the grid K values, the
