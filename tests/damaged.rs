@@ -96,3 +96,26 @@ fn an_unknown_regime_name_is_refused() {
         &["results.parquet", "column `regime`, row 3", "\"wobbly\""],
     );
 }
+
+/// Rows are checked whole and a name already accepted is not looked up again, yet a name
+/// archstudy never writes is found after a run of accepted ones, and the first fault of the
+/// first column that has one is the one named.
+#[test]
+fn a_late_unknown_name_is_found_and_the_first_faulty_column_named() {
+    let run = fresh_run("damaged-late-regime");
+    let path = run.join("results.parquet");
+    let mut df = store::read_parquet(&path).unwrap();
+    let mut bad = store::str_column(&df, "regime").unwrap();
+    bad[97] = Some("stabel".to_string());
+    bad[98] = Some("stabel".to_string());
+    df.with_column(Column::from(Series::new("regime".into(), bad)))
+        .unwrap();
+    store::write_parquet(&mut df, &path).unwrap();
+    report_refuses(
+        &run,
+        &["results.parquet", "column `regime`, row 97", "\"stabel\""],
+    );
+    // A fault in an earlier column comes first, though its row is later.
+    store::rewrite_f64_value(&path, "mu", 110, Some(-0.5)).unwrap();
+    report_refuses(&run, &["results.parquet", "column `mu`, row 110"]);
+}

@@ -139,9 +139,32 @@ fn tree(svg: &str) -> Result<usvg::Tree, PlotError> {
 /// The PDF of a paper SVG: one page of the SVG's printed size, text as text in the embedded
 /// (subset) font.
 pub fn svg_to_pdf(svg: &str) -> Result<Vec<u8>, PlotError> {
-    let t = tree(svg)?;
+    PaperSvg::parse(svg)?.pdf()
+}
+
+/// A paper SVG read once, for its PDF and its PNG.
+pub struct PaperSvg(usvg::Tree);
+
+impl PaperSvg {
+    /// Reads a paper SVG.
+    pub fn parse(svg: &str) -> Result<Self, PlotError> {
+        tree(svg).map(PaperSvg)
+    }
+
+    /// The PDF ([`svg_to_pdf`]).
+    pub fn pdf(&self) -> Result<Vec<u8>, PlotError> {
+        pdf_of(&self.0)
+    }
+
+    /// The PNG ([`svg_to_png`]).
+    pub fn png(&self) -> Result<Vec<u8>, PlotError> {
+        png_of(&self.0)
+    }
+}
+
+fn pdf_of(t: &usvg::Tree) -> Result<Vec<u8>, PlotError> {
     svg2pdf::to_pdf(
-        &t,
+        t,
         svg2pdf::ConversionOptions::default(),
         svg2pdf::PageOptions {
             dpi: PX_PER_INCH as f32,
@@ -214,7 +237,10 @@ pub fn canonical_pdf(pdf: &[u8]) -> Vec<u8> {
 
 /// The PNG of a paper SVG at [`PAPER_PNG_DPI`] for its printed size, anti-aliased, on white.
 pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, PlotError> {
-    let t = tree(svg)?;
+    PaperSvg::parse(svg)?.png()
+}
+
+fn png_of(t: &usvg::Tree) -> Result<Vec<u8>, PlotError> {
     let s = (PAPER_PNG_DPI / PX_PER_INCH) as f32;
     let w = (t.size().width() * s).round() as u32;
     let h = (t.size().height() * s).round() as u32;
@@ -222,7 +248,7 @@ pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, PlotError> {
         .ok_or_else(|| PlotError(format!("cannot allocate a {w} × {h} image")))?;
     pixmap.fill(tiny_skia::Color::WHITE);
     resvg::render(
-        &t,
+        t,
         tiny_skia::Transform::from_scale(s, s),
         &mut pixmap.as_mut(),
     );

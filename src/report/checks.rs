@@ -58,17 +58,23 @@ impl Table<'_> {
         Ok(())
     }
 
-    /// Every present name is one that `known` accepts.
+    /// Every present name is one that `known` accepts. A column holds few distinct names in
+    /// long runs: a name equal to the one before it was already accepted.
     fn names<'s>(
         &self,
         column: &str,
         names: impl Iterator<Item = Option<&'s str>>,
         known: impl Fn(&str) -> bool,
     ) -> Result<(), TableError> {
+        let mut accepted: Option<&str> = None;
         for (i, n) in names.enumerate() {
-            if let Some(n) = n
-                && !known(n)
-            {
+            let Some(n) = n else { continue };
+            if accepted == Some(n) {
+                continue;
+            }
+            if known(n) {
+                accepted = Some(n);
+            } else {
                 return Err(self.err(
                     column,
                     Some(i),
@@ -114,8 +120,66 @@ pub fn check_result_count(file: &Path, rows: usize, total: u64) -> Result<(), Ta
 }
 
 /// Checks a block of rows of results.parquet, the first of which is row `offset` of the file:
-/// case ids in order and every column in its domain.
+/// case ids in order and every column in its domain. The rows are read once and each checked
+/// whole; only a block with a fault is walked column by column, to name the first fault of
+/// the first column that has one.
 pub fn check_result_rows(file: &Path, offset: usize, rows: &[ResultRow]) -> Result<(), TableError> {
+    let mut names = NameMemo::default();
+    let sound = rows
+        .iter()
+        .enumerate()
+        .all(|(i, r)| row_is_sound(r, (offset + i) as u64, &mut names));
+    if sound {
+        return Ok(());
+    }
+    locate_row_fault(file, offset, rows)
+}
+
+/// The names last accepted in each text column of a results table (a column holds few
+/// distinct names, in long runs).
+#[derive(Default)]
+struct NameMemo<'r> {
+    find: Option<&'r str>,
+    regime: Option<&'r str>,
+    outcome: Option<&'r str>,
+}
+
+/// Whether `name` is known, asking `known` only for a name other than the last accepted.
+fn memo_known<'r>(last: &mut Option<&'r str>, name: &'r str, known: impl Fn(&str) -> bool) -> bool {
+    if *last == Some(name) {
+        return true;
+    }
+    let ok = known(name);
+    if ok {
+        *last = Some(name);
+    }
+    ok
+}
+
+/// Whether one row of results.parquet passes every check of [`check_result_rows`].
+fn row_is_sound<'r>(r: &'r ResultRow, id: u64, names: &mut NameMemo<'r>) -> bool {
+    let within = |v: Option<f64>, ok: fn(f64) -> bool| v.is_none_or(ok);
+    let finite = |v: Option<f64>| v.is_none_or(f64::is_finite);
+    r.case_id == id
+        && within(r.k, |k| k.is_finite() && k > 1.0)
+        && within(r.t_over_r, |x| x.is_finite() && x > 0.0 && x < 2.0)
+        && within(r.mu, |m| m >= 0.0)
+        && finite(r.k_crit)
+        && finite(r.mu_crit)
+        && finite(r.thrust_r_min)
+        && finite(r.load_factor)
+        && memo_known(&mut names.find, &r.find, |s| Find::parse(s).is_some())
+        && r.regime
+            .as_deref()
+            .is_none_or(|g| memo_known(&mut names.regime, g, is_regime))
+        && r.outcome
+            .as_deref()
+            .is_none_or(|o| memo_known(&mut names.outcome, o, |s| Outcome::parse(s).is_some()))
+        && (&*r.status == "ok" || &*r.status == "error")
+}
+
+/// The first fault of a block that [`row_is_sound`] refused, column by column.
+fn locate_row_fault(file: &Path, offset: usize, rows: &[ResultRow]) -> Result<(), TableError> {
     let t = Table { file, offset };
     if let Some(i) = rows
         .iter()

@@ -425,14 +425,27 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
     let lattice = lattice_of(layout);
     let file = layout.results();
     super::checks::check_result_count(&file, store::parquet_rows(&file)?, info.cases.total)?;
-    let mut results = Vec::new();
+    // Blocks are decoded, checked and counted on all cores, then joined in order.
+    let blocks = store::par_read_results_in_blocks(
+        &file,
+        super::reduce::READ_BLOCK_ROWS,
+        |offset, block| {
+            super::checks::check_result_rows(&file, offset, &block)?;
+            let mut totals = super::reduce::ResultTotals::default();
+            totals.add(&block);
+            let kept: Vec<_> = block
+                .into_iter()
+                .filter(|r| lattice.keeps(r.case_id))
+                .collect();
+            Ok((totals, kept))
+        },
+    )?;
+    let mut results = Vec::with_capacity(blocks.iter().map(|(_, kept)| kept.len()).sum());
     let mut totals = super::reduce::ResultTotals::default();
-    store::read_results_in_blocks(&file, super::reduce::READ_BLOCK_ROWS, |offset, block| {
-        super::checks::check_result_rows(&file, offset, &block)?;
-        totals.add(&block);
-        results.extend(block.into_iter().filter(|r| lattice.keeps(r.case_id)));
-        Ok(())
-    })?;
+    for (t, kept) in blocks {
+        totals.merge(t);
+        results.extend(kept);
+    }
     totals.finish();
     let (load_factors, load_factor_singled) = if manifest.sampling.is_none()
         && manifest

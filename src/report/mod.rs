@@ -55,10 +55,11 @@ pub fn draw_figures(data: &RunData, layout: &RunLayout) -> Result<DrawnFigures> 
             let context = || format!("figure {}", f.stem);
             let paper = f.render(Format::Paper(width)).with_context(context)?;
             write_atomic(&layout.plot(&f.stem, "svg"), &paper)?;
-            let paper = String::from_utf8_lossy(&paper);
-            let pdf = plot::paper::svg_to_pdf(&paper).with_context(context)?;
+            let paper = plot::paper::PaperSvg::parse(&String::from_utf8_lossy(&paper))
+                .with_context(context)?;
+            let pdf = paper.pdf().with_context(context)?;
             write_atomic(&layout.plot(&f.stem, "pdf"), &pdf)?;
-            let png = plot::paper::svg_to_png(&paper).with_context(context)?;
+            let png = paper.png().with_context(context)?;
             write_atomic(&layout.plot(&f.stem, "png"), &png)?;
             let screen = f.render(Format::Svg).with_context(context)?;
             Ok(inline_svg(&String::from_utf8_lossy(&screen), &f.title))

@@ -7,7 +7,7 @@
 
 use crate::manifest::{AxisName, Manifest};
 use crate::store::ResultRow;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 use std::sync::Arc;
 
 /// Most values of a K or μ axis the figures are drawn from: a longer axis keeps every s-th
@@ -104,6 +104,9 @@ impl FigureLattice {
     }
 }
 
+/// The voussoir count and find that group solve times.
+type TimeKey<'a> = (Option<u32>, &'a str);
+
 /// What the report gives over every row of results.parquet.
 #[derive(Debug, Clone, Default)]
 pub struct ResultTotals {
@@ -122,32 +125,73 @@ impl ResultTotals {
     /// Adds a block of rows.
     pub fn add(&mut self, rows: &[ResultRow]) {
         self.rows += rows.len() as u64;
+        // Counted under borrowed keys first: a block holds few distinct outcomes, finds and
+        // load cases, and a million rows should not make a million strings.
+        let mut outcomes: HashMap<(bool, Option<&str>, Option<&str>), usize> = HashMap::new();
+        let mut k_max: HashMap<&str, f64> = HashMap::new();
+        let mut times: Vec<(TimeKey<'_>, Vec<f64>)> = Vec::new();
         for r in rows {
-            let key = if &*r.status != "ok" {
+            let ok = &*r.status == "ok";
+            *outcomes
+                .entry((ok, r.regime.as_deref(), r.outcome.as_deref()))
+                .or_default() += 1;
+            if ok {
+                let key = (r.voussoirs, &*r.find);
+                let at = match times.iter().rposition(|(k, _)| *k == key) {
+                    Some(at) => at,
+                    None => {
+                        times.push((key, Vec::new()));
+                        times.len() - 1
+                    }
+                };
+                times[at].1.push(r.solve_time_us);
+            }
+            if let Some(k) = r.k.filter(|k| k.is_finite()) {
+                let m = k_max.entry(&r.load_case).or_insert(k);
+                *m = m.max(k);
+            }
+        }
+        for ((ok, regime, outcome), n) in outcomes {
+            let key = if !ok {
                 "failed".to_string()
-            } else if let Some(g) = &r.regime {
+            } else if let Some(g) = regime {
                 format!("regime {g}")
-            } else if let Some(o) = &r.outcome {
+            } else if let Some(o) = outcome {
                 o.replace('_', " ")
             } else {
                 "ok".to_string()
             };
-            *self.by_outcome.entry(key).or_default() += 1;
-            if &*r.status == "ok" {
-                self.solve_times
-                    .entry((r.voussoirs, r.find.clone()))
-                    .or_default()
-                    .push(r.solve_time_us);
-            }
-            if let Some(k) = r.k.filter(|k| k.is_finite()) {
-                let m = self.k_max.entry(r.load_case.to_string()).or_insert(k);
-                *m = m.max(k);
-            }
+            *self.by_outcome.entry(key).or_default() += n;
+        }
+        for ((v, find), t) in times {
+            self.solve_times
+                .entry((v, Arc::from(find)))
+                .or_default()
+                .extend(t);
+        }
+        for (lc, k) in k_max {
+            let m = self.k_max.entry(lc.to_string()).or_insert(k);
+            *m = m.max(k);
         }
     }
 }
 
 impl ResultTotals {
+    /// Adds the totals of other rows.
+    pub fn merge(&mut self, other: ResultTotals) {
+        self.rows += other.rows;
+        for (key, n) in other.by_outcome {
+            *self.by_outcome.entry(key).or_default() += n;
+        }
+        for (key, t) in other.solve_times {
+            self.solve_times.entry(key).or_default().extend(t);
+        }
+        for (lc, k) in other.k_max {
+            let m = self.k_max.entry(lc).or_insert(k);
+            *m = m.max(k);
+        }
+    }
+
     /// Sorts the solve times, once every block is added.
     pub fn finish(&mut self) {
         for t in self.solve_times.values_mut() {

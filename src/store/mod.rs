@@ -25,8 +25,8 @@ pub use figures::{
 pub use results::{BLOCK_ROWS, filled_by, results_frame, scenes_frame};
 pub use rows::{
     BifurcationRow, BoundaryRow, JointLists, ResultRow, bifurcations_of_frame, boundaries_of_frame,
-    read_bifurcations, read_boundaries, read_results, read_results_in_blocks, read_results_rows,
-    results_of_frame,
+    par_read_results_in_blocks, read_bifurcations, read_boundaries, read_results,
+    read_results_in_blocks, read_results_rows, results_of_frame,
 };
 pub use schema::column_doc;
 pub use table::{
@@ -403,6 +403,32 @@ pub fn read_parquet_in_blocks(
             return Ok(());
         }
     }
+}
+
+/// Reads the named columns of a Parquet file in blocks of `block` rows, as
+/// [`read_parquet_in_blocks`], but decodes and maps the blocks on all cores: `each` is given
+/// the first row of a block and its frame, and its answers come back in the blocks' order.
+pub fn par_read_parquet_in_blocks<T: Send>(
+    path: &Path,
+    columns: &[&str],
+    block: usize,
+    each: impl Fn(usize, &DataFrame) -> Result<T> + Sync,
+) -> Result<Vec<T>> {
+    use rayon::prelude::*;
+    let rows = parquet_rows(path)?;
+    let block = block.max(1);
+    let offsets: Vec<usize> = if rows == 0 {
+        vec![0]
+    } else {
+        (0..rows).step_by(block).collect()
+    };
+    offsets
+        .into_par_iter()
+        .map(|offset| {
+            let df = read_parquet_rows(path, columns, Some((offset, block)))?;
+            each(offset, &df)
+        })
+        .collect()
 }
 
 /// Rewrites one value of a float column of a Parquet file in place (atomically), leaving

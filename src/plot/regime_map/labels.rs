@@ -22,7 +22,23 @@ fn region_label(regime: &str) -> [&'static str; 2] {
 /// where its label fits best. Two-pass chamfer distance transform.
 fn label_cells(m: &RegimeMap, dx: f64, dy: f64) -> Vec<(String, usize, usize, f64)> {
     let (nx, ny) = (m.mu.len(), m.k.len());
-    let at = |i: usize, j: usize| m.regimes[j * nx + i].as_deref();
+    // Each cell's regime as a small number (its place among the names met), compared
+    // without reading the names again.
+    let mut names: Vec<&str> = Vec::new();
+    let codes: Vec<usize> = m
+        .regimes
+        .iter()
+        .map(|r| match r.as_deref() {
+            None => 0,
+            Some(name) => {
+                1 + names.iter().position(|&n| n == name).unwrap_or_else(|| {
+                    names.push(name);
+                    names.len() - 1
+                })
+            }
+        })
+        .collect();
+    let at = |i: usize, j: usize| codes[j * nx + i];
     let mut d = vec![f64::INFINITY; nx * ny];
     let diag = dx.hypot(dy);
     for j in 0..ny {
@@ -75,9 +91,10 @@ fn label_cells(m: &RegimeMap, dx: f64, dy: f64) -> Vec<(String, usize, usize, f6
     // (a wide region has a whole ridge of deepest cells).
     let mut out = Vec::new();
     for name in REGIME_ORDER {
-        let cells: Vec<usize> = (0..nx * ny)
-            .filter(|&c| m.regimes[c].as_deref() == Some(name))
-            .collect();
+        let Some(code) = names.iter().position(|&n| n == name).map(|p| p + 1) else {
+            continue;
+        };
+        let cells: Vec<usize> = (0..nx * ny).filter(|&c| codes[c] == code).collect();
         if cells.is_empty() {
             continue;
         }
