@@ -406,13 +406,16 @@ pub fn read_parquet_in_blocks(
 }
 
 /// Reads the named columns of a Parquet file in blocks of `block` rows, as
-/// [`read_parquet_in_blocks`], but decodes and maps the blocks on all cores: `each` is given
-/// the first row of a block and its frame, and its answers come back in the blocks' order.
-pub fn par_read_parquet_in_blocks<T: Send>(
+/// [`read_parquet_in_blocks`], but decodes and maps two blocks at a time on two cores (the
+/// memory of a read does not grow with the cores): `decode` turns a block's frame into what
+/// `each` takes (the frame is dropped before `each` runs), `each` is given the first row of the
+/// block and that, and its answers come back in the blocks' order.
+pub fn par_read_parquet_in_blocks<D: Send, T: Send>(
     path: &Path,
     columns: &[&str],
     block: usize,
-    each: impl Fn(usize, &DataFrame) -> Result<T> + Sync,
+    decode: impl Fn(&DataFrame) -> Result<D> + Sync,
+    each: impl Fn(usize, D) -> Result<T> + Sync,
 ) -> Result<Vec<T>> {
     use rayon::prelude::*;
     let rows = parquet_rows(path)?;
@@ -422,13 +425,18 @@ pub fn par_read_parquet_in_blocks<T: Send>(
     } else {
         (0..rows).step_by(block).collect()
     };
-    offsets
-        .into_par_iter()
-        .map(|offset| {
-            let df = read_parquet_rows(path, columns, Some((offset, block)))?;
-            each(offset, &df)
-        })
-        .collect()
+    let mut out = Vec::with_capacity(offsets.len());
+    for pair in offsets.chunks(2) {
+        let answers = pair
+            .par_iter()
+            .map(|&offset| {
+                let decoded = decode(&read_parquet_rows(path, columns, Some((offset, block)))?)?;
+                each(offset, decoded)
+            })
+            .collect::<Result<Vec<T>>>()?;
+        out.extend(answers);
+    }
+    Ok(out)
 }
 
 /// Rewrites one value of a float column of a Parquet file in place (atomically), leaving

@@ -265,16 +265,21 @@ pub fn read_results_in_blocks(
     })
 }
 
-/// The result rows of a results file in blocks of `block` rows, decoded on all cores: `each`
-/// is given the first row of a block and its rows, and its answers come back in order.
+/// The result rows of a results file in blocks of `block` rows, two blocks decoded at a time
+/// ([`super::par_read_parquet_in_blocks`]): `each` is given the first row of a block and its
+/// rows, and its answers come back in order.
 pub fn par_read_results_in_blocks<T: Send>(
     path: &Path,
     block: usize,
     each: impl Fn(usize, Vec<ResultRow>) -> Result<T> + Sync,
 ) -> Result<Vec<T>> {
-    super::par_read_parquet_in_blocks(path, &RESULT_ROW_COLUMNS, block, |offset, df| {
-        each(offset, results_of_frame(df, path)?)
-    })
+    super::par_read_parquet_in_blocks(
+        path,
+        &RESULT_ROW_COLUMNS,
+        block,
+        |df| results_of_frame(df, path),
+        each,
+    )
 }
 
 /// The result rows of a results frame (its columns of [`ResultRow`]); `path` names where it
