@@ -376,6 +376,38 @@ fn form(pointed: bool, vertical: bool, e: f64) -> ArchForm {
     }
 }
 
+/// A random scene on an arch of [`draw_arch`] (`n` voussoirs, pointed or not, vertical joints or
+/// not, half-angle, K): a horizontal or point load, the eccentricity of a pointed form, the
+/// form and the model; `None` where the arch or the model cannot be built.
+struct Drawn {
+    load: Load,
+    e: f64,
+    form: ArchForm,
+    model: ArchModel,
+}
+
+fn draw_scene(
+    draw: &mut Draw,
+    n: u32,
+    (pointed, vertical, half, k): (bool, bool, f64, f64),
+) -> Option<Drawn> {
+    let load = if draw.next() < 0.5 {
+        Load::Horizontal
+    } else {
+        Load::point(draw.range(-0.9 * half, 0.9 * half))
+    };
+    let arch = Arch::new(k, half, WeightModel::Annular, Discretisation::Voussoirs(n)).ok()?;
+    let e = draw.range(0.1, 0.5);
+    let form = form(pointed, vertical, e);
+    let model = ArchModel::new(arch, form, load).ok()?;
+    Some(Drawn {
+        load,
+        e,
+        form,
+        model,
+    })
+}
+
 #[test]
 fn the_first_complete_load_factor_is_the_lowest_of_every_candidate_mechanism() {
     let mut draw = Draw(20261127);
@@ -386,17 +418,10 @@ fn the_first_complete_load_factor_is_the_lowest_of_every_candidate_mechanism() {
         tries += 1;
         let (n, pointed, vertical, half, k) = draw_arch(&mut draw);
         let mu = draw.range(0.4, 1.3);
-        let load = if draw.next() < 0.5 {
-            Load::Horizontal
-        } else {
-            Load::point(draw.range(-0.9 * half, 0.9 * half))
-        };
-        let Ok(arch) = Arch::new(k, half, WeightModel::Annular, Discretisation::Voussoirs(n))
+        let Some(Drawn {
+            load, e, model: m, ..
+        }) = draw_scene(&mut draw, n, (pointed, vertical, half, k))
         else {
-            continue;
-        };
-        let e = draw.range(0.1, 0.5);
-        let Ok(m) = ArchModel::new(arch, form(pointed, vertical, e), load) else {
             continue;
         };
         let phi = mu.atan();
@@ -446,18 +471,13 @@ fn the_first_complete_friction_is_the_first_at_which_a_candidate_mechanism_moves
     while compared < 8 && tries < 200 {
         tries += 1;
         let (n, pointed, vertical, half, k) = draw_arch(&mut draw);
-        let load = if draw.next() < 0.5 {
-            Load::Horizontal
-        } else {
-            Load::point(draw.range(-0.9 * half, 0.9 * half))
-        };
-        let e = draw.range(0.1, 0.5);
-        let f = form(pointed, vertical, e);
-        let Ok(arch) = Arch::new(k, half, WeightModel::Annular, Discretisation::Voussoirs(n))
+        let Some(Drawn {
+            load,
+            e,
+            form: f,
+            model: m,
+        }) = draw_scene(&mut draw, n, (pointed, vertical, half, k))
         else {
-            continue;
-        };
-        let Ok(m) = ArchModel::new(arch, f, load) else {
             continue;
         };
         // A load factor the arch carries at μ = ∞, so that the path has a static limit.
@@ -908,18 +928,13 @@ fn many_voussoirs_searched_on_some_of_their_joints_agree_with_the_walk_over_ever
         let n = 66 + (draw.next() * 31.0) as u32;
         let (_, pointed, vertical, half, k) = draw_arch(&mut draw);
         let mu = draw.range(0.4, 1.3);
-        let load = if draw.next() < 0.5 {
-            Load::Horizontal
-        } else {
-            Load::point(draw.range(-0.9 * half, 0.9 * half))
-        };
-        let e = draw.range(0.1, 0.5);
-        let f = form(pointed, vertical, e);
-        let Ok(arch) = Arch::new(k, half, WeightModel::Annular, Discretisation::Voussoirs(n))
+        let Some(Drawn {
+            load,
+            e,
+            form: f,
+            model: m,
+        }) = draw_scene(&mut draw, n, (pointed, vertical, half, k))
         else {
-            continue;
-        };
-        let Ok(m) = ArchModel::new(arch, f, load) else {
             continue;
         };
         let phi = mu.atan();
