@@ -35,22 +35,18 @@ pub fn figure(data: &RunData, lc: &LoadCaseFigure) -> Option<FigureSpec> {
         caption.push_str(" The strip at the right, apart from the μ axis, is μ = ∞.");
     }
     caption.push_str(REGIONS_NOTE);
-    let fig = crate::figdata::critical_figure(lc.name);
-    let gap = [
-        crate::figdata::K_COLLAPSE_OF_MU,
-        crate::figdata::MU_COLLAPSE_OF_K,
-        crate::figdata::K_COLLAPSE_AT_START,
-        crate::figdata::MU_COLLAPSE_AT_START,
-    ]
-    .iter()
-    .any(|s| !data.curve(&fig, s).is_empty());
-    if gap {
-        caption.push_str(
+    if !map.gap_collapse.is_empty() || moves_at_start_in_map(data, lc.name, &map) {
+        let here = if map.gap_collapse.is_empty() {
+            ""
+        } else {
+            " here, where it parts from the collapse curve, and"
+        };
+        caption.push_str(&format!(
             " Stable is the static verdict: part of the stable region lies in the \
              non-associative gap, where a mechanism obeying the flow rules can start (the \
-             collapse, the first complete solution along K and along μ, drawn dashed here and \
-             on the critical curves).",
-        );
+             collapse, the first complete solution along K and along μ, drawn dashed{here} \
+             on the critical curves)."
+        ));
     }
     if !map.bifurcations.is_empty() {
         // The values stay readable where a narrow map shows only the points' numbers.
@@ -233,20 +229,26 @@ pub fn regime_map_of(
     })
 }
 
-/// The first complete solution of a state study's thickness and friction paths, where the
-/// figure data has it (a form with a gap), as lines over (μ, K); none on a panel of one arch
-/// among several (the paths are searched for the study's own arch).
+/// The first complete solution of a state study's thickness and friction paths where it parts
+/// from the static critical curve (a non-associative gap), as lines over (μ, K); none on a
+/// panel of one arch among several (the paths are searched for the study's own arch).
 fn gap_collapse(data: &RunData, lc: &str, arch: Option<ArchKey>) -> Vec<Vec<(f64, f64)>> {
+    use crate::figdata::{K_COLLAPSE_OF_MU, K_CRIT_OF_MU, MU_COLLAPSE_OF_K, MU_CRIT_OF_K};
     if arch.is_some() {
         return Vec::new();
     }
     let fig = crate::figdata::critical_figure(lc);
-    let k_of_mu = data.curve(&fig, crate::figdata::K_COLLAPSE_OF_MU);
-    let mu_of_k: Vec<(f64, f64)> = data
-        .curve(&fig, crate::figdata::MU_COLLAPSE_OF_K)
-        .into_iter()
-        .map(|(k, mu)| (mu, k))
-        .collect();
+    let k_of_mu = parted(
+        &data.curve(&fig, K_COLLAPSE_OF_MU),
+        &data.curve(&fig, K_CRIT_OF_MU),
+    );
+    let mu_of_k: Vec<(f64, f64)> = parted(
+        &data.curve(&fig, MU_COLLAPSE_OF_K),
+        &data.curve(&fig, MU_CRIT_OF_K),
+    )
+    .into_iter()
+    .map(|(k, mu)| (mu, k))
+    .collect();
     [k_of_mu, mu_of_k]
         .into_iter()
         .filter(|l| {
@@ -255,6 +257,50 @@ fn gap_collapse(data: &RunData, lc: &str, arch: Option<ArchKey>) -> Vec<Vec<(f64
                 .count()
                 >= 2
         })
+        .collect()
+}
+
+/// Whether the map holds stable arches that can move at the start of a thickness or friction
+/// path (a sample of the figure data where the collapse is the search's start): at such a μ
+/// the arches above K_c(μ), at such a K those above μ_c(K), are in the gap.
+fn moves_at_start_in_map(data: &RunData, lc: &str, map: &RegimeMap) -> bool {
+    use crate::figdata::{K_COLLAPSE_AT_START, K_CRIT_OF_MU, MU_COLLAPSE_AT_START, MU_CRIT_OF_K};
+    let fig = crate::figdata::critical_figure(lc);
+    let mu_top = if map.infinite.is_some() {
+        f64::INFINITY
+    } else {
+        map.mu.last().copied().unwrap_or(f64::NEG_INFINITY)
+    };
+    let k_top = map.k.last().copied().unwrap_or(f64::NEG_INFINITY);
+    let below = |start: &str, critical: &str, top: f64| {
+        let critical = data.curve(&fig, critical);
+        data.curve(&fig, start)
+            .iter()
+            .any(|&(x, _)| critical.iter().any(|c| c.0 == x && c.1 < top))
+    };
+    below(K_COLLAPSE_AT_START, K_CRIT_OF_MU, k_top)
+        || below(MU_COLLAPSE_AT_START, MU_CRIT_OF_K, mu_top)
+}
+
+/// A collapse curve (x, y) where it parts from the static curve sampled at the same x by more
+/// than 10⁻⁶·(1 + |y|), with the last sample on each side where they meet (so that the
+/// dashed line leaves the static curve where the gap opens); NaN elsewhere. Samples without
+/// a static value at their x count as parted.
+fn parted(collapse: &[(f64, f64)], critical: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    let apart: Vec<bool> = collapse
+        .iter()
+        .map(|&(x, y)| {
+            critical
+                .iter()
+                .find(|c| c.0 == x)
+                .is_none_or(|c| !c.1.is_finite() || (y - c.1).abs() > 1e-6 * (1.0 + y.abs()))
+        })
+        .collect();
+    let near = |i: usize| {
+        apart[i] || (i > 0 && apart[i - 1]) || apart.get(i + 1).copied().unwrap_or(false)
+    };
+    (collapse.iter().enumerate())
+        .map(|(i, &(x, y))| if near(i) { (x, y) } else { (x, f64::NAN) })
         .collect()
 }
 
@@ -454,4 +500,37 @@ fn line_crossing(a: ((f64, f64), (f64, f64)), b: ((f64, f64), (f64, f64))) -> Op
     }
     let u = ((b.0.0 - a.0.0) * s.1 - (b.0.1 - a.0.1) * s.0) / den;
     Some((a.0.0 + u * r.0, a.0.1 + u * r.1))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parted;
+
+    #[test]
+    fn a_collapse_curve_is_kept_where_it_parts_from_the_static_curve_and_one_sample_beyond() {
+        let critical = [
+            (1.0, 1.0),
+            (2.0, 1.0),
+            (3.0, 1.0),
+            (4.0, 1.0),
+            (5.0, 1.0),
+            (6.0, 1.0),
+        ];
+        // Equal at 1, 2, 5 and 6 (within 10⁻⁶), apart at 3 and 4.
+        let collapse = [
+            (1.0, 1.0),
+            (2.0, 1.0),
+            (3.0, 1.5),
+            (4.0, 1.7),
+            (5.0, 1.0 + 1e-9),
+            (6.0, 1.0),
+        ];
+        let p = parted(&collapse, &critical);
+        let kept: Vec<bool> = p.iter().map(|q| q.1.is_finite()).collect();
+        assert_eq!(kept, [false, true, true, true, true, false]);
+        assert_eq!(p[2], (3.0, 1.5));
+        assert!(p.iter().zip(&collapse).all(|(a, b)| a.0 == b.0));
+        // A collapse equal to the static curve everywhere draws nothing.
+        assert!(parted(&critical, &critical).iter().all(|q| q.1.is_nan()));
+    }
 }
