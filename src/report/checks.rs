@@ -68,13 +68,9 @@ impl Table<'_> {
     ) -> Result<(), TableError> {
         let mut accepted: Option<&str> = None;
         for (i, n) in names.enumerate() {
-            let Some(n) = n else { continue };
-            if accepted == Some(n) {
-                continue;
-            }
-            if known(n) {
-                accepted = Some(n);
-            } else {
+            if let Some(n) = n
+                && !memo_known(&mut accepted, n, &known)
+            {
                 return Err(self.err(
                     column,
                     Some(i),
@@ -158,24 +154,47 @@ fn memo_known<'r>(last: &mut Option<&'r str>, name: &'r str, known: impl Fn(&str
 
 /// Whether one row of results.parquet passes every check of [`check_result_rows`].
 fn row_is_sound<'r>(r: &'r ResultRow, id: u64, names: &mut NameMemo<'r>) -> bool {
-    let within = |v: Option<f64>, ok: fn(f64) -> bool| v.is_none_or(ok);
     let finite = |v: Option<f64>| v.is_none_or(f64::is_finite);
     r.case_id == id
-        && within(r.k, |k| k.is_finite() && k > 1.0)
-        && within(r.t_over_r, |x| x.is_finite() && x > 0.0 && x < 2.0)
-        && within(r.mu, |m| m >= 0.0)
+        && r.k.is_none_or(k_in_domain)
+        && r.t_over_r.is_none_or(t_over_r_in_domain)
+        && r.mu.is_none_or(mu_in_domain)
         && finite(r.k_crit)
         && finite(r.mu_crit)
         && finite(r.thrust_r_min)
         && finite(r.load_factor)
-        && memo_known(&mut names.find, &r.find, |s| Find::parse(s).is_some())
+        && memo_known(&mut names.find, &r.find, is_find)
         && r.regime
             .as_deref()
             .is_none_or(|g| memo_known(&mut names.regime, g, is_regime))
         && r.outcome
             .as_deref()
-            .is_none_or(|o| memo_known(&mut names.outcome, o, |s| Outcome::parse(s).is_some()))
-        && (&*r.status == "ok" || &*r.status == "error")
+            .is_none_or(|o| memo_known(&mut names.outcome, o, is_outcome))
+        && is_status(&r.status)
+}
+
+fn k_in_domain(k: f64) -> bool {
+    k.is_finite() && k > 1.0
+}
+
+fn t_over_r_in_domain(x: f64) -> bool {
+    x.is_finite() && x > 0.0 && x < 2.0
+}
+
+fn mu_in_domain(m: f64) -> bool {
+    m >= 0.0
+}
+
+fn is_find(s: &str) -> bool {
+    Find::parse(s).is_some()
+}
+
+fn is_outcome(s: &str) -> bool {
+    Outcome::parse(s).is_some()
+}
+
+fn is_status(s: &str) -> bool {
+    s == "ok" || s == "error"
 }
 
 /// The first fault of a block that [`row_is_sound`] refused, column by column.
@@ -188,22 +207,17 @@ fn locate_row_fault(file: &Path, offset: usize, rows: &[ResultRow]) -> Result<()
     {
         return Err(t.err("case_id", Some(i), "case ids are not 0, 1, 2, … in order"));
     }
-    t.values(
-        "k",
-        rows.iter().map(|r| r.k),
-        |k| k.is_finite() && k > 1.0,
-        "a finite K > 1",
-    )?;
+    t.values("k", rows.iter().map(|r| r.k), k_in_domain, "a finite K > 1")?;
     t.values(
         "t_over_r",
         rows.iter().map(|r| r.t_over_r),
-        |x| x.is_finite() && x > 0.0 && x < 2.0,
+        t_over_r_in_domain,
         "a t/R_c in (0, 2)",
     )?;
     t.values(
         "mu",
         rows.iter().map(|r| r.mu),
-        |m| m >= 0.0,
+        mu_in_domain,
         "μ ≥ 0 or inf",
     )?;
     let finite = |x: f64| x.is_finite();
@@ -215,20 +229,18 @@ fn locate_row_fault(file: &Path, offset: usize, rows: &[ResultRow]) -> Result<()
     ] {
         t.values(column, rows.iter().map(get), finite, "a finite number")?;
     }
-    t.names("find", rows.iter().map(|r| Some(&*r.find)), |s| {
-        Find::parse(s).is_some()
-    })?;
+    t.names("find", rows.iter().map(|r| Some(&*r.find)), is_find)?;
     t.names(
         "regime",
         rows.iter().map(|r| r.regime.as_deref()),
         is_regime,
     )?;
-    t.names("outcome", rows.iter().map(|r| r.outcome.as_deref()), |s| {
-        Outcome::parse(s).is_some()
-    })?;
-    t.names("status", rows.iter().map(|r| Some(&*r.status)), |s| {
-        s == "ok" || s == "error"
-    })
+    t.names(
+        "outcome",
+        rows.iter().map(|r| r.outcome.as_deref()),
+        is_outcome,
+    )?;
+    t.names("status", rows.iter().map(|r| Some(&*r.status)), is_status)
 }
 
 fn check_boundaries(file: &Path, data: &RunData) -> Result<(), TableError> {

@@ -425,7 +425,7 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
     let lattice = lattice_of(layout);
     let file = layout.results();
     super::checks::check_result_count(&file, store::parquet_rows(&file)?, info.cases.total)?;
-    // Blocks are decoded, checked and counted on all cores, then joined in order.
+    // Blocks are decoded, checked and counted two at a time, then joined in order.
     let blocks = store::par_read_results_in_blocks(
         &file,
         super::reduce::READ_BLOCK_ROWS,

@@ -124,7 +124,6 @@ pub struct ResultTotals {
 impl ResultTotals {
     /// Adds a block of rows.
     pub fn add(&mut self, rows: &[ResultRow]) {
-        self.rows += rows.len() as u64;
         // Counted under borrowed keys first: a block holds few distinct outcomes, finds and
         // load cases, and a million rows should not make a million strings.
         let mut outcomes: HashMap<(bool, Option<&str>, Option<&str>), usize> = HashMap::new();
@@ -151,6 +150,10 @@ impl ResultTotals {
                 *m = m.max(k);
             }
         }
+        let mut block = ResultTotals {
+            rows: rows.len() as u64,
+            ..ResultTotals::default()
+        };
         for ((ok, regime, outcome), n) in outcomes {
             let key = if !ok {
                 "failed".to_string()
@@ -161,18 +164,15 @@ impl ResultTotals {
             } else {
                 "ok".to_string()
             };
-            *self.by_outcome.entry(key).or_default() += n;
+            *block.by_outcome.entry(key).or_default() += n;
         }
-        for ((v, find), t) in times {
-            self.solve_times
-                .entry((v, Arc::from(find)))
-                .or_default()
-                .extend(t);
-        }
-        for (lc, k) in k_max {
-            let m = self.k_max.entry(lc.to_string()).or_insert(k);
-            *m = m.max(k);
-        }
+        block.solve_times = (times.into_iter())
+            .map(|((v, find), t)| ((v, Arc::from(find)), t))
+            .collect();
+        block.k_max = (k_max.into_iter())
+            .map(|(lc, k)| (lc.to_string(), k))
+            .collect();
+        self.merge(block);
     }
 }
 

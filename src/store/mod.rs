@@ -418,13 +418,10 @@ pub fn par_read_parquet_in_blocks<D: Send, T: Send>(
     each: impl Fn(usize, D) -> Result<T> + Sync,
 ) -> Result<Vec<T>> {
     use rayon::prelude::*;
-    let rows = parquet_rows(path)?;
     let block = block.max(1);
-    let offsets: Vec<usize> = if rows == 0 {
-        vec![0]
-    } else {
-        (0..rows).step_by(block).collect()
-    };
+    let rows = parquet_rows(path)?;
+    // A file without rows gives one empty block, as in `read_parquet_in_blocks`.
+    let offsets: Vec<usize> = (0..rows.max(1)).step_by(block).collect();
     let mut out = Vec::with_capacity(offsets.len());
     for pair in offsets.chunks(2) {
         let answers = pair

@@ -21,13 +21,12 @@ pub(super) fn initial<G: ArchGeometry + ?Sized>(geom: &G, settings: &Settings) -
 
 /// `n` of the joints `all` (increasing), evenly spaced by index, the first and last among them.
 fn evenly_spaced(all: &[f64], n: usize) -> Vec<f64> {
-    let Some(last) = all.len().checked_sub(1) else {
-        return Vec::new();
-    };
-    let n = n.clamp(2, all.len());
-    let mut out: Vec<f64> = (0..n).map(|k| all[k * last / (n - 1)]).collect();
-    out.dedup();
-    out
+    if all.len() <= n.max(2) {
+        return all.to_vec();
+    }
+    // At most one pick per joint: the indices k·last/(n − 1) increase strictly when n ≤ len.
+    let (n, last) = (n.max(2), all.len() - 1);
+    (0..n).map(|k| all[k * last / (n - 1)]).collect()
 }
 
 /// True when an exchange has grown the walked joints beyond [`Settings::max_walk_joints`].
