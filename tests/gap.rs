@@ -1002,3 +1002,103 @@ fn many_voussoirs_searched_on_some_of_their_joints_agree_with_the_walk_over_ever
     assert_eq!((load_factors, frictions), (10, 4), "too few scenes drawn");
     assert!(gaps > 0, "no scene with a gap among those drawn");
 }
+
+/// A friction path goes straight to the steepest resultant of its first polytope (above it no
+/// Coulomb row can be tight, so every polytope is the first): on random scenes of every form,
+/// joint kind and load, continuum and voussoirs, it finds exactly what the scan of every step
+/// from μ = 10³ finds, and walks fewer polytopes doing so.
+#[test]
+fn a_friction_path_that_skips_the_steps_where_nothing_slides_finds_what_every_step_finds() {
+    let every_step = Settings {
+        friction_skip_margin: f64::INFINITY,
+        ..Settings::DEFAULT
+    };
+    let mut draw = Draw(20261204);
+    let (mut compared, mut found, mut fewer, mut tries) = (0, 0, 0, 0);
+    while compared < 16 && tries < 300 {
+        tries += 1;
+        let (n, pointed, vertical, half, k) = draw_arch(&mut draw);
+        let n = if draw.next() < 0.3 { 2 * n + 3 } else { n };
+        let continuum = draw.next() < 0.3;
+        let Some(Drawn {
+            load,
+            e,
+            form: f,
+            model: m,
+        }) = draw_scene(&mut draw, n, (pointed, vertical, half, k))
+        else {
+            continue;
+        };
+        let (joints, m) = if continuum {
+            let arch = Arch::new(k, half, WeightModel::Annular, Discretisation::Continuum)
+                .expect("an arch");
+            let Ok(c) = ArchModel::new(arch, f, load) else {
+                continue;
+            };
+            (Discretisation::Continuum, c)
+        } else {
+            (Discretisation::Voussoirs(n), m)
+        };
+        let self_weight = draw.next() < 0.3;
+        let lambda = if self_weight {
+            0.0
+        } else {
+            let Some(l_inf) = solve(Case {
+                find: Find::LoadFactor,
+                k,
+                half,
+                joints,
+                form: f,
+                mu: f64::INFINITY,
+                load,
+            })
+            .load_factor
+            .filter(|l| l.is_finite()) else {
+                continue;
+            };
+            draw.range(0.2, 0.9) * l_inf
+        };
+        let route = solve_at(
+            Case {
+                find: Find::Friction,
+                k,
+                half,
+                joints,
+                form: f,
+                mu: 0.0,
+                load,
+            },
+            lambda,
+        );
+        let Some(mu_static) = route.mu_crit else {
+            continue;
+        };
+        let skipping = gap::first_complete_friction(&m, lambda, mu_static, &Settings::DEFAULT);
+        let stepping = gap::first_complete_friction(&m, lambda, mu_static, &every_step);
+        let show = |s: &gap::GapSearch| (s.status, s.first.as_ref().map(|c| c.value), s.vertices);
+        let what = format!(
+            "{joints:?}, pointed {pointed} (e = {e}), vertical {vertical}, α = {half}, K = {k}, \
+             {load:?}, λ = {lambda}, μ_crit {mu_static}: skipping {:?}, every step {:?}",
+            show(&skipping),
+            show(&stepping)
+        );
+        assert_eq!(skipping.status, stepping.status, "{what}");
+        match (&skipping.first, &stepping.first) {
+            (Some(a), Some(b)) => {
+                assert!(
+                    (a.value - b.value).abs() <= 1e-12 * (1.0 + b.value),
+                    "{what}"
+                );
+                found += 1;
+            }
+            (None, None) => {}
+            _ => panic!("{what}"),
+        }
+        assert!(skipping.vertices <= stepping.vertices, "{what}");
+        fewer += usize::from(skipping.vertices < stepping.vertices);
+        compared += 1;
+    }
+    assert_eq!(compared, 16, "too few scenes drawn");
+    assert!(found >= 8, "only {found} scenes with a complete solution");
+    assert!(fewer >= 8, "only {fewer} scenes skipped any step");
+}

@@ -431,6 +431,10 @@ pub struct GapSettings {
     /// A complete state solved on the continuum holds its rows to this, relative to
     /// 1 + |y|∞ (default 1e-13).
     pub tol_refine: f64,
+    /// A friction path skips its steps down to this far (radians of atan μ) above the
+    /// steepest resultant of its first polytope's vertices: above that angle no Coulomb row
+    /// can be tight and every polytope is the first one (default 1e-6).
+    pub friction_skip_margin: f64,
 }
 
 impl GapSettings {
@@ -458,6 +462,7 @@ impl GapSettings {
         tol_event: 1e-2,
         tol_refine: 1e-13,
         end_offset: 1e-10,
+        friction_skip_margin: 1e-6,
     };
 }
 

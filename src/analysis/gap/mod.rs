@@ -267,10 +267,9 @@ pub fn first_complete_friction<G: ArchGeometry + Copy>(
     let end = mu_static.atan();
     let (found, visited) = path::first_complete(
         &at,
-        start,
-        end,
-        settings.phi_step_deg.to_radians(),
+        (start, end, settings.phi_step_deg.to_radians()),
         lambda,
+        true,
         settings,
     );
     path::search_result(found, f64::tan, mu_static, start, visited, settings)
@@ -290,10 +289,9 @@ pub fn first_complete_thickness<G: ArchGeometry + Copy>(
     let at = |k: f64| make(k).map(|g| (g, phi));
     let (found, visited) = path::first_complete(
         &at,
-        k_start.max(k_static),
-        k_static,
-        settings.k_step,
+        (k_start.max(k_static), k_static, settings.k_step),
         lambda,
+        false,
         settings,
     );
     path::search_result(found, |k| k, k_static, k_start, visited, settings)

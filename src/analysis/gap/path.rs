@@ -103,6 +103,9 @@ pub(super) struct Walker<'a, G> {
     pub(super) thetas: Joints<'a>,
     pub(super) lambda: f64,
     pub(super) settings: &'a Settings,
+    /// True on a friction path: the geometry is fixed and only the Coulomb rows move with p,
+    /// so each polytope holds the next.
+    pub(super) friction: bool,
 }
 
 /// A complete solution found on the path: where, its state, the moving joints and the
@@ -381,6 +384,53 @@ impl<G: ArchGeometry> Walker<'_, G> {
         })
     }
 
+    /// The index of the last step of a friction path (steps `start` to `end` in `n`) whose
+    /// polytope is still `cur`'s: above the steepest resultant of `cur`'s vertices, no Coulomb
+    /// row can be tight, so smaller μ leave the polytope as it is and no complete solution
+    /// appears. Resultants are taken on the joints walked, as the walk takes them.
+    fn skip_to(&self, cur: &(G, Slice), start: f64, end: f64, n: usize) -> usize {
+        let (geom, s) = cur;
+        let mut steepest = f64::NEG_INFINITY;
+        for v in s.vertices.values() {
+            let tol =
+                self.settings.tol_tight * (1.0 + v.y.iter().fold(0.0_f64, |m, c| m.max(c.abs())));
+            for kind in &s.rows.kind {
+                let RowKind::Joint {
+                    joint, condition, ..
+                } = *kind
+                else {
+                    continue;
+                };
+                let sign = match condition {
+                    Condition::SlideOutward => 1.0,
+                    Condition::SlideInward => -1.0,
+                    Condition::Intrados | Condition::Extrados => continue,
+                };
+                let theta = s.rows.thetas[joint];
+                let f = geom
+                    .dead_load(theta)
+                    .plus(geom.live_load(theta).scale(v.y[3]));
+                let force = [v.y[0] + f.fx, v.y[1] + f.fy];
+                let j = geom.joint(theta);
+                let (tau, nu) = (j.along(), j.normal());
+                let t = sign * (tau[0] * force[0] + tau[1] * force[1]);
+                let normal = nu[0] * force[0] + nu[1] * force[1];
+                if normal <= tol {
+                    // A joint that carries (almost) no normal force slides at any μ.
+                    return 0;
+                }
+                steepest = steepest.max((t / normal).atan());
+            }
+        }
+        let floor = steepest + self.settings.friction_skip_margin;
+        if !(floor < start) || end >= start {
+            return 0;
+        }
+        // p_i = start + (end − start)·i/n decreases with i; the last i with p_i ≥ floor.
+        let last = ((start - floor) / (start - end) * n as f64).floor();
+        (last.max(0.0) as usize).min(n - 1)
+    }
+
     /// One scan of the path on fixed joints, from `start` past `end` until the polytope is
     /// empty: the first complete solution and the vertices seen.
     fn scan(&self, start: f64, end: f64, step: f64) -> Scan {
@@ -414,6 +464,7 @@ impl<G: ArchGeometry> Walker<'_, G> {
             if let Some(v) = cur.1.vertices.values().next() {
                 last = Some((p, v.y));
             }
+            let fresh = prev.is_none();
             let found = match &prev {
                 Some(pr) => self.advance(pr, &cur),
                 None => self.complete_in(&cur.0, &cur.1),
@@ -424,6 +475,16 @@ impl<G: ArchGeometry> Walker<'_, G> {
                     visited,
                     last,
                 };
+            }
+            if fresh && self.friction && i < n {
+                // Down to the steepest resultant of this polytope's vertices every polytope is
+                // this one: the path goes on from the last step above it as from a start.
+                let skip_to = self.skip_to(&cur, start, end, n);
+                if skip_to > i {
+                    i = skip_to;
+                    prev = None;
+                    continue;
+                }
             }
             if beyond && (cur.1.vertices.is_empty() || i > n + self.settings.max_steps_beyond) {
                 break;
@@ -440,17 +501,23 @@ impl<G: ArchGeometry> Walker<'_, G> {
 
 /// The first complete solution along the path from `start` to `end` (the static limit), at
 /// load factor `lambda`, scanned at steps no longer than `step`: the path parameter and the
-/// solution, and the vertices visited.
+/// solution, and the vertices visited. `friction` says that p is the friction angle of one
+/// fixed geometry.
 pub(super) fn first_complete<G: ArchGeometry + Copy>(
     at: SceneAt<'_, G>,
-    start: f64,
-    end: f64,
-    step: f64,
+    (start, end, step): (f64, f64, f64),
     lambda: f64,
+    friction: bool,
     settings: &Settings,
 ) -> (Option<(f64, Complete)>, usize) {
     let slices = std::cell::Cell::new(0);
-    let out = first_complete_counted(at, (start, end, step), lambda, settings, &slices);
+    let out = first_complete_counted(
+        at,
+        (start, end, step),
+        (lambda, friction),
+        settings,
+        &slices,
+    );
     if slices.get() > settings.max_slices {
         // Out of budget: no answer rather than a partial one.
         return (None, usize::MAX);
@@ -461,7 +528,7 @@ pub(super) fn first_complete<G: ArchGeometry + Copy>(
 fn first_complete_counted<G: ArchGeometry + Copy>(
     at: SceneAt<'_, G>,
     (start, end, step): (f64, f64, f64),
-    lambda: f64,
+    (lambda, friction): (f64, bool),
     settings: &Settings,
     slices: &std::cell::Cell<usize>,
 ) -> (Option<(f64, Complete)>, usize) {
@@ -478,6 +545,7 @@ fn first_complete_counted<G: ArchGeometry + Copy>(
             thetas: thetas.as_deref(),
             lambda,
             settings,
+            friction,
         };
         let scan = walker.scan(start, end, step);
         visited += scan.visited;
