@@ -1,8 +1,10 @@
 //! The search for the first complete solution beside the static find it follows
 //! (`cargo bench --bench gap`): the load factor of twelve voussoirs and of the continuum under a
-//! horizontal load, and the friction and thickness paths of the semicircle under self-weight
-//! and of five voussoirs with vertical joints. Each pair compares the static limit alone with
-//! the search that `archstudy solve` adds to it.
+//! horizontal load (a gap) and of twelve voussoirs of the semicircle under a point load (none),
+//! and the friction and thickness paths of the semicircle under self-weight and of five
+//! voussoirs with vertical joints. Each pair compares the static limit alone with the search
+//! that `archstudy solve` adds to it; the friction and thickness searches are timed without the
+//! static find that gives them the end of their path.
 
 use archstudy::analysis::forms::ArchModel;
 use archstudy::analysis::gap::{self, Settings};
@@ -66,6 +68,34 @@ fn load_factor_first_complete_continuum() -> Option<f64> {
         .map(|c| c.value)
 }
 
+/// Twelve voussoirs of a semicircle (K = 1.5) under a point load at 45° from the crown: the
+/// paper's form, no gap.
+fn point_load_scene() -> ArchModel {
+    model(
+        1.5,
+        90.0,
+        Discretisation::Voussoirs(12),
+        ArchForm::default(),
+        Load::point(45.0),
+    )
+}
+
+/// λ_max of twelve voussoirs under a point load (the static limit alone).
+#[divan::bench]
+fn load_factor_static_point_load() -> f64 {
+    let m = point_load_scene();
+    general::load_factor(black_box(&m), 0.6_f64.atan(), &general::Settings::default()).lambda
+}
+
+/// The first complete λ of twelve voussoirs under a point load (no gap).
+#[divan::bench]
+fn load_factor_first_complete_point_load() -> Option<f64> {
+    let m = point_load_scene();
+    gap::first_complete_load_factor(black_box(&m), 0.6_f64.atan(), &Settings::DEFAULT)
+        .first
+        .map(|c| c.value)
+}
+
 fn semicircle(k: f64) -> Arch {
     Arch::new(k, 90.0, WeightModel::Annular, Discretisation::Continuum).expect("an arch")
 }
@@ -78,9 +108,9 @@ fn friction_static_semicircle() -> Option<f64> {
         .map(|s| s.mu)
 }
 
-/// The first complete μ of the semicircle at K = 1.3.
+/// The first complete μ of the semicircle at K = 1.3 (its static limit found beforehand).
 #[divan::bench]
-fn friction_first_complete_semicircle() -> Option<f64> {
+fn friction_first_complete_semicircle(bencher: divan::Bencher) {
     let m = model(
         1.3,
         90.0,
@@ -90,10 +120,13 @@ fn friction_first_complete_semicircle() -> Option<f64> {
     );
     let mu_c = symmetric::friction(&semicircle(1.3))
         .found()
-        .map(|s| s.mu)?;
-    gap::first_complete_friction(black_box(&m), 0.0, mu_c, &Settings::DEFAULT)
-        .first
-        .map(|c| c.value)
+        .map(|s| s.mu)
+        .expect("a critical friction");
+    bencher.bench(|| {
+        gap::first_complete_friction(black_box(&m), 0.0, mu_c, &Settings::DEFAULT)
+            .first
+            .map(|c| c.value)
+    });
 }
 
 /// K_c of the semicircle at μ = 0.6 by its closed forms (the static limit alone).
@@ -105,24 +138,28 @@ fn thickness_static_semicircle() -> Option<f64> {
         .map(|s| s.k)
 }
 
-/// The first complete K of the semicircle at μ = 0.6, from K = 3.
+/// The first complete K of the semicircle at μ = 0.6, from K = 3 (its static limit found
+/// beforehand).
 #[divan::bench]
-fn thickness_first_complete_semicircle() -> Option<f64> {
+fn thickness_first_complete_semicircle(bencher: divan::Bencher) {
     let f = Friction::new(0.6).expect("μ ≥ 0");
     let k_c = symmetric::thickness(&semicircle(1.3), f)
         .found()
-        .map(|s| s.k)?;
+        .map(|s| s.k)
+        .expect("a critical thickness");
     let make = |k: f64| ArchModel::new(semicircle(k), ArchForm::default(), Load::SelfWeight).ok();
-    gap::first_complete_thickness(
-        black_box(&make),
-        f.angle(),
-        0.0,
-        k_c,
-        3.0,
-        &Settings::DEFAULT,
-    )
-    .first
-    .map(|c| c.value)
+    bencher.bench(|| {
+        gap::first_complete_thickness(
+            black_box(&make),
+            f.angle(),
+            0.0,
+            k_c,
+            3.0,
+            &Settings::DEFAULT,
+        )
+        .first
+        .map(|c| c.value)
+    });
 }
 
 fn vertical() -> ArchForm {
@@ -148,9 +185,10 @@ fn friction_static_vertical_joints() -> Option<f64> {
         .map(|s| s.mu)
 }
 
-/// The first complete μ of five voussoirs with vertical joints (the crown part drops).
+/// The first complete μ of five voussoirs with vertical joints (the crown part drops; its
+/// static limit found beforehand).
 #[divan::bench]
-fn friction_first_complete_vertical_joints() -> Option<f64> {
+fn friction_first_complete_vertical_joints(bencher: divan::Bencher) {
     let m = model(
         1.3,
         90.0,
@@ -160,8 +198,11 @@ fn friction_first_complete_vertical_joints() -> Option<f64> {
     );
     let mu_c = general::friction(&m, &general::Settings::default())
         .found()
-        .map(|s| s.mu)?;
-    gap::first_complete_friction(black_box(&m), 0.0, mu_c, &Settings::DEFAULT)
-        .first
-        .map(|c| c.value)
+        .map(|s| s.mu)
+        .expect("a critical friction");
+    bencher.bench(|| {
+        gap::first_complete_friction(black_box(&m), 0.0, mu_c, &Settings::DEFAULT)
+            .first
+            .map(|c| c.value)
+    });
 }

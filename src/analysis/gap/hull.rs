@@ -59,6 +59,20 @@ fn affine_minimiser(v: &[[f64; 3]], set: &[usize]) -> Option<Vec<f64>> {
     alpha.iter().all(|a| a.is_finite()).then_some(alpha)
 }
 
+/// True when one of a few directions (each vector's own and their sum) has a component
+/// larger than `dist` along every vector of `v`: then every point of their hull, and so its
+/// point of smallest norm, lies farther than `dist` from the origin. A cheap test that spares
+/// [`min_norm_point`] on sets that are plainly not positively dependent.
+pub fn farther_than(v: &[[f64; 3]], dist: f64) -> bool {
+    let sum = v
+        .iter()
+        .fold([0.0; 3], |s, a| [s[0] + a[0], s[1] + a[1], s[2] + a[2]]);
+    std::iter::once(&sum).chain(v).any(|d| {
+        let n = norm(d);
+        n > 0.0 && v.iter().all(|a| dot(d, a) > dist * n)
+    })
+}
+
 /// The point of smallest norm in the convex hull of `v` (all finite; empty input gives
 /// `None`). `tol` is the relative tolerance of the optimality test x·v_j ≥ |x|² − tol·max|v|².
 pub fn min_norm_point(v: &[[f64; 3]], tol: f64) -> Option<MinNorm> {
@@ -204,5 +218,39 @@ mod tests {
             }
             assert!(m.weights.iter().all(|w| *w >= 0.0));
         }
+    }
+
+    #[test]
+    fn a_set_said_to_be_farther_than_a_distance_has_its_nearest_point_beyond_it() {
+        let mut seed = 777_u64;
+        let mut rnd = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+        };
+        let (mut said, mut near) = (0, 0);
+        for _ in 0..2000 {
+            let n = 2 + (rnd().abs() * 4.0) as usize;
+            // Shifted along a random direction so that many sets miss the origin.
+            let shift = [rnd(), rnd(), rnd()];
+            let v: Vec<[f64; 3]> = (0..n)
+                .map(|_| [rnd() + shift[0], rnd() + shift[1], rnd() + shift[2]])
+                .collect();
+            let m = min_norm_point(&v, 1e-13).unwrap();
+            for dist in [1e-9, 0.1, 0.3] {
+                if farther_than(&v, dist) {
+                    said += 1;
+                    assert!(m.norm() > dist, "{v:?} {m:?} {dist}");
+                } else if m.norm() <= dist {
+                    near += 1;
+                }
+            }
+        }
+        // The test decides most sets either way.
+        assert!(said > 2000 && near > 200, "{said} {near}");
+        assert!(!farther_than(&[[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]], 1e-12));
+        assert!(farther_than(&[[1.0, 0.0, 1.0], [-1.0, 0.0, 1.0]], 0.99));
+        assert!(!farther_than(&[[1.0, 0.0, 1.0], [-1.0, 0.0, 1.0]], 1.01));
     }
 }

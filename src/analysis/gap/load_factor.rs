@@ -63,15 +63,12 @@ fn pass<G: ArchGeometry + ?Sized>(
         .collect();
     let vertices =
         walk::vertices(&rows.a, &rows.b, &fence, top.x, &limits).map_err(|_| PassError::Failed)?;
-    let mut best: Option<(Vec<JointMove>, [f64; 4])> = None;
-    for v in &vertices {
-        if best.as_ref().is_some_and(|(_, y)| y[3] <= v.y[3]) {
-            continue;
-        }
-        if let Some((moves, _)) = complete_moves(geom, &rows, v, settings) {
-            best = Some((moves, v.y));
-        }
-    }
+    // The lowest complete vertex, the first of the walk's order among equal λ.
+    let mut by_lambda: Vec<&walk::Vertex> = vertices.iter().collect();
+    by_lambda.sort_by(|p, q| p.y[3].total_cmp(&q.y[3]));
+    let best = by_lambda
+        .into_iter()
+        .find_map(|v| complete_moves(geom, &rows, v, settings).map(|(moves, _)| (moves, v.y)));
     Ok(Pass {
         best,
         top: top.x[3],

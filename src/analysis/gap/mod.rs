@@ -166,6 +166,10 @@ fn moves_of(
     if twists.len() < 2 {
         return None;
     }
+    let vectors: Vec<[f64; 3]> = twists.iter().map(|t| t.0).collect();
+    if hull::farther_than(&vectors, settings.tol_complete) {
+        return None;
+    }
     let mut pairs: Vec<(usize, usize)> = Vec::new();
     for i in 0..twists.len() {
         for j in i + 1..twists.len() {

@@ -318,8 +318,9 @@ impl<G: ArchGeometry> Walker<'_, G> {
                 // The four twists must be positively dependent where the rows meet; they move
                 // with p on a thickness path, so a loose test at the later step first.
                 let four = [key_twists[0], key_twists[1], key_twists[2], t];
-                if super::hull::min_norm_point(&four, self.settings.tol_hull)
-                    .is_none_or(|m| m.norm() > self.settings.tol_event)
+                if super::hull::farther_than(&four, self.settings.tol_event)
+                    || super::hull::min_norm_point(&four, self.settings.tol_hull)
+                        .is_none_or(|m| m.norm() > self.settings.tol_event)
                 {
                     continue;
                 }

@@ -114,7 +114,10 @@ pub(super) fn vertices<const D: usize>(
     let mut queue = VecDeque::from([first]);
     let mut out = Vec::new();
     let mut first_vertex = true;
-    let mut scratch = vec![false; a.len()];
+    let mut scratch = Scratch {
+        tight: vec![false; a.len()],
+        slack: vec![0.0; a.len()],
+    };
     while let Some(v) = queue.pop_front() {
         let fenced = v.tight.iter().any(|&r| fence[r]);
         if fenced && !std::mem::take(&mut first_vertex) {
@@ -123,7 +126,8 @@ pub(super) fn vertices<const D: usize>(
         }
         first_vertex = false;
         for next in neighbours(a, b, &v, limits, &mut scratch) {
-            if seen.insert(next.tight.clone()) {
+            if !seen.contains(&next.tight) {
+                seen.insert(next.tight.clone());
                 if seen.len() > limits.max_vertices {
                     return Err(WalkError::TooManyVertices);
                 }
@@ -135,19 +139,29 @@ pub(super) fn vertices<const D: usize>(
     Ok(out)
 }
 
-/// The far ends of the edges leaving `v`; `tight` is scratch space of one flag per row.
+/// Space of one flag and one slack per row, reused from vertex to vertex.
+struct Scratch {
+    tight: Vec<bool>,
+    slack: Vec<f64>,
+}
+
+/// The far ends of the edges leaving `v`.
 fn neighbours<const D: usize>(
     a: &[[f64; D]],
     b: &[f64],
     v: &Vertex<D>,
     limits: &WalkLimits,
-    tight: &mut [bool],
+    scratch: &mut Scratch,
 ) -> Vec<Vertex<D>> {
     let t = &v.tight[..v.tight.len().min(limits.max_tight)];
     let scale = 1.0 + v.y.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
     let tol_dir = 1e-10;
+    let Scratch { tight, slack } = scratch;
     for &r in &v.tight {
         tight[r] = true;
+    }
+    for ((s, row), br) in slack.iter_mut().zip(a).zip(b) {
+        *s = br - dot(row, &v.y);
     }
     let mut out = Vec::new();
     let mut dirs: Vec<[f64; D]> = Vec::new();
@@ -172,7 +186,7 @@ fn neighbours<const D: usize>(
             for (r, row) in a.iter().enumerate() {
                 let rate = dot(row, &d);
                 if rate > tol_dir && !tight[r] {
-                    step = step.min(((b[r] - dot(row, &v.y)) / rate).max(0.0));
+                    step = step.min((slack[r] / rate).max(0.0));
                 }
             }
             if !step.is_finite() || step <= limits.tol_tight * scale {
