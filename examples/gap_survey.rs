@@ -3,7 +3,9 @@
 //! time the search for the first complete solution adds to each find. Its output is recorded
 //! in docs/gap-survey.md.
 //!
-//! `cargo run --release --example gap_survey -- [SCENES] [SEED]` (default 1000 scenes, seed 1).
+//! `cargo run --release --example gap_survey -- [SCENES] [SEED] [CSV]` (default 1000 scenes,
+//! seed 1); with CSV, each find's scene, status, static limit and collapse value are written
+//! there too, one row per find, so that two builds can be compared scene by scene.
 
 use archstudy::analysis::forms::ArchModel;
 use archstudy::analysis::gap::{self, GapStatus, Settings};
@@ -13,6 +15,7 @@ use archstudy::model::{
 };
 use archstudy::scene::{self, Find, Scene, Solution};
 use std::collections::BTreeMap;
+use std::io::Write;
 use std::time::Instant;
 
 /// A small pseudo-random generator: the same scenes on every machine.
@@ -146,6 +149,8 @@ struct Tally {
     none: usize,
     static_us: Vec<f64>,
     gap_us: Vec<f64>,
+    /// Each find's added time over its own static time.
+    ratio: Vec<f64>,
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -159,18 +164,19 @@ fn median(v: &mut [f64]) -> f64 {
 /// One table of tallies, a row per group.
 fn print_tallies<'a>(head: &str, rows: impl Iterator<Item = (String, &'a mut Tally)>) {
     println!(
-        "| {head} | finds | with a gap | no complete solution | median µs today | median µs added |"
+        "| {head} | finds | with a gap | no complete solution | median µs today | median µs added | median added/today |"
     );
-    println!("|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|");
     for (name, t) in rows {
         println!(
-            "| {name} | {} | {} ({:.0} %) | {} | {:.0} | {:.0} |",
+            "| {name} | {} | {} ({:.0} %) | {} | {:.0} | {:.0} | {:.1} |",
             t.finds,
             t.gaps,
             100.0 * t.gaps as f64 / t.finds as f64,
             t.none,
             median(&mut t.static_us),
-            median(&mut t.gap_us)
+            median(&mut t.gap_us),
+            median(&mut t.ratio)
         );
     }
 }
@@ -179,6 +185,12 @@ fn main() {
     let mut args = std::env::args().skip(1);
     let n: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(1000);
     let seed: u64 = args.next().and_then(|a| a.parse().ok()).unwrap_or(1);
+    let mut csv = args.next().map(|path| {
+        let mut out = std::io::BufWriter::new(std::fs::File::create(&path).expect("a CSV file"));
+        writeln!(out, "find,form_and_load,k,mu,half_angle_deg,lambda,voussoirs,status,static_limit,collapse")
+            .expect("writable");
+        out
+    });
     let mut d = Draw(seed);
     let mut by_class: BTreeMap<String, Tally> = BTreeMap::new();
     let mut by_find: BTreeMap<&str, Tally> = BTreeMap::new();
@@ -195,6 +207,23 @@ fn main() {
             continue;
         };
         with_limit += 1;
+        if let Some(out) = csv.as_mut() {
+            writeln!(
+                out,
+                "{},\"{}\",{:?},{:?},{:?},{:?},{},{},{:?},{:?}",
+                scene.find.as_str(),
+                class(&scene),
+                scene.arch.k,
+                scene.friction.mu(),
+                scene.arch.half_angle_deg(),
+                scene.lambda,
+                s.voussoirs.map_or(String::new(), |v| v.to_string()),
+                status.as_str(),
+                s.load_factor.or(s.k_crit).or(s.mu_crit).unwrap_or(f64::INFINITY),
+                s.collapse_value.unwrap_or(f64::NAN),
+            )
+            .expect("writable");
+        }
         let t_gap = gap_time(&scene, &s).unwrap_or(0.0);
         for t in [
             by_class.entry(class(&scene)).or_default(),
@@ -203,8 +232,12 @@ fn main() {
             t.finds += 1;
             t.gaps += usize::from(status == GapStatus::Gap);
             t.none += usize::from(status == GapStatus::NoCompleteSolution);
-            t.static_us.push((s.solve_time_us - t_gap).max(0.0));
+            let today = (s.solve_time_us - t_gap).max(0.0);
+            t.static_us.push(today);
             t.gap_us.push(t_gap);
+            if today > 0.0 {
+                t.ratio.push(t_gap / today);
+            }
         }
         if status == GapStatus::Gap {
             let limit = s
