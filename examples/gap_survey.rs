@@ -187,8 +187,11 @@ fn main() {
     let seed: u64 = args.next().and_then(|a| a.parse().ok()).unwrap_or(1);
     let mut csv = args.next().map(|path| {
         let mut out = std::io::BufWriter::new(std::fs::File::create(&path).expect("a CSV file"));
-        writeln!(out, "find,form_and_load,k,mu,half_angle_deg,lambda,voussoirs,status,static_limit,collapse")
-            .expect("writable");
+        writeln!(
+            out,
+            "find,form_and_load,k,mu,half_angle_deg,lambda,voussoirs,status,static_limit,collapse"
+        )
+        .expect("writable");
         out
     });
     let mut d = Draw(seed);
@@ -219,7 +222,10 @@ fn main() {
                 scene.lambda,
                 s.voussoirs.map_or(String::new(), |v| v.to_string()),
                 status.as_str(),
-                s.load_factor.or(s.k_crit).or(s.mu_crit).unwrap_or(f64::INFINITY),
+                s.load_factor
+                    .or(s.k_crit)
+                    .or(s.mu_crit)
+                    .unwrap_or(f64::INFINITY),
                 s.collapse_value.unwrap_or(f64::NAN),
             )
             .expect("writable");
