@@ -100,6 +100,15 @@ fn semicircle(k: f64) -> Arch {
     Arch::new(k, 90.0, WeightModel::Annular, Discretisation::Continuum).expect("an arch")
 }
 
+/// Times the first complete μ of `m` under self-weight, its static limit `mu_c` given.
+fn bench_friction(bencher: divan::Bencher, m: &ArchModel, mu_c: f64) {
+    bencher.bench(|| {
+        gap::first_complete_friction(black_box(m), 0.0, mu_c, &Settings::DEFAULT)
+            .first
+            .map(|c| c.value)
+    });
+}
+
 /// μ_c of the semicircle at K = 1.3 by its closed forms (the static limit alone).
 #[divan::bench]
 fn friction_static_semicircle() -> Option<f64> {
@@ -122,11 +131,7 @@ fn friction_first_complete_semicircle(bencher: divan::Bencher) {
         .found()
         .map(|s| s.mu)
         .expect("a critical friction");
-    bencher.bench(|| {
-        gap::first_complete_friction(black_box(&m), 0.0, mu_c, &Settings::DEFAULT)
-            .first
-            .map(|c| c.value)
-    });
+    bench_friction(bencher, &m, mu_c);
 }
 
 /// K_c of the semicircle at μ = 0.6 by its closed forms (the static limit alone).
@@ -200,9 +205,5 @@ fn friction_first_complete_vertical_joints(bencher: divan::Bencher) {
         .found()
         .map(|s| s.mu)
         .expect("a critical friction");
-    bencher.bench(|| {
-        gap::first_complete_friction(black_box(&m), 0.0, mu_c, &Settings::DEFAULT)
-            .first
-            .map(|c| c.value)
-    });
+    bench_friction(bencher, &m, mu_c);
 }

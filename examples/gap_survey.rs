@@ -126,6 +126,14 @@ fn gap_time(scene: &Scene, s: &Solution) -> Option<f64> {
     Some(start.elapsed().as_secs_f64() * 1e6)
 }
 
+/// The static limit of a find: λ_max (∞ when unbounded), K_c or μ_c.
+fn static_limit(s: &Solution) -> f64 {
+    s.load_factor
+        .or(s.k_crit)
+        .or(s.mu_crit)
+        .unwrap_or(f64::INFINITY)
+}
+
 fn class(scene: &Scene) -> String {
     let shape = match scene.form.shape {
         Shape::Circular => "circular",
@@ -222,10 +230,7 @@ fn main() {
                 scene.lambda,
                 s.voussoirs.map_or(String::new(), |v| v.to_string()),
                 status.as_str(),
-                s.load_factor
-                    .or(s.k_crit)
-                    .or(s.mu_crit)
-                    .unwrap_or(f64::INFINITY),
+                static_limit(&s),
                 s.collapse_value.unwrap_or(f64::NAN),
             )
             .expect("writable");
@@ -246,11 +251,7 @@ fn main() {
             }
         }
         if status == GapStatus::Gap {
-            let limit = s
-                .load_factor
-                .or(s.k_crit)
-                .or(s.mu_crit)
-                .unwrap_or(f64::INFINITY);
+            let limit = static_limit(&s);
             let v = s.collapse_value.unwrap_or(f64::NAN);
             let rel = (v - limit).abs() / limit.abs();
             widest.push((
