@@ -391,6 +391,10 @@ impl<G: ArchGeometry> Walker<'_, G> {
     /// appears. Resultants are taken on the joints walked, as the walk takes them.
     fn skip_to(&self, cur: &(G, Slice), start: f64, end: f64, n: usize) -> usize {
         let (geom, s) = cur;
+        if s.vertices.is_empty() {
+            // Nothing stands, or the programme failed: nothing to go on from.
+            return 0;
+        }
         let mut steepest = f64::NEG_INFINITY;
         for v in s.vertices.values() {
             let tol =
