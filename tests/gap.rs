@@ -481,32 +481,11 @@ fn the_first_complete_friction_is_the_first_at_which_a_candidate_mechanism_moves
             continue;
         };
         // A load factor the arch carries at μ = ∞, so that the path has a static limit.
-        let Some(l_inf) = solve(Case {
-            find: Find::LoadFactor,
-            k,
-            half,
-            joints: Discretisation::Voussoirs(n),
-            form: f,
-            mu: f64::INFINITY,
-            load,
-        })
-        .load_factor
-        else {
+        let scene = (k, half, Discretisation::Voussoirs(n), f, load);
+        let Some(lambda) = drawn_load(&mut draw, scene) else {
             continue;
         };
-        let lambda = draw.range(0.2, 0.9) * l_inf;
-        let route = solve_at(
-            Case {
-                find: Find::Friction,
-                k,
-                half,
-                joints: Discretisation::Voussoirs(n),
-                form: f,
-                mu: 0.0,
-                load,
-            },
-            lambda,
-        );
+        let route = friction_route(scene, lambda);
         let Some(mu_static) = route.mu_crit else {
             continue;
         };
@@ -551,6 +530,41 @@ struct Case {
     form: ArchForm,
     mu: f64,
     load: Load,
+}
+
+/// K, the half-angle, the joints, the form and the load of a scene.
+type SceneOf = (f64, f64, Discretisation, ArchForm, Load);
+
+/// A load factor drawn between 0.2 and 0.9 of the one the scene carries at μ = ∞, so that a
+/// friction find there has a static limit; `None` when it has none.
+fn drawn_load(draw: &mut Draw, (k, half, joints, form, load): SceneOf) -> Option<f64> {
+    let l_inf = solve(Case {
+        find: Find::LoadFactor,
+        k,
+        half,
+        joints,
+        form,
+        mu: f64::INFINITY,
+        load,
+    })
+    .load_factor?;
+    Some(draw.range(0.2, 0.9) * l_inf)
+}
+
+/// The friction find of the scene at load factor λ.
+fn friction_route((k, half, joints, form, load): SceneOf, lambda: f64) -> Solution {
+    solve_at(
+        Case {
+            find: Find::Friction,
+            k,
+            half,
+            joints,
+            form,
+            mu: 0.0,
+            load,
+        },
+        lambda,
+    )
 }
 
 fn solve(c: Case) -> Solution {
@@ -979,18 +993,7 @@ fn many_voussoirs_searched_on_some_of_their_joints_agree_with_the_walk_over_ever
                 .filter(|l| l.is_finite())
         {
             let lambda = 0.5 * l;
-            let route = solve_at(
-                Case {
-                    find: Find::Friction,
-                    k,
-                    half,
-                    joints: Discretisation::Voussoirs(n),
-                    form: f,
-                    mu: 0.0,
-                    load,
-                },
-                lambda,
-            );
+            let route = friction_route((k, half, Discretisation::Voussoirs(n), f, load), lambda);
             if let Some(mu_static) = route.mu_crit {
                 let some = gap::first_complete_friction(&m, lambda, mu_static, &Settings::DEFAULT);
                 let all = gap::first_complete_friction(&m, lambda, mu_static, &every);
@@ -1039,37 +1042,17 @@ fn a_friction_path_that_skips_the_steps_where_nothing_slides_finds_what_every_st
         } else {
             (Discretisation::Voussoirs(n), m)
         };
+        let scene = (k, half, joints, f, load);
         let self_weight = draw.next() < 0.3;
         let lambda = if self_weight {
             0.0
         } else {
-            let Some(l_inf) = solve(Case {
-                find: Find::LoadFactor,
-                k,
-                half,
-                joints,
-                form: f,
-                mu: f64::INFINITY,
-                load,
-            })
-            .load_factor
-            .filter(|l| l.is_finite()) else {
+            let Some(l) = drawn_load(&mut draw, scene).filter(|l| l.is_finite()) else {
                 continue;
             };
-            draw.range(0.2, 0.9) * l_inf
+            l
         };
-        let route = solve_at(
-            Case {
-                find: Find::Friction,
-                k,
-                half,
-                joints,
-                form: f,
-                mu: 0.0,
-                load,
-            },
-            lambda,
-        );
+        let route = friction_route(scene, lambda);
         let Some(mu_static) = route.mu_crit else {
             continue;
         };

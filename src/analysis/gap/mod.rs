@@ -273,7 +273,7 @@ pub fn first_complete_friction<G: ArchGeometry + Copy>(
         &at,
         (start, end, settings.phi_step_deg.to_radians()),
         lambda,
-        true,
+        path::Path::Friction,
         settings,
     );
     path::search_result(found, f64::tan, mu_static, start, visited, settings)
@@ -295,7 +295,7 @@ pub fn first_complete_thickness<G: ArchGeometry + Copy>(
         &at,
         (k_start.max(k_static), k_static, settings.k_step),
         lambda,
-        false,
+        path::Path::Thickness,
         settings,
     );
     path::search_result(found, |k| k, k_static, k_start, visited, settings)

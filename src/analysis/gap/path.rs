@@ -103,9 +103,18 @@ pub(super) struct Walker<'a, G> {
     pub(super) thetas: Joints<'a>,
     pub(super) lambda: f64,
     pub(super) settings: &'a Settings,
-    /// True on a friction path: the geometry is fixed and only the Coulomb rows move with p,
-    /// so each polytope holds the next.
-    pub(super) friction: bool,
+    /// What the path's parameter is.
+    pub(super) path: Path,
+}
+
+/// What a path's parameter p is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Path {
+    /// The friction angle of one fixed geometry: only the Coulomb rows move with p, so each
+    /// polytope holds the next.
+    Friction,
+    /// The thickness ratio K: every row moves with p.
+    Thickness,
 }
 
 /// A complete solution found on the path: where, its state, the moving joints and the
@@ -395,29 +404,38 @@ impl<G: ArchGeometry> Walker<'_, G> {
             // Nothing stands, or the programme failed: nothing to go on from.
             return 0;
         }
-        let mut steepest = f64::NEG_INFINITY;
-        for v in s.vertices.values() {
-            let tol =
-                self.settings.tol_tight * (1.0 + v.y.iter().fold(0.0_f64, |m, c| m.max(c.abs())));
-            for kind in &s.rows.kind {
+        // Each slip row once: its sense, the joint's directions and the force the loads put
+        // on it at the path's λ (every vertex of a slice has that λ).
+        let slips: Vec<_> = s
+            .rows
+            .kind
+            .iter()
+            .filter_map(|kind| {
                 let RowKind::Joint {
                     joint, condition, ..
                 } = *kind
                 else {
-                    continue;
+                    return None;
                 };
                 let sign = match condition {
                     Condition::SlideOutward => 1.0,
                     Condition::SlideInward => -1.0,
-                    Condition::Intrados | Condition::Extrados => continue,
+                    Condition::Intrados | Condition::Extrados => return None,
                 };
                 let theta = s.rows.thetas[joint];
-                let f = geom
+                let c = geom
                     .dead_load(theta)
-                    .plus(geom.live_load(theta).scale(v.y[3]));
-                let force = [v.y[0] + f.fx, v.y[1] + f.fy];
+                    .plus(geom.live_load(theta).scale(self.lambda));
                 let j = geom.joint(theta);
-                let (tau, nu) = (j.along(), j.normal());
+                Some((sign, j.along(), j.normal(), [c.fx, c.fy]))
+            })
+            .collect();
+        let mut steepest = f64::NEG_INFINITY;
+        for v in s.vertices.values() {
+            let tol =
+                self.settings.tol_tight * (1.0 + v.y.iter().fold(0.0_f64, |m, c| m.max(c.abs())));
+            for (sign, tau, nu, c) in &slips {
+                let force = [v.y[0] + c[0], v.y[1] + c[1]];
                 let t = sign * (tau[0] * force[0] + tau[1] * force[1]);
                 let normal = nu[0] * force[0] + nu[1] * force[1];
                 if normal <= tol {
@@ -481,7 +499,7 @@ impl<G: ArchGeometry> Walker<'_, G> {
                     last,
                 };
             }
-            if fresh && self.friction && i < n {
+            if fresh && self.path == Path::Friction && i < n {
                 // Down to the steepest resultant of this polytope's vertices every polytope is
                 // this one: the path goes on from the last step above it as from a start.
                 let skip_to = self.skip_to(&cur, start, end, n);
@@ -506,23 +524,16 @@ impl<G: ArchGeometry> Walker<'_, G> {
 
 /// The first complete solution along the path from `start` to `end` (the static limit), at
 /// load factor `lambda`, scanned at steps no longer than `step`: the path parameter and the
-/// solution, and the vertices visited. `friction` says that p is the friction angle of one
-/// fixed geometry.
+/// solution, and the vertices visited.
 pub(super) fn first_complete<G: ArchGeometry + Copy>(
     at: SceneAt<'_, G>,
     (start, end, step): (f64, f64, f64),
     lambda: f64,
-    friction: bool,
+    path: Path,
     settings: &Settings,
 ) -> (Option<(f64, Complete)>, usize) {
     let slices = std::cell::Cell::new(0);
-    let out = first_complete_counted(
-        at,
-        (start, end, step),
-        (lambda, friction),
-        settings,
-        &slices,
-    );
+    let out = first_complete_counted(at, (start, end, step), (lambda, path), settings, &slices);
     if slices.get() > settings.max_slices {
         // Out of budget: no answer rather than a partial one.
         return (None, usize::MAX);
@@ -533,7 +544,7 @@ pub(super) fn first_complete<G: ArchGeometry + Copy>(
 fn first_complete_counted<G: ArchGeometry + Copy>(
     at: SceneAt<'_, G>,
     (start, end, step): (f64, f64, f64),
-    (lambda, friction): (f64, bool),
+    (lambda, path): (f64, Path),
     settings: &Settings,
     slices: &std::cell::Cell<usize>,
 ) -> (Option<(f64, Complete)>, usize) {
@@ -550,7 +561,7 @@ fn first_complete_counted<G: ArchGeometry + Copy>(
             thetas: thetas.as_deref(),
             lambda,
             settings,
-            friction,
+            path,
         };
         let scan = walker.scan(start, end, step);
         visited += scan.visited;
