@@ -286,36 +286,42 @@ pub fn par_read_results_in_blocks<T: Send>(
 /// came from in errors.
 pub fn results_of_frame(df: &polars::prelude::DataFrame, path: &Path) -> Result<Vec<ResultRow>> {
     let cx = || format!("in {}", path.display());
-    // An answer column the study's finds do not fill is not stored: all null.
+    // An answer column the study's finds do not fill is not stored: all null, and held as
+    // nothing rather than as a vector of nulls.
     let absent = |name: &str| df.column(name).is_err() && filled_by(name).is_some();
-    let f = |name: &str| {
+    let f = |name: &str| -> Result<Nullable<f64>> {
         if absent(name) {
-            return Ok(vec![None; df.height()]);
+            return Ok(Nullable(None));
         }
-        f64_column(df, name).with_context(cx)
+        Ok(Nullable(Some(f64_column(df, name).with_context(cx)?)))
     };
-    let s = |name: &str| {
+    let s = |name: &str| -> Result<Nullable<Arc<str>>> {
         if absent(name) {
-            return Ok(vec![None; df.height()]);
+            return Ok(Nullable(None));
         }
-        shared_str_column(df, name).with_context(cx)
+        Ok(Nullable(Some(
+            shared_str_column(df, name).with_context(cx)?,
+        )))
+    };
+    let req = |name: &str| match s(name)?.0 {
+        Some(v) => required(v, name, path),
+        None => anyhow::bail!("{}: column `{name}` is missing", path.display()),
     };
     let case_id = u64_column(df, "case_id").with_context(cx)?;
-    let load_case = required(s("load_case")?, "load_case", path)?;
-    let find = required(s("find")?, "find", path)?;
+    let (load_case, find) = (req("load_case")?, req("find")?);
     let (k, t_over_r, mu) = (f("k")?, f("t_over_r")?, f("mu")?);
     let voussoirs = f("voussoirs")?;
     let (mut outcome, mut regime) = (s("outcome")?, s("regime")?);
     let rmin = f("thrust_r_min")?;
     let (k_crit, mu_crit) = (f("k_crit")?, f("mu_crit")?);
-    let windows = window_lists(df, f("k_windows_scanned_to")?).with_context(cx)?;
+    let mut windows = window_lists(df, f("k_windows_scanned_to")?).with_context(cx)?;
     let tmin = f("thrust_min")?;
     let (kcr, murm) = (f("k_c_rotational")?, f("mu_rotational_mixed")?);
     let (mumin, kms) = (f("mu_min")?, f("k_mixed_sliding")?);
     let load_factor = f("load_factor")?;
     let mut gap = s("gap")?;
     let (collapse, width) = (f("collapse_value")?, f("gap_width")?);
-    let status = required(s("status")?, "status", path)?;
+    let status = req("status")?;
     let time = f("solve_time_us")?;
     let mut out = Vec::with_capacity(case_id.len());
     for (i, &case_id) in case_id.iter().enumerate() {
@@ -323,37 +329,57 @@ pub fn results_of_frame(df: &polars::prelude::DataFrame, path: &Path) -> Result<
             case_id,
             load_case: load_case[i].clone(),
             find: find[i].clone(),
-            k: k[i],
-            t_over_r: t_over_r[i],
-            mu: mu[i],
-            voussoirs: voussoirs[i].map(|v| v as u32),
-            outcome: outcome[i].take(),
-            regime: regime[i].take(),
-            thrust_r_min: rmin[i],
-            k_crit: k_crit[i],
-            k_windows: windows.get(i).cloned().unwrap_or_default(),
-            mu_crit: mu_crit[i],
-            thrust_min: tmin[i],
-            k_c_rotational: kcr[i],
-            mu_rotational_mixed: murm[i],
-            mu_min: mumin[i],
-            k_mixed_sliding: kms[i],
-            load_factor: load_factor[i],
-            gap: gap[i].take(),
-            collapse_value: collapse[i],
-            gap_width: width[i],
+            k: k.at(i),
+            t_over_r: t_over_r.at(i),
+            mu: mu.at(i),
+            voussoirs: voussoirs.at(i).map(|v| v as u32),
+            outcome: outcome.take(i),
+            regime: regime.take(i),
+            thrust_r_min: rmin.at(i),
+            k_crit: k_crit.at(i),
+            k_windows: windows.get_mut(i).map(std::mem::take).unwrap_or_default(),
+            mu_crit: mu_crit.at(i),
+            thrust_min: tmin.at(i),
+            k_c_rotational: kcr.at(i),
+            mu_rotational_mixed: murm.at(i),
+            mu_min: mumin.at(i),
+            k_mixed_sliding: kms.at(i),
+            load_factor: load_factor.at(i),
+            gap: gap.take(i),
+            collapse_value: collapse.at(i),
+            gap_width: width.at(i),
             status: status[i].clone(),
-            solve_time_us: time[i].unwrap_or(f64::NAN),
+            solve_time_us: time.at(i).unwrap_or(f64::NAN),
         });
     }
     Ok(out)
+}
+
+/// A nullable column read back: its values, or `None` when the table does not store it (a
+/// column the study's finds do not fill), where every row is null.
+struct Nullable<T>(Option<Vec<Option<T>>>);
+
+impl<T: Copy> Nullable<T> {
+    /// The value of row `i` (null past the end or when the column is not stored).
+    fn at(&self, i: usize) -> Option<T> {
+        self.0.as_ref().and_then(|v| v.get(i).copied().flatten())
+    }
+}
+
+impl<T> Nullable<T> {
+    /// Moves the value of row `i` out (null past the end or when the column is not stored).
+    fn take(&mut self, i: usize) -> Option<T> {
+        self.0
+            .as_mut()
+            .and_then(|v| v.get_mut(i).and_then(Option::take))
+    }
 }
 
 /// The windows of K of each row ([`super::cases::windows`]); empty lists where the table has
 /// no window columns (a study without thickness finds).
 fn window_lists(
     df: &polars::prelude::DataFrame,
-    scanned_to: Vec<Option<f64>>,
+    scanned_to: Nullable<f64>,
 ) -> Result<Vec<Vec<Span>>> {
     if df.column("k_windows_from").is_err() {
         return Ok(Vec::new());
@@ -362,8 +388,8 @@ fn window_lists(
     let to = list_f64_column(df, "k_windows_to")?;
     from.iter()
         .zip(&to)
-        .zip(scanned_to)
-        .map(|((a, b), end)| super::cases::windows(a, b, end))
+        .enumerate()
+        .map(|(i, (a, b))| super::cases::windows(a, b, scanned_to.at(i)))
         .collect()
 }
 
