@@ -148,9 +148,19 @@ pub fn run(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
 /// Analyses every case of a plan, in plan order, advancing the current stage by one per
 /// case; the caller begins and ends the stage (a shard spans one stage over its chunks).
 pub fn analyse(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
+    let mut out = Vec::new();
+    analyse_into(plan, progress, &mut out);
+    out
+}
+
+/// [`analyse`] into `out`, whose rows are replaced: a run analysing chunk after chunk keeps
+/// one buffer, so that each chunk's rows are written into memory already in use rather than
+/// into fresh pages the kernel must clear (a chunk of a state map is some 150 MB of rows).
+pub fn analyse_into(plan: &Plan, progress: &dyn Progress, out: &mut Vec<CaseResult>) {
+    out.clear();
     match GridPath::of(plan) {
-        GridPath::Separable => run_separable(&plan.cases, plan.manifest.arch.weight, progress),
-        GridPath::KLines => run_lines(plan, progress),
+        GridPath::Separable => run_separable(&plan.cases, plan.manifest.arch.weight, progress, out),
+        GridPath::KLines => out.extend(run_lines(plan, progress)),
         GridPath::CaseByCase => {
             // A sample asks whether the arch stands, or for its static limit: the search for
             // the first complete solution beyond it (the gap) is not made.
@@ -159,21 +169,9 @@ pub fn analyse(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
             } else {
                 scene::solve
             };
-            case_by_case(&plan.cases, progress, solve)
+            out.par_extend(plan.cases.par_iter().map(|c| case_row(c, progress, solve)));
         }
     }
-}
-
-/// Every case on its own; once `progress` asks to stop, the cases not begun are skipped.
-fn case_by_case(
-    cases: &[Case],
-    progress: &dyn Progress,
-    solve: fn(&Scene) -> Solution,
-) -> Vec<CaseResult> {
-    cases
-        .par_iter()
-        .map(|c| case_row(c, progress, solve))
-        .collect()
 }
 
 /// One case solved on its own (skipped once `progress` asked to stop).
@@ -430,15 +428,16 @@ fn run_separable(
     cases: &[Case],
     weight: crate::model::WeightModel,
     progress: &dyn Progress,
-) -> Vec<CaseResult> {
+    out: &mut Vec<CaseResult>,
+) {
     let domains = SeparableDomains::solve(cases.iter().map(|c| &c.scene), weight);
-    let results: Vec<CaseResult> = cases
-        .par_iter()
-        .enumerate()
-        .map(|(n, c)| domains.row(c, n, progress))
-        .collect();
-    debug_assert!(results.iter().all(|r| r.solution.find == Find::State));
-    results
+    out.par_extend(
+        cases
+            .par_iter()
+            .enumerate()
+            .map(|(n, c)| domains.row(c, n, progress)),
+    );
+    debug_assert!(out.iter().all(|r| r.solution.find == Find::State));
 }
 
 /// True when every case is a symmetric self-weight `state` query on a form other than the

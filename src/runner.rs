@@ -423,17 +423,20 @@ pub(crate) fn analyse_in_chunks(
     };
     // One progress stage over all chunks, so the bar and the rate do not restart.
     progress.begin(Stage::Analyse, Some(ids.end - ids.start));
+    // One buffer of rows for every chunk: its pages are cleared by the kernel once.
+    let mut rows: Vec<CaseResult> = Vec::new();
     for start in starts {
         let plan = plan::build_slice(m.clone(), start..(start + chunk).min(ids.end));
         let t = Instant::now();
-        let rows: Vec<CaseResult> = pool.install(|| engine::analyse(&plan, progress));
+        pool.install(|| engine::analyse_into(&plan, progress, &mut rows));
         if progress.stopped() {
             return Err(crate::progress::Stopped.into());
         }
         out.engine_ms += ms(t);
         let t = Instant::now();
         out.written.push(&plan, &rows, pool)?;
-        drop(rows);
+        // The rows' own allocations (hinges, messages) are freed; the buffer is kept.
+        rows.clear();
         memory::release_freed_memory();
         out.store_ms += ms(t);
     }

@@ -425,27 +425,23 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
     let lattice = lattice_of(layout);
     let file = layout.results();
     super::checks::check_result_count(&file, store::parquet_rows(&file)?, info.cases.total)?;
-    // Blocks are decoded, checked and counted two at a time, then joined in order.
-    let blocks = store::par_read_results_in_blocks(
-        &file,
-        super::reduce::READ_BLOCK_ROWS,
-        |offset, block| {
-            super::checks::check_result_rows(&file, offset, &block)?;
-            let mut totals = super::reduce::ResultTotals::default();
-            totals.add(&block);
-            let kept: Vec<_> = block
-                .into_iter()
-                .filter(|r| lattice.keeps(r.case_id))
-                .collect();
-            Ok((totals, kept))
-        },
-    )?;
-    let mut results = Vec::with_capacity(blocks.iter().map(|(_, kept)| kept.len()).sum());
+    // Each block's rows are built in place at the end of `results` (in parallel), checked
+    // and counted there, then cut down to those of the figure lattice: the kept rows are
+    // written once, into pages that the next block reuses when a row is dropped.
+    let rows = store::parquet_rows(&file)?;
+    let block_rows = super::reduce::READ_BLOCK_ROWS;
+    let mut results = Vec::with_capacity(lattice.kept().min(rows) + rows.min(block_rows));
     let mut totals = super::reduce::ResultTotals::default();
-    for (t, kept) in blocks {
-        totals.merge(t);
-        results.extend(kept);
-    }
+    store::append_results_in_blocks(&file, block_rows, &mut results, |offset, rows, start| {
+        let block = &rows[start..];
+        let (checked, ()) = rayon::join(
+            || super::checks::check_result_rows(&file, offset, block),
+            || totals.add(block),
+        );
+        checked?;
+        keep_from(rows, start, |r| lattice.keeps(r.case_id));
+        Ok(())
+    })?;
     totals.finish();
     let (load_factors, load_factor_singled) = if manifest.sampling.is_none()
         && manifest
@@ -506,6 +502,19 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
     };
     super::checks::check_tables(&layout.dir, &data)?;
     Ok(data)
+}
+
+/// Keeps, of the rows from `start` on, those `keep` accepts, in order (the rows before
+/// `start` are left as they are).
+fn keep_from<T>(rows: &mut Vec<T>, start: usize, keep: impl Fn(&T) -> bool) {
+    let mut kept = start;
+    for i in start..rows.len() {
+        if keep(&rows[i]) {
+            rows.swap(kept, i);
+            kept += 1;
+        }
+    }
+    rows.truncate(kept);
 }
 
 impl RunData {
@@ -604,4 +613,21 @@ fn read_samples(layout: &RunLayout, m: &ManifestView, s: &SamplingView) -> Resul
         }
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::keep_from;
+
+    #[test]
+    fn rows_are_cut_back_to_those_kept_from_the_start_of_a_block_on() {
+        let mut rows: Vec<u32> = (0..10).collect();
+        // The rows before the block stay whatever `keep` says of them.
+        keep_from(&mut rows, 3, |r| r % 2 == 0);
+        assert_eq!(rows, [0, 1, 2, 4, 6, 8]);
+        keep_from(&mut rows, 6, |_| false);
+        assert_eq!(rows, [0, 1, 2, 4, 6, 8]);
+        keep_from(&mut rows, 0, |&r| r > 3);
+        assert_eq!(rows, [4, 6, 8]);
+    }
 }

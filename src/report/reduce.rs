@@ -79,6 +79,26 @@ impl FigureLattice {
             .any(|(_, _, axes)| axes.iter().any(|&(_, s)| s > 1))
     }
 
+    /// The number of cases the figures show, of the plan's (a bound on the rows kept of a
+    /// run's results, which hold no other cases).
+    pub fn kept(&self) -> usize {
+        if self.none {
+            return 0;
+        }
+        let kept: u64 = (self.load_cases.iter())
+            .map(|(_, _, axes)| {
+                (axes.iter())
+                    .map(|&(n, step)| match n {
+                        0 => 0,
+                        // Every step-th position, and the last.
+                        _ => (n - 1) / step + 1 + u64::from((n - 1) % step != 0),
+                    })
+                    .product::<u64>()
+            })
+            .sum();
+        usize::try_from(kept).unwrap_or(usize::MAX)
+    }
+
     /// Whether the figures show case `id` (every case when nothing is reduced).
     pub fn keeps(&self, id: u64) -> bool {
         if self.none {
@@ -237,5 +257,16 @@ mod tests {
         let l = FigureLattice::of(&manifest(2001));
         let kept = (0..2001u64 * 2001).filter(|&id| l.keeps(id)).count();
         assert_eq!(kept, 1001 * 1001);
+    }
+
+    #[test]
+    fn the_count_of_kept_cases_is_that_of_the_cases_kept() {
+        // 1500 values keep every second one (750) and the last, an odd one out.
+        for steps in [7, 1001, 1500, 2001] {
+            let l = FigureLattice::of(&manifest(steps));
+            let kept = (0..steps * steps).filter(|&id| l.keeps(id)).count();
+            assert_eq!(l.kept(), kept, "{steps} values an axis");
+        }
+        assert_eq!(FigureLattice::of(&manifest(1500)).kept(), 751 * 751);
     }
 }

@@ -22,10 +22,10 @@ pub const LATTICE_CASES: u64 = 1001 * 1001;
 
 /// Memory per case of the figure lattice and of the chunk being analysed, in bytes: the
 /// engine's rows and their table, and the figure data of the lattice. Measured: a 1001²
-/// state map peaks at 612 MB, a 1001² load-factor map at 1.00 GB (measured when the report
-/// decoded one block of results.parquet at a time; two at a time added 30 to 55 MB to the
-/// state map); 670 bytes a lattice case and [`PROGRAM_BYTES`] give the 768 MiB besides the
-/// cases that both leave room in.
+/// state map peaks at 612 MB, a 1001² load-factor map at 1.00 GB (since the engine keeps one
+/// buffer of rows for all chunks and the report builds the rows it keeps in place, one
+/// block of results.parquet at a time, the state map peaks at 539 MB); 670 bytes a lattice
+/// case and [`PROGRAM_BYTES`] give the 768 MiB besides the cases that both leave room in.
 pub const LATTICE_BYTES_PER_CASE: u64 = 670;
 
 /// Memory of a run per case when a load case finds a load factor, in bytes: the figure data

@@ -24,9 +24,9 @@ pub use figures::{
 };
 pub use results::{BLOCK_ROWS, filled_by, results_frame, scenes_frame};
 pub use rows::{
-    BifurcationRow, BoundaryRow, JointLists, ResultRow, bifurcations_of_frame, boundaries_of_frame,
-    par_read_results_in_blocks, read_bifurcations, read_boundaries, read_results,
-    read_results_in_blocks, read_results_rows, results_of_frame,
+    BifurcationRow, BoundaryRow, JointLists, ResultRow, append_results_in_blocks,
+    bifurcations_of_frame, boundaries_of_frame, extend_results_of_frame, read_bifurcations,
+    read_boundaries, read_results, read_results_in_blocks, read_results_rows, results_of_frame,
 };
 pub use schema::column_doc;
 pub use table::{
@@ -403,37 +403,6 @@ pub fn read_parquet_in_blocks(
             return Ok(());
         }
     }
-}
-
-/// Reads the named columns of a Parquet file in blocks of `block` rows, as
-/// [`read_parquet_in_blocks`], but decodes and maps two blocks at a time on two cores (the
-/// memory of a read does not grow with the cores): `decode` turns a block's frame into what
-/// `each` takes (the frame is dropped before `each` runs), `each` is given the first row of the
-/// block and that, and its answers come back in the blocks' order.
-pub fn par_read_parquet_in_blocks<D: Send, T: Send>(
-    path: &Path,
-    columns: &[&str],
-    block: usize,
-    decode: impl Fn(&DataFrame) -> Result<D> + Sync,
-    each: impl Fn(usize, D) -> Result<T> + Sync,
-) -> Result<Vec<T>> {
-    use rayon::prelude::*;
-    let block = block.max(1);
-    let rows = parquet_rows(path)?;
-    // A file without rows gives one empty block, as in `read_parquet_in_blocks`.
-    let offsets: Vec<usize> = (0..rows.max(1)).step_by(block).collect();
-    let mut out = Vec::with_capacity(offsets.len());
-    for pair in offsets.chunks(2) {
-        let answers = pair
-            .par_iter()
-            .map(|&offset| {
-                let decoded = decode(&read_parquet_rows(path, columns, Some((offset, block)))?)?;
-                each(offset, decoded)
-            })
-            .collect::<Result<Vec<T>>>()?;
-        out.extend(answers);
-    }
-    Ok(out)
 }
 
 /// Rewrites one value of a float column of a Parquet file in place (atomically), leaving

@@ -265,26 +265,41 @@ pub fn read_results_in_blocks(
     })
 }
 
-/// The result rows of a results file in blocks of `block` rows, two blocks decoded at a time
-/// ([`super::par_read_parquet_in_blocks`]): `each` is given the first row of a block and its
-/// rows, and its answers come back in order.
-pub fn par_read_results_in_blocks<T: Send>(
+/// Reads results.parquet (the columns of [`ResultRow`] only) `block` rows at a time, in
+/// order, appending each block's rows to `out` ([`extend_results_of_frame`]) and handing
+/// `each` the index of the block's first row in the file, `out` and the index of the block's
+/// first row there: a reader that keeps some rows of every block cuts `out` back to them, and
+/// the rows it keeps are written once.
+pub fn append_results_in_blocks(
     path: &Path,
     block: usize,
-    each: impl Fn(usize, Vec<ResultRow>) -> Result<T> + Sync,
-) -> Result<Vec<T>> {
-    super::par_read_parquet_in_blocks(
-        path,
-        &RESULT_ROW_COLUMNS,
-        block,
-        |df| results_of_frame(df, path),
-        each,
-    )
+    out: &mut Vec<ResultRow>,
+    mut each: impl FnMut(usize, &mut Vec<ResultRow>, usize) -> Result<()>,
+) -> Result<()> {
+    super::read_parquet_in_blocks(path, &RESULT_ROW_COLUMNS, block, |offset, df| {
+        let start = out.len();
+        extend_results_of_frame(df, path, out)?;
+        each(offset, out, start)
+    })
 }
 
 /// The result rows of a results frame (its columns of [`ResultRow`]); `path` names where it
 /// came from in errors.
 pub fn results_of_frame(df: &polars::prelude::DataFrame, path: &Path) -> Result<Vec<ResultRow>> {
+    let mut out = Vec::new();
+    extend_results_of_frame(df, path, &mut out)?;
+    Ok(out)
+}
+
+/// Appends the result rows of a results frame to `out`, built in parallel (on the current
+/// rayon pool) in place: a reader that keeps the rows of many blocks writes them once, into
+/// one vector, rather than into a vector per block and then again into the whole.
+pub fn extend_results_of_frame(
+    df: &polars::prelude::DataFrame,
+    path: &Path,
+    out: &mut Vec<ResultRow>,
+) -> Result<()> {
+    use rayon::prelude::*;
     let cx = || format!("in {}", path.display());
     // An answer column the study's finds do not fill is not stored: all null, and held as
     // nothing rather than as a vector of nulls.
@@ -311,48 +326,50 @@ pub fn results_of_frame(df: &polars::prelude::DataFrame, path: &Path) -> Result<
     let (load_case, find) = (req("load_case")?, req("find")?);
     let (k, t_over_r, mu) = (f("k")?, f("t_over_r")?, f("mu")?);
     let voussoirs = f("voussoirs")?;
-    let (mut outcome, mut regime) = (s("outcome")?, s("regime")?);
+    let (outcome, regime) = (s("outcome")?, s("regime")?);
     let rmin = f("thrust_r_min")?;
     let (k_crit, mu_crit) = (f("k_crit")?, f("mu_crit")?);
-    let mut windows = window_lists(df, f("k_windows_scanned_to")?).with_context(cx)?;
+    let windows = window_lists(df, f("k_windows_scanned_to")?).with_context(cx)?;
     let tmin = f("thrust_min")?;
     let (kcr, murm) = (f("k_c_rotational")?, f("mu_rotational_mixed")?);
     let (mumin, kms) = (f("mu_min")?, f("k_mixed_sliding")?);
     let load_factor = f("load_factor")?;
-    let mut gap = s("gap")?;
+    let gap = s("gap")?;
     let (collapse, width) = (f("collapse_value")?, f("gap_width")?);
     let status = req("status")?;
     let time = f("solve_time_us")?;
-    let mut out = Vec::with_capacity(case_id.len());
-    for (i, &case_id) in case_id.iter().enumerate() {
-        out.push(ResultRow {
-            case_id,
-            load_case: load_case[i].clone(),
-            find: find[i].clone(),
-            k: k.at(i),
-            t_over_r: t_over_r.at(i),
-            mu: mu.at(i),
-            voussoirs: voussoirs.at(i).map(|v| v as u32),
-            outcome: outcome.take(i),
-            regime: regime.take(i),
-            thrust_r_min: rmin.at(i),
-            k_crit: k_crit.at(i),
-            k_windows: windows.get_mut(i).map(std::mem::take).unwrap_or_default(),
-            mu_crit: mu_crit.at(i),
-            thrust_min: tmin.at(i),
-            k_c_rotational: kcr.at(i),
-            mu_rotational_mixed: murm.at(i),
-            mu_min: mumin.at(i),
-            k_mixed_sliding: kms.at(i),
-            load_factor: load_factor.at(i),
-            gap: gap.take(i),
-            collapse_value: collapse.at(i),
-            gap_width: width.at(i),
-            status: status[i].clone(),
-            solve_time_us: time.at(i).unwrap_or(f64::NAN),
-        });
-    }
-    Ok(out)
+    out.par_extend(
+        case_id
+            .par_iter()
+            .enumerate()
+            .map(|(i, &case_id)| ResultRow {
+                case_id,
+                load_case: load_case[i].clone(),
+                find: find[i].clone(),
+                k: k.at(i),
+                t_over_r: t_over_r.at(i),
+                mu: mu.at(i),
+                voussoirs: voussoirs.at(i).map(|v| v as u32),
+                outcome: outcome.cloned(i),
+                regime: regime.cloned(i),
+                thrust_r_min: rmin.at(i),
+                k_crit: k_crit.at(i),
+                k_windows: windows.get(i).cloned().unwrap_or_default(),
+                mu_crit: mu_crit.at(i),
+                thrust_min: tmin.at(i),
+                k_c_rotational: kcr.at(i),
+                mu_rotational_mixed: murm.at(i),
+                mu_min: mumin.at(i),
+                k_mixed_sliding: kms.at(i),
+                load_factor: load_factor.at(i),
+                gap: gap.cloned(i),
+                collapse_value: collapse.at(i),
+                gap_width: width.at(i),
+                status: status[i].clone(),
+                solve_time_us: time.at(i).unwrap_or(f64::NAN),
+            }),
+    );
+    Ok(())
 }
 
 /// A nullable column read back: its values, or `None` when the table does not store it (a
@@ -366,12 +383,10 @@ impl<T: Copy> Nullable<T> {
     }
 }
 
-impl<T> Nullable<T> {
-    /// Moves the value of row `i` out (null past the end or when the column is not stored).
-    fn take(&mut self, i: usize) -> Option<T> {
-        self.0
-            .as_mut()
-            .and_then(|v| v.get_mut(i).and_then(Option::take))
+impl<T: Clone> Nullable<T> {
+    /// A copy of the value of row `i` (null past the end or when the column is not stored).
+    fn cloned(&self, i: usize) -> Option<T> {
+        self.0.as_ref().and_then(|v| v.get(i).cloned().flatten())
     }
 }
 
