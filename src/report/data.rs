@@ -428,18 +428,18 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
     // Each block's rows are built in place at the end of `results` (in parallel), checked
     // and counted there, then cut down to those of the figure lattice: the kept rows are
     // written once, into pages that the next block reuses when a row is dropped.
-    let rows = store::parquet_rows(&file)?;
+    let stored = store::parquet_rows(&file)?;
     let block_rows = super::reduce::READ_BLOCK_ROWS;
-    let mut results = Vec::with_capacity(lattice.kept().min(rows) + rows.min(block_rows));
+    let mut results = Vec::with_capacity(lattice.kept().min(stored) + stored.min(block_rows));
     let mut totals = super::reduce::ResultTotals::default();
-    store::append_results_in_blocks(&file, block_rows, &mut results, |offset, rows, start| {
-        let block = &rows[start..];
+    store::append_results_in_blocks(&file, block_rows, &mut results, |offset, read, start| {
+        let block = &read[start..];
         let (checked, ()) = rayon::join(
             || super::checks::check_result_rows(&file, offset, block),
             || totals.add(block),
         );
         checked?;
-        keep_from(rows, start, |r| lattice.keeps(r.case_id));
+        keep_from(read, start, |r| lattice.keeps(r.case_id));
         Ok(())
     })?;
     totals.finish();
