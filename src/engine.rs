@@ -160,7 +160,7 @@ pub fn analyse_into(plan: &Plan, progress: &dyn Progress, out: &mut Vec<CaseResu
     out.clear();
     match GridPath::of(plan) {
         GridPath::Separable => run_separable(&plan.cases, plan.manifest.arch.weight, progress, out),
-        GridPath::KLines => out.extend(run_lines(plan, progress)),
+        GridPath::KLines => run_lines(plan, progress, out),
         GridPath::CaseByCase => {
             // A sample asks whether the arch stands, or for its static limit: the search for
             // the first complete solution beyond it (the gap) is not made.
@@ -540,9 +540,9 @@ fn line_results(
         .collect()
 }
 
-/// A symmetric self-weight `state` grid on any form, per K line in parallel; results in plan
-/// order.
-fn run_lines(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
+/// A symmetric self-weight `state` grid on any form, per K line in parallel; results
+/// appended to `out` in plan order.
+fn run_lines(plan: &Plan, progress: &dyn Progress, out: &mut Vec<CaseResult>) {
     let lines = k_lines(plan);
     let per_line: Vec<(Vec<usize>, Vec<CaseResult>)> = lines
         .par_chunks(LINES_PER_TASK)
@@ -563,11 +563,12 @@ fn run_lines(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
             slots[n] = Some(r);
         }
     }
-    slots
-        .into_iter()
-        .zip(&plan.cases)
-        .map(|(r, c)| r.unwrap_or_else(|| checked(c, || scene::solve(&c.scene))))
-        .collect()
+    out.extend(
+        slots
+            .into_iter()
+            .zip(&plan.cases)
+            .map(|(r, c)| r.unwrap_or_else(|| checked(c, || scene::solve(&c.scene)))),
+    );
 }
 
 #[cfg(test)]

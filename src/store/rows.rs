@@ -350,8 +350,8 @@ pub fn extend_results_of_frame(
                 t_over_r: t_over_r.at(i),
                 mu: mu.at(i),
                 voussoirs: voussoirs.at(i).map(|v| v as u32),
-                outcome: outcome.cloned(i),
-                regime: regime.cloned(i),
+                outcome: outcome.at(i),
+                regime: regime.at(i),
                 thrust_r_min: rmin.at(i),
                 k_crit: k_crit.at(i),
                 k_windows: windows.get(i).cloned().unwrap_or_default(),
@@ -362,7 +362,7 @@ pub fn extend_results_of_frame(
                 mu_min: mumin.at(i),
                 k_mixed_sliding: kms.at(i),
                 load_factor: load_factor.at(i),
-                gap: gap.cloned(i),
+                gap: gap.at(i),
                 collapse_value: collapse.at(i),
                 gap_width: width.at(i),
                 status: status[i].clone(),
@@ -376,16 +376,9 @@ pub fn extend_results_of_frame(
 /// column the study's finds do not fill), where every row is null.
 struct Nullable<T>(Option<Vec<Option<T>>>);
 
-impl<T: Copy> Nullable<T> {
+impl<T: Clone> Nullable<T> {
     /// The value of row `i` (null past the end or when the column is not stored).
     fn at(&self, i: usize) -> Option<T> {
-        self.0.as_ref().and_then(|v| v.get(i).copied().flatten())
-    }
-}
-
-impl<T: Clone> Nullable<T> {
-    /// A copy of the value of row `i` (null past the end or when the column is not stored).
-    fn cloned(&self, i: usize) -> Option<T> {
         self.0.as_ref().and_then(|v| v.get(i).cloned().flatten())
     }
 }
