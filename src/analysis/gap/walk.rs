@@ -4,7 +4,7 @@
 //! in the sense that leaves no plane of T, and it ends where the first other row becomes
 //! tight.
 
-use std::collections::{HashSet, VecDeque};
+use rustc_hash::FxHashMap;
 
 /// A vertex and the rows tight at it (within the walk's tolerance), increasing.
 #[derive(Debug, Clone, PartialEq)]
@@ -109,63 +109,101 @@ pub(super) fn vertices<const D: usize>(
         tight: tight_rows(a, b, &start, limits.tol_tight),
         y: start,
     };
-    let mut seen: HashSet<Vec<usize>> = HashSet::new();
-    seen.insert(first.tight.clone());
-    let mut queue = VecDeque::from([first]);
-    let mut out = Vec::new();
-    let mut first_vertex = true;
-    let mut scratch = Scratch {
-        tight: vec![false; a.len()],
-        slack: vec![0.0; a.len()],
-    };
-    while let Some(v) = queue.pop_front() {
-        let fenced = v.tight.iter().any(|&r| fence[r]);
-        if fenced && !std::mem::take(&mut first_vertex) {
-            out.push(v);
-            continue;
-        }
-        first_vertex = false;
-        for next in neighbours(a, b, &v, limits, &mut scratch) {
-            if !seen.contains(&next.tight) {
-                seen.insert(next.tight.clone());
-                if seen.len() > limits.max_vertices {
-                    return Err(WalkError::TooManyVertices);
+    // Tight sets name the vertices; most edges end at a vertex already seen, so a far end's set
+    // is built in scratch space and copied only when it is new. An edge found from one end is
+    // not walked again from the other: each vertex keeps the directions back along the edges
+    // that reached it before it is expanded.
+    let mut seen: FxHashMap<Vec<usize>, usize> = FxHashMap::default();
+    seen.insert(first.tight.clone(), 0);
+    let mut out = vec![first];
+    let mut back: Vec<Vec<[f64; D]>> = vec![Vec::new()];
+    let mut scratch = Scratch::new(a.len());
+    let mut too_many = false;
+    let mut next = 0;
+    while let Some(v) = out.get(next).cloned() {
+        if next == 0 || !v.tight.iter().any(|&r| fence[r]) {
+            let known = std::mem::take(&mut back[next]);
+            neighbours(a, b, &v, limits, &known, &mut scratch, |y, tight, d| {
+                let reverse = d.map(|c| -c);
+                if let Some(&w) = seen.get(tight) {
+                    if w > next {
+                        back[w].push(reverse);
+                    }
+                    return;
                 }
-                queue.push_back(next);
+                if out.len() >= limits.max_vertices {
+                    too_many = true;
+                    return;
+                }
+                seen.insert(tight.to_vec(), out.len());
+                out.push(Vertex {
+                    y,
+                    tight: tight.to_vec(),
+                });
+                back.push(vec![reverse]);
+            });
+            if too_many {
+                return Err(WalkError::TooManyVertices);
             }
         }
-        out.push(v);
+        next += 1;
     }
     Ok(out)
 }
 
-/// Space of one flag and one slack per row, reused from vertex to vertex.
-struct Scratch {
+/// Space reused from vertex to vertex: a flag, a slack and a rate per row, the edge directions
+/// of the current vertex and the tight set of an edge's far end.
+struct Scratch<const D: usize> {
     tight: Vec<bool>,
     slack: Vec<f64>,
+    rate: Vec<f64>,
+    dirs: Vec<[f64; D]>,
+    far: Vec<usize>,
 }
 
-/// The far ends of the edges leaving `v`.
+impl<const D: usize> Scratch<D> {
+    fn new(rows: usize) -> Self {
+        Scratch {
+            tight: vec![false; rows],
+            slack: vec![0.0; rows],
+            rate: vec![0.0; rows],
+            dirs: Vec::new(),
+            far: Vec::new(),
+        }
+    }
+}
+
+/// Calls `found` with the far end of every edge leaving `v` but those along `known`, the rows
+/// tight there (increasing) and the edge's direction. The far end's residual a·y − b of each row is −slack + step·rate, from the
+/// slack at `v` and the row's rate along the edge.
 fn neighbours<const D: usize>(
     a: &[[f64; D]],
     b: &[f64],
     v: &Vertex<D>,
     limits: &WalkLimits,
-    scratch: &mut Scratch,
-) -> Vec<Vertex<D>> {
+    known: &[[f64; D]],
+    scratch: &mut Scratch<D>,
+    mut found: impl FnMut([f64; D], &[usize], [f64; D]),
+) {
     let t = &v.tight[..v.tight.len().min(limits.max_tight)];
     let scale = 1.0 + v.y.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
     let tol_dir = 1e-10;
-    let Scratch { tight, slack } = scratch;
+    let Scratch {
+        tight,
+        slack,
+        rate,
+        dirs,
+        far,
+    } = scratch;
     for &r in &v.tight {
         tight[r] = true;
     }
     for ((s, row), br) in slack.iter_mut().zip(a).zip(b) {
         *s = br - dot(row, &v.y);
     }
-    let mut out = Vec::new();
-    let mut dirs: Vec<[f64; D]> = Vec::new();
-    let mut edge = |d: [f64; D], out: &mut Vec<Vertex<D>>| {
+    dirs.clear();
+    dirs.extend_from_slice(known);
+    let mut edge = |d: [f64; D]| {
         let n = dot(&d, &d).sqrt();
         if n < 1e-9 {
             return;
@@ -183,38 +221,37 @@ fn neighbours<const D: usize>(
             }
             dirs.push(d);
             let mut step = f64::INFINITY;
-            for (r, row) in a.iter().enumerate() {
-                let rate = dot(row, &d);
-                if rate > tol_dir && !tight[r] {
-                    step = step.min((slack[r] / rate).max(0.0));
+            for ((rt, row), (s, t)) in rate.iter_mut().zip(a).zip(slack.iter().zip(&*tight)) {
+                *rt = dot(row, &d);
+                if *rt > tol_dir && !*t {
+                    step = step.min((s / *rt).max(0.0));
                 }
             }
             if !step.is_finite() || step <= limits.tol_tight * scale {
                 continue;
             }
             let y: [f64; D] = std::array::from_fn(|c| v.y[c] + step * d[c]);
-            out.push(Vertex {
-                tight: tight_rows(a, b, &y, limits.tol_tight),
-                y,
-            });
+            let bound = limits.tol_tight * (1.0 + y.iter().fold(0.0_f64, |m, x| m.max(x.abs())));
+            far.clear();
+            far.extend((0..rate.len()).filter(|&r| (step * rate[r] - slack[r]).abs() <= bound));
+            found(y, far, d);
         }
     };
     let n = t.len();
     for i in 0..n {
         for j in i + 1..n {
             if D == 3 {
-                edge(orth(&[&a[t[i]], &a[t[j]]]), &mut out);
+                edge(orth(&[&a[t[i]], &a[t[j]]]));
                 continue;
             }
             for k in j + 1..n {
-                edge(orth(&[&a[t[i]], &a[t[j]], &a[t[k]]]), &mut out);
+                edge(orth(&[&a[t[i]], &a[t[j]], &a[t[k]]]));
             }
         }
     }
     for &r in &v.tight {
         tight[r] = false;
     }
-    out
 }
 
 #[cfg(test)]
