@@ -189,53 +189,86 @@ impl Row {
 /// - sliding (eq. 3), scaled by cos φ so that μ = ∞ stays finite:
 ///   cos φ (F·τ) − sin φ (F·ν) ≤ 0 and −cos φ (F·τ) − sin φ (F·ν) ≤ 0.
 pub fn joint_rows<G: ArchGeometry + ?Sized>(geom: &G, theta: f64, phi: f64) -> [Row; 4] {
-    let j = geom.joint(theta);
-    let d = geom.dead_load(theta);
-    let l = geom.live_load(theta);
-    let cross = |p: Point, fx: f64, fy: f64| p[0] * fy - p[1] * fx;
-    let (ix, iy) = (j.intrados[0], j.intrados[1]);
-    let (ex, ey) = (j.extrados[0], j.extrados[1]);
-    // M − I×F with F = F0 + C, M = M0 + C_M: coefficients on (Fx, Fy, M0) are (Iy, −Ix, 1).
-    let intrados = Row {
-        theta,
-        condition: Condition::Intrados,
-        a: [iy, -ix, 1.0],
-        a_lambda: l.m - cross(j.intrados, l.fx, l.fy),
-        b: -(d.m - cross(j.intrados, d.fx, d.fy)),
-    };
-    let extrados = Row {
-        theta,
-        condition: Condition::Extrados,
-        a: [-ey, ex, -1.0],
-        a_lambda: -(l.m - cross(j.extrados, l.fx, l.fy)),
-        b: d.m - cross(j.extrados, d.fx, d.fy),
-    };
-    let tau = j.along();
-    let nu = j.normal();
-    let (c, s) = (phi.cos(), phi.sin());
-    let sliding = |sign: f64, condition| {
-        let g = [sign * c * tau[0] - s * nu[0], sign * c * tau[1] - s * nu[1]];
-        Row {
+    JointFrame::of(geom, theta).rows(phi)
+}
+
+/// What the rows of one joint need whatever the friction angle: the joint, the dead and live
+/// loads on the part between it and the crown, and which conditions the geometry relaxes. A
+/// path over μ builds each joint's frame once and its rows at every φ from it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointFrame {
+    /// Joint parameter θ (radians).
+    pub theta: f64,
+    /// The joint.
+    pub joint: Joint,
+    /// The dead load between the crown and θ.
+    pub dead: Resultant,
+    /// The live load (per unit λ) between the crown and θ.
+    pub live: Resultant,
+    /// The conditions left out at this joint, in [`Condition::ALL`] order.
+    pub relaxed: [bool; 4],
+}
+
+impl JointFrame {
+    /// The frame of joint θ of `geom`.
+    pub fn of<G: ArchGeometry + ?Sized>(geom: &G, theta: f64) -> Self {
+        JointFrame {
             theta,
-            condition,
-            a: [g[0], g[1], 0.0],
-            a_lambda: g[0] * l.fx + g[1] * l.fy,
-            b: -(g[0] * d.fx + g[1] * d.fy),
-        }
-    };
-    let mut rows = [
-        intrados,
-        extrados,
-        sliding(1.0, Condition::SlideOutward),
-        sliding(-1.0, Condition::SlideInward),
-    ];
-    for r in &mut rows {
-        if geom.relaxed(theta, r.condition) {
-            // 0 ≤ 1: never violated, never active.
-            r.a = [0.0; 3];
-            r.a_lambda = 0.0;
-            r.b = 1.0;
+            joint: geom.joint(theta),
+            dead: geom.dead_load(theta),
+            live: geom.live_load(theta),
+            relaxed: Condition::ALL.map(|c| geom.relaxed(theta, c)),
         }
     }
-    rows
+
+    /// The four rows at friction angle φ ([`joint_rows`]).
+    pub fn rows(&self, phi: f64) -> [Row; 4] {
+        let (theta, j, d, l) = (self.theta, &self.joint, self.dead, self.live);
+        let cross = |p: Point, fx: f64, fy: f64| p[0] * fy - p[1] * fx;
+        let (ix, iy) = (j.intrados[0], j.intrados[1]);
+        let (ex, ey) = (j.extrados[0], j.extrados[1]);
+        // M − I×F with F = F0 + C, M = M0 + C_M: coefficients on (Fx, Fy, M0) are (Iy, −Ix, 1).
+        let intrados = Row {
+            theta,
+            condition: Condition::Intrados,
+            a: [iy, -ix, 1.0],
+            a_lambda: l.m - cross(j.intrados, l.fx, l.fy),
+            b: -(d.m - cross(j.intrados, d.fx, d.fy)),
+        };
+        let extrados = Row {
+            theta,
+            condition: Condition::Extrados,
+            a: [-ey, ex, -1.0],
+            a_lambda: -(l.m - cross(j.extrados, l.fx, l.fy)),
+            b: d.m - cross(j.extrados, d.fx, d.fy),
+        };
+        let tau = j.along();
+        let nu = j.normal();
+        let (c, s) = (phi.cos(), phi.sin());
+        let sliding = |sign: f64, condition| {
+            let g = [sign * c * tau[0] - s * nu[0], sign * c * tau[1] - s * nu[1]];
+            Row {
+                theta,
+                condition,
+                a: [g[0], g[1], 0.0],
+                a_lambda: g[0] * l.fx + g[1] * l.fy,
+                b: -(g[0] * d.fx + g[1] * d.fy),
+            }
+        };
+        let mut rows = [
+            intrados,
+            extrados,
+            sliding(1.0, Condition::SlideOutward),
+            sliding(-1.0, Condition::SlideInward),
+        ];
+        for (r, relaxed) in rows.iter_mut().zip(self.relaxed) {
+            if relaxed {
+                // 0 ≤ 1: never violated, never active.
+                r.a = [0.0; 3];
+                r.a_lambda = 0.0;
+                r.b = 1.0;
+            }
+        }
+        rows
+    }
 }

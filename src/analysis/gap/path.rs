@@ -19,7 +19,7 @@ use super::walk::{self, Vertex, WalkLimits};
 use super::{Complete, GapSearch, GapStatus, Settings, complete_moves, joints};
 use crate::analysis::lp;
 use crate::analysis::roots;
-use crate::analysis::statics::{ArchGeometry, Condition};
+use crate::analysis::statics::{ArchGeometry, Condition, JointFrame};
 use std::collections::BTreeMap;
 
 /// A row named by its joint (index into the joint list) and condition.
@@ -105,6 +105,8 @@ pub(super) struct Walker<'a, G> {
     pub(super) settings: &'a Settings,
     /// What the path's parameter is.
     pub(super) path: Path,
+    /// The frames of the joints walked, on a friction path (one geometry throughout).
+    pub(super) frames: std::cell::OnceCell<Option<Vec<JointFrame>>>,
 }
 
 /// What a path's parameter p is.
@@ -135,14 +137,23 @@ impl<G: ArchGeometry> Walker<'_, G> {
             return None;
         }
         let (geom, phi) = (self.at)(p)?;
-        let joints = joints_at(&geom, self.thetas)?;
-        let rows = StateRows::new(
-            &geom,
-            &joints,
-            phi,
-            [self.lambda, self.lambda],
-            self.settings.state_cap,
-        );
+        let lambda = [self.lambda, self.lambda];
+        let rows = match self.path {
+            // One geometry along the whole path: its joints' frames are built once.
+            Path::Friction => {
+                let frames = self
+                    .frames
+                    .get_or_init(|| {
+                        joints_at(&geom, self.thetas).map(|j| super::rows::frames(&geom, &j))
+                    })
+                    .as_ref()?;
+                StateRows::from_frames(frames, phi, lambda, self.settings.state_cap)
+            }
+            Path::Thickness => {
+                let joints = joints_at(&geom, self.thetas)?;
+                StateRows::new(&geom, &joints, phi, lambda, self.settings.state_cap)
+            }
+        };
         let mut out = Slice {
             p,
             rows,
@@ -234,10 +245,32 @@ impl<G: ArchGeometry> Walker<'_, G> {
         })
     }
 
-    /// The first complete vertex of a slice.
-    fn complete_in(&self, geom: &G, s: &Slice) -> Option<Found> {
+    /// The first complete vertex of a slice. On a friction path, a vertex whose rows were
+    /// tight together at the `checked` slice is skipped: a row's twist does not move with μ
+    /// (a hinge turns about its face point, a slip runs along the joint), so those rows were
+    /// found not positively dependent there and are not here. Vertices on a bound of the walk
+    /// (never complete, whatever their joint rows) and rows that allow a slip only without
+    /// force (μ = ∞, which depends on the state) are checked again.
+    fn complete_in(&self, geom: &G, s: &Slice, checked: Option<&Slice>) -> Option<Found> {
+        let plain = |rows: &StateRows, v: &Vertex| {
+            v.tight.iter().all(|&r| {
+                matches!(
+                    rows.kind[r],
+                    RowKind::Joint {
+                        zero_force_only: false,
+                        ..
+                    }
+                )
+            })
+        };
+        let known = |k: &Vec<(usize, u8)>, v: &Vertex| {
+            self.path == Path::Friction
+                && plain(&s.rows, v)
+                && checked.is_some_and(|c| c.vertices.get(k).is_some_and(|w| plain(&c.rows, w)))
+        };
         s.vertices
             .iter()
+            .filter(|(k, v)| !known(k, v))
             .find_map(|(k, v)| self.found_at(geom, s, k, v))
     }
 
@@ -357,7 +390,7 @@ impl<G: ArchGeometry> Walker<'_, G> {
     /// True when the slice at p has a complete vertex.
     fn has_complete(&self, p: f64) -> Option<Found> {
         let (geom, s) = self.slice(p)?;
-        self.complete_in(&geom, &s)
+        self.complete_in(&geom, &s, None)
     }
 
     /// The onset of a family of complete states between `from` (none) and `to` (one), by
@@ -385,7 +418,7 @@ impl<G: ArchGeometry> Walker<'_, G> {
         // A complete vertex at a step: a family of complete states (its moving rows are fewer
         // than four, so they stay tight over an interval of p) began somewhere in the step,
         // and its onset is bisected; four or more moving rows meet at this p alone.
-        self.complete_in(&cur.0, &cur.1).map(|f| {
+        self.complete_in(&cur.0, &cur.1, Some(prev)).map(|f| {
             if f.support.len() < 4 {
                 self.onset(prev.p, f)
             } else {
@@ -490,7 +523,7 @@ impl<G: ArchGeometry> Walker<'_, G> {
             let fresh = prev.is_none();
             let found = match &prev {
                 Some(pr) => self.advance(pr, &cur),
-                None => self.complete_in(&cur.0, &cur.1),
+                None => self.complete_in(&cur.0, &cur.1, None),
             };
             if found.is_some() {
                 return Scan {
@@ -562,6 +595,7 @@ fn first_complete_counted<G: ArchGeometry + Copy>(
             lambda,
             settings,
             path,
+            frames: std::cell::OnceCell::new(),
         };
         let scan = walker.scan(start, end, step);
         visited += scan.visited;

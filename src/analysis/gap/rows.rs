@@ -13,7 +13,7 @@
 //! Σ κ_i t_i = 0 over all moving joints, since the three redundant unknowns are the force and
 //! moment that every joint transmits in a self-stress.
 
-use crate::analysis::statics::{ArchGeometry, Condition, Row, joint_rows};
+use crate::analysis::statics::{ArchGeometry, Condition, JointFrame, Row, joint_rows};
 
 /// What a row of the state space is.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -61,13 +61,22 @@ impl StateRows {
         lambda: [f64; 2],
         state_cap: f64,
     ) -> Self {
+        Self::from_frames(&frames(geom, thetas), phi, lambda, state_cap)
+    }
+
+    /// [`StateRows::new`] from the frames of the joints ([`frames`]).
+    pub fn from_frames(frames: &[JointFrame], phi: f64, lambda: [f64; 2], state_cap: f64) -> Self {
         let mut rows = StateRows {
-            thetas: thetas.to_vec(),
+            thetas: frames.iter().map(|f| f.theta).collect(),
             ..StateRows::default()
         };
-        for (joint, &theta) in thetas.iter().enumerate() {
-            let all = joint_rows(geom, theta, phi);
-            let tau = geom.joint(theta).along();
+        let n = 4 * frames.len() + 8;
+        rows.a.reserve(n);
+        rows.b.reserve(n);
+        rows.kind.reserve(n);
+        for (joint, frame) in frames.iter().enumerate() {
+            let all = frame.rows(phi);
+            let tau = frame.joint.along();
             for (i, condition) in Condition::ALL.into_iter().enumerate() {
                 if let Some(r) = scaled(&all[i], tau, phi) {
                     rows.push(
@@ -105,6 +114,11 @@ impl StateRows {
     pub fn len(&self) -> usize {
         self.a.len()
     }
+}
+
+/// The frames of the joints `thetas` of `geom`.
+pub(super) fn frames<G: ArchGeometry + ?Sized>(geom: &G, thetas: &[f64]) -> Vec<JointFrame> {
+    thetas.iter().map(|&t| JointFrame::of(geom, t)).collect()
 }
 
 /// One row of a joint scaled to unit length, with its twist.

@@ -174,8 +174,8 @@ impl<const D: usize> Scratch<D> {
 }
 
 /// Calls `found` with the far end of every edge leaving `v` but those along `known`, the rows
-/// tight there (increasing) and the edge's direction. The far end's residual a·y − b of each row is −slack + step·rate, from the
-/// slack at `v` and the row's rate along the edge.
+/// tight there (increasing) and the edge's direction. The far end's residual a·y − b of each
+/// row is −slack + step·rate, from the slack at `v` and the row's rate along the edge.
 fn neighbours<const D: usize>(
     a: &[[f64; D]],
     b: &[f64],
