@@ -23,7 +23,7 @@ use crate::plan::{Case, Plan};
 use crate::progress::{Progress, Stage};
 use crate::scene::{self, Find, Scene, Solution};
 use rayon::prelude::*;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::time::Instant;
 
@@ -281,9 +281,9 @@ struct SeparableKeys {
 impl SeparableKeys {
     fn of<'a>(scenes: impl Iterator<Item = &'a Scene>) -> Self {
         let mut rot: Vec<GeomKey> = Vec::new();
-        let mut rot_index: HashMap<GeomKey, usize> = HashMap::new();
+        let mut rot_index: FxHashMap<GeomKey, usize> = FxHashMap::default();
         let mut sld: Vec<(GeomKey, u64)> = Vec::new();
-        let mut sld_index: HashMap<(GeomKey, u64), usize> = HashMap::new();
+        let mut sld_index: FxHashMap<(GeomKey, u64), usize> = FxHashMap::default();
         let mut keyed = Vec::with_capacity(scenes.size_hint().0);
         for scene in scenes {
             let a = &scene.arch;
@@ -459,7 +459,7 @@ fn k_lines(plan: &Plan) -> Vec<Vec<usize>> {
         u64,
         (bool, u64, JointOrientation, bool),
     );
-    let mut index: HashMap<LineKey, usize> = HashMap::new();
+    let mut index: FxHashMap<LineKey, usize> = FxHashMap::default();
     let mut lines: Vec<Vec<usize>> = Vec::new();
     for (n, c) in plan.cases.iter().enumerate() {
         let a = &c.scene.arch;

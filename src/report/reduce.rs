@@ -7,7 +7,8 @@
 
 use crate::manifest::{AxisName, Manifest};
 use crate::store::ResultRow;
-use std::collections::{BTreeMap, HashMap};
+use rustc_hash::FxHashMap;
+use std::collections::BTreeMap;
 use std::sync::Arc;
 
 /// Most values of a K or μ axis the figures are drawn from: a longer axis keeps every s-th
@@ -146,8 +147,9 @@ impl ResultTotals {
     pub fn add(&mut self, rows: &[ResultRow]) {
         // Counted under borrowed keys first: a block holds few distinct outcomes, finds and
         // load cases, and a million rows should not make a million strings.
-        let mut outcomes: HashMap<(bool, Option<&str>, Option<&str>), usize> = HashMap::new();
-        let mut k_max: HashMap<&str, f64> = HashMap::new();
+        let mut outcomes: FxHashMap<(bool, Option<&str>, Option<&str>), usize> =
+            FxHashMap::default();
+        let mut k_max: FxHashMap<&str, f64> = FxHashMap::default();
         let mut times: Vec<(TimeKey<'_>, Vec<f64>)> = Vec::new();
         for r in rows {
             let ok = &*r.status == "ok";

@@ -5,6 +5,9 @@
 /// Largest number of vectors kept in the corral (one more than the dimension).
 const CORRAL: usize = 4;
 
+/// Size of the fixed system that holds [`affine_minimiser`]'s (the corral's size plus one).
+const SYSTEM: usize = CORRAL + 1;
+
 /// The minimum-norm point of the hull and its weights.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MinNorm {
@@ -41,11 +44,18 @@ fn combine(v: &[[f64; 3]], set: &[usize], w: &[f64]) -> [f64; 3] {
 
 /// The weights α (Σ α = 1) of the point of smallest norm on the affine hull of `set`:
 /// the solution of [G 1; 1ᵀ 0] (α, ν) = (0, 1) with G the Gram matrix; `None` when the
-/// system is singular (affinely dependent points).
+/// system is singular (affinely dependent points). The system (at most the corral's size plus
+/// one) sits in the top left of a fixed 5 × 5 one, the rest the identity, so that it is solved
+/// on the stack; a zero row of the system stays singular, since the identity's rows hold
+/// nothing in its columns.
 fn affine_minimiser(v: &[[f64; 3]], set: &[usize]) -> Option<Vec<f64>> {
     let k = set.len();
-    let mut m = nalgebra::DMatrix::<f64>::zeros(k + 1, k + 1);
-    let mut rhs = nalgebra::DVector::<f64>::zeros(k + 1);
+    if k + 1 > SYSTEM {
+        return None;
+    }
+    let mut m = nalgebra::SMatrix::<f64, SYSTEM, SYSTEM>::identity();
+    let mut rhs = nalgebra::SVector::<f64, SYSTEM>::zeros();
+    m[(k, k)] = 0.0;
     for (r, &i) in set.iter().enumerate() {
         for (c, &j) in set.iter().enumerate() {
             m[(r, c)] = dot(&v[i], &v[j]);
