@@ -764,3 +764,7 @@ pub(super) fn search_result(
         vertices: visited,
     }
 }
+
+#[cfg(test)]
+#[path = "path_tests.rs"]
+mod tests;
