@@ -31,7 +31,7 @@ fn window_ends(s: &crate::scene::Solution) -> Vec<f64> {
 }
 
 /// One column: its name, its values so far and how to read a value from a row.
-type Get<'a, T> = Box<dyn Fn(&'a CaseResult) -> T + 'a>;
+type Get<'a, T> = Box<dyn Fn(&'a CaseResult) -> T + Send + Sync + 'a>;
 
 enum Spec<'a> {
     U64(&'static str, Vec<u64>, Get<'a, u64>),
@@ -115,7 +115,10 @@ impl<'a> Spec<'a> {
 /// Constructors of the columns of one type: a name and how to read the value from a row.
 macro_rules! column {
     ($fn_name:ident, $variant:ident, $t:ty) => {
-        fn $fn_name<'a>(name: &'static str, get: impl Fn(&'a CaseResult) -> $t + 'a) -> Spec<'a> {
+        fn $fn_name<'a>(
+            name: &'static str,
+            get: impl Fn(&'a CaseResult) -> $t + Send + Sync + 'a,
+        ) -> Spec<'a> {
             Spec::$variant(name, Vec::new(), Box::new(get))
         }
     };
@@ -395,7 +398,14 @@ fn answer_columns<'a>() -> Vec<Spec<'a>> {
     ]
 }
 
-/// One block of the results table, built in one pass over its rows.
+/// Groups of columns of a block built side by side (on the current rayon pool), each in one
+/// pass over the block's rows: a fixed number, so that the work, not the table, depends on
+/// the threads. Every column is the same whatever the grouping.
+const COLUMN_GROUPS: usize = 4;
+
+/// One block of the results table: its columns dealt round-robin into [`COLUMN_GROUPS`]
+/// groups built in parallel, each group in one pass over the rows (every column of the
+/// group read while the row is in cache), then put back in order.
 fn block_frame<'a>(
     load_cases: &'a [LoadCase],
     rows: &'a [CaseResult],
@@ -407,18 +417,33 @@ fn block_frame<'a>(
         columns != Columns::OfStudy
             || filled_by(s.name()).is_none_or(|by| by.iter().any(|f| finds.contains(f)))
     }));
-    for s in specs.iter_mut() {
-        s.reserve(rows.len());
+    let mut groups: Vec<Vec<(usize, Spec<'a>)>> = (0..COLUMN_GROUPS).map(|_| Vec::new()).collect();
+    for (i, s) in specs.into_iter().enumerate() {
+        groups[i % COLUMN_GROUPS].push((i, s));
     }
-    for r in rows {
-        for s in specs.iter_mut() {
-            s.push(r);
-        }
-    }
-    specs
-        .into_iter()
-        .fold(TableBuilder::new(), |t, s| s.add_to(t))
-        .finish()
+    let built = groups
+        .into_par_iter()
+        .map(|mut group| {
+            for (_, s) in group.iter_mut() {
+                s.reserve(rows.len());
+            }
+            for r in rows {
+                for (_, s) in group.iter_mut() {
+                    s.push(r);
+                }
+            }
+            group
+                .into_iter()
+                .map(|(i, s)| (i, s.add_to(TableBuilder::new()).columns))
+                .collect::<Vec<_>>()
+        })
+        .collect::<Vec<_>>();
+    let mut built: Vec<(usize, Vec<polars::prelude::Column>)> =
+        built.into_iter().flatten().collect();
+    built.sort_by_key(|(i, _)| *i);
+    Ok(DataFrame::new_infer_height(
+        built.into_iter().flat_map(|(_, c)| c).collect(),
+    )?)
 }
 
 #[cfg(test)]
