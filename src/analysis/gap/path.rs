@@ -18,9 +18,11 @@ use super::rows::{RowKind, StateRows, row_at};
 use super::walk::{self, Vertex, WalkLimits};
 use super::{Complete, GapSearch, GapStatus, Settings, complete_moves, joints};
 use crate::analysis::lp;
-use crate::analysis::roots;
 use crate::analysis::statics::{ArchGeometry, Condition, JointFrame};
 use std::collections::BTreeMap;
+
+#[path = "path_events.rs"]
+mod events;
 
 /// A row named by its joint (index into the joint list) and condition.
 type RowName = (usize, Condition);
@@ -199,36 +201,6 @@ impl<G: ArchGeometry> Walker<'_, G> {
         self.slices.get() > self.settings.max_slices
     }
 
-    /// The named rows at p, scaled to unit length.
-    fn rows_at(&self, p: f64, names: &[RowName]) -> Option<Vec<super::rows::JointRowAt>> {
-        let (geom, phi) = (self.at)(p)?;
-        let joints = joints_at(&geom, self.thetas)?;
-        names
-            .iter()
-            .map(|(j, c)| row_at(&geom, *joints.get(*j)?, phi, *c))
-            .collect()
-    }
-
-    /// The vertex of three named rows at p and the slack b − a·y of a fourth.
-    fn slack(&self, p: f64, three: &[RowName; 3], fourth: RowName) -> Option<([f64; 3], f64)> {
-        let r = self.rows_at(p, &[three[0], three[1], three[2], fourth])?;
-        let mut m = nalgebra::Matrix3::zeros();
-        let mut rhs = nalgebra::Vector3::zeros();
-        for i in 0..3 {
-            for c in 0..3 {
-                m[(i, c)] = r[i].a[c];
-            }
-            rhs[i] = r[i].b - r[i].a[3] * self.lambda;
-        }
-        let x = m.lu().solve(&rhs)?;
-        let x = [x[0], x[1], x[2]];
-        let a = r[3].a;
-        Some((
-            x,
-            r[3].b - (a[0] * x[0] + a[1] * x[1] + a[2] * x[2] + a[3] * self.lambda),
-        ))
-    }
-
     /// The complete solution at vertex `v` (key `k`) of slice `s`, if it is one.
     fn found_at(&self, geom: &G, s: &Slice, k: &[(usize, u8)], v: &Vertex) -> Option<Found> {
         let joints = joints_at(geom, self.thetas)?;
@@ -272,119 +244,6 @@ impl<G: ArchGeometry> Walker<'_, G> {
             .iter()
             .filter(|(k, v)| !known(k, v))
             .find_map(|(k, v)| self.found_at(geom, s, k, v))
-    }
-
-    /// The complete vertex at p nearest to `near`.
-    fn complete_at(&self, p: f64, near: &[f64; 4]) -> Option<Found> {
-        let (geom, s) = self.slice(p)?;
-        let dist = |v: &Vertex| (0..3).map(|c| (v.y[c] - near[c]).abs()).fold(0.0, f64::max);
-        let mut vs: Vec<(&Vec<(usize, u8)>, &Vertex)> = s.vertices.iter().collect();
-        vs.sort_by(|a, b| dist(a.1).total_cmp(&dist(b.1)));
-        vs.into_iter()
-            .take(4)
-            .find_map(|(k, v)| self.found_at(&geom, &s, k, v))
-    }
-
-    /// The first complete event between two slices: a vertex of `prev` cut off before `cur`
-    /// where its three rows meet a fourth whose twists with theirs are positively dependent.
-    fn events(&self, prev: &Slice, cur: &Slice) -> Option<Found> {
-        let mut found: Option<Found> = None;
-        let forward = (cur.p - prev.p).signum();
-        let tol_p = self.settings.tol_path * (1.0 + prev.p.abs());
-        // The rows of the later slice by name, with their twists there.
-        let mut by_name: BTreeMap<(usize, u8), usize> = BTreeMap::new();
-        for (r, kind) in cur.rows.kind.iter().enumerate() {
-            if let RowKind::Joint {
-                joint, condition, ..
-            } = kind
-            {
-                by_name.insert((*joint, order(*condition)), r);
-            }
-        }
-        let twist = |r: usize| match cur.rows.kind[r] {
-            RowKind::Joint { twist, .. } => twist,
-            RowKind::Bound => None,
-        };
-        for (k, v) in &prev.vertices {
-            if cur.vertices.contains_key(k) || k.len() != 3 {
-                continue;
-            }
-            let Some(key_rows) = k
-                .iter()
-                .map(|n| by_name.get(n).copied())
-                .collect::<Option<Vec<usize>>>()
-            else {
-                continue;
-            };
-            let Some(key_twists) = key_rows
-                .iter()
-                .map(|&r| twist(r))
-                .collect::<Option<Vec<_>>>()
-            else {
-                continue;
-            };
-            let three: [RowName; 3] = std::array::from_fn(|i| (k[i].0, condition_of(k[i].1)));
-            // Where the vertex's three rows meet at the later step.
-            let mut m = nalgebra::Matrix3::zeros();
-            let mut rhs = nalgebra::Vector3::zeros();
-            for (i, &r) in key_rows.iter().enumerate() {
-                for c in 0..3 {
-                    m[(i, c)] = cur.rows.a[r][c];
-                }
-                rhs[i] = cur.rows.b[r] - cur.rows.a[r][3] * self.lambda;
-            }
-            let Some(x_end) = m.lu().solve(&rhs) else {
-                continue;
-            };
-            let y_end = [x_end[0], x_end[1], x_end[2], self.lambda];
-            let scale = 1.0 + y_end.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
-            let tol = self.settings.tol_tight * scale;
-            for (r, a) in cur.rows.a.iter().enumerate() {
-                let RowKind::Joint {
-                    joint,
-                    condition,
-                    twist: Some(t),
-                    ..
-                } = cur.rows.kind[r]
-                else {
-                    continue;
-                };
-                let name = (joint, condition);
-                if three.contains(&name) {
-                    continue;
-                }
-                let s_end = cur.rows.b[r] - (0..4).map(|c| a[c] * y_end[c]).sum::<f64>();
-                if s_end >= -tol {
-                    continue;
-                }
-                // The four twists must be positively dependent where the rows meet; they move
-                // with p on a thickness path, so a loose test at the later step first.
-                let four = [key_twists[0], key_twists[1], key_twists[2], t];
-                if super::hull::farther_than(&four, self.settings.tol_event)
-                    || super::hull::min_norm_point(&four, self.settings.tol_hull)
-                        .is_none_or(|m| m.norm() > self.settings.tol_event)
-                {
-                    continue;
-                }
-                let slack = |p: f64| self.slack(p, &three, name).map_or(f64::NAN, |v| v.1);
-                if !(slack(prev.p) >= -tol) {
-                    continue;
-                }
-                let Some(p_star) = roots::brent(slack, prev.p, cur.p, tol_p) else {
-                    continue;
-                };
-                if found
-                    .as_ref()
-                    .is_some_and(|f| forward * (p_star - f.p) >= 0.0)
-                {
-                    continue;
-                }
-                if let Some(f) = self.complete_at(p_star, &v.y) {
-                    found = Some(f);
-                }
-            }
-        }
-        found
     }
 
     /// True when the slice at p has a complete vertex.
