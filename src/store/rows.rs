@@ -26,29 +26,76 @@ pub struct JointLists {
     pub sliding_senses: Vec<String>,
 }
 
-/// A string column whose values repeat (a load case, a find, a regime) as shared strings: one
-/// allocation per distinct value, not one per row.
-fn shared_str_column(df: &polars::prelude::DataFrame, name: &str) -> Result<Vec<Option<Arc<str>>>> {
-    let c = df
-        .column(name)
-        .with_context(|| format!("column `{name}` is missing"))?;
-    let ca = c.as_materialized_series().str()?;
-    let mut seen: HashMap<&str, Arc<str>> = HashMap::new();
-    let mut last: Option<(&str, Arc<str>)> = None;
-    Ok(ca
-        .iter()
-        .map(|v| {
-            let v = v?;
-            if let Some((l, a)) = &last
-                && *l == v
-            {
-                return Some(a.clone());
-            }
-            let a = seen.entry(v).or_insert_with(|| Arc::from(v)).clone();
-            last = Some((v, a.clone()));
-            Some(a)
-        })
-        .collect())
+/// A string column whose values repeat (a load case, a find, a regime): its distinct values,
+/// one allocation each, and the index of each row's value.
+struct Coded {
+    values: Vec<Arc<str>>,
+    /// Per row, the index of its value in `values`; [`Coded::NULL`] for a null.
+    codes: Vec<u32>,
+}
+
+impl Coded {
+    const NULL: u32 = u32::MAX;
+
+    /// No rows: a column the table does not store.
+    fn absent() -> Self {
+        Coded {
+            values: Vec::new(),
+            codes: Vec::new(),
+        }
+    }
+
+    fn of(df: &polars::prelude::DataFrame, name: &str) -> Result<Self> {
+        let c = df
+            .column(name)
+            .with_context(|| format!("column `{name}` is missing"))?;
+        let ca = c.as_materialized_series().str()?;
+        let mut seen: HashMap<&str, u32> = HashMap::new();
+        let mut values: Vec<Arc<str>> = Vec::new();
+        let mut last: Option<(&str, u32)> = None;
+        let codes = ca
+            .iter()
+            .map(|v| {
+                let Some(v) = v else {
+                    return Self::NULL;
+                };
+                if let Some((l, code)) = last
+                    && l == v
+                {
+                    return code;
+                }
+                let code = *seen.entry(v).or_insert_with(|| {
+                    values.push(Arc::from(v));
+                    (values.len() - 1) as u32
+                });
+                last = Some((v, code));
+                code
+            })
+            .collect();
+        Ok(Coded { values, codes })
+    }
+
+    /// An error unless every row has a value; `path` names the file in it.
+    fn require(&self, name: &str, path: &Path) -> Result<()> {
+        match self.codes.iter().position(|&c| c == Self::NULL) {
+            Some(i) => anyhow::bail!("{}: row {i} has no `{name}`", path.display()),
+            None => Ok(()),
+        }
+    }
+
+    /// Copies of the values for one part of the rows built in parallel: the rows of a part
+    /// share them, so that the threads do not all count references on one counter.
+    fn local(&self) -> Vec<Arc<str>> {
+        self.values.iter().map(|v| Arc::from(&**v)).collect()
+    }
+
+    /// The value of row `i` from the part's copies `local` (null past the end).
+    fn at(&self, local: &[Arc<str>], i: usize) -> Option<Arc<str>> {
+        match self.codes.get(i) {
+            Some(&c) if c != Self::NULL => local.get(c as usize).cloned(),
+            _ => None,
+        }
+    }
 }
 
 /// One row of results.parquet, with the columns the report and the figure data read back
@@ -310,17 +357,16 @@ pub fn extend_results_of_frame(
         }
         Ok(Nullable(Some(f64_column(df, name).with_context(cx)?)))
     };
-    let s = |name: &str| -> Result<Nullable<Arc<str>>> {
+    let s = |name: &str| -> Result<Coded> {
         if absent(name) {
-            return Ok(Nullable(None));
+            return Ok(Coded::absent());
         }
-        Ok(Nullable(Some(
-            shared_str_column(df, name).with_context(cx)?,
-        )))
+        Coded::of(df, name).with_context(cx)
     };
-    let req = |name: &str| match s(name)?.0 {
-        Some(v) => required(v, name, path),
-        None => anyhow::bail!("{}: column `{name}` is missing", path.display()),
+    let req = |name: &str| -> Result<Coded> {
+        let c = Coded::of(df, name).with_context(cx)?;
+        c.require(name, path)?;
+        Ok(c)
     };
     let case_id = u64_column(df, "case_id").with_context(cx)?;
     let (load_case, find) = (req("load_case")?, req("find")?);
@@ -338,37 +384,36 @@ pub fn extend_results_of_frame(
     let (collapse, width) = (f("collapse_value")?, f("gap_width")?);
     let status = req("status")?;
     let time = f("solve_time_us")?;
-    out.par_extend(
-        case_id
-            .par_iter()
-            .enumerate()
-            .map(|(i, &case_id)| ResultRow {
-                case_id,
-                load_case: load_case[i].clone(),
-                find: find[i].clone(),
-                k: k.at(i),
-                t_over_r: t_over_r.at(i),
-                mu: mu.at(i),
-                voussoirs: voussoirs.at(i).map(|v| v as u32),
-                outcome: outcome.at(i),
-                regime: regime.at(i),
-                thrust_r_min: rmin.at(i),
-                k_crit: k_crit.at(i),
-                k_windows: windows.get(i).cloned().unwrap_or_default(),
-                mu_crit: mu_crit.at(i),
-                thrust_min: tmin.at(i),
-                k_c_rotational: kcr.at(i),
-                mu_rotational_mixed: murm.at(i),
-                mu_min: mumin.at(i),
-                k_mixed_sliding: kms.at(i),
-                load_factor: load_factor.at(i),
-                gap: gap.at(i),
-                collapse_value: collapse.at(i),
-                gap_width: width.at(i),
-                status: status[i].clone(),
-                solve_time_us: time.at(i).unwrap_or(f64::NAN),
-            }),
-    );
+    let strings = [&load_case, &find, &outcome, &regime, &gap, &status];
+    out.par_extend(case_id.par_iter().enumerate().map_init(
+        || strings.map(Coded::local),
+        |local, (i, &case_id)| ResultRow {
+            case_id,
+            load_case: load_case.at(&local[0], i).unwrap_or_default(),
+            find: find.at(&local[1], i).unwrap_or_default(),
+            k: k.at(i),
+            t_over_r: t_over_r.at(i),
+            mu: mu.at(i),
+            voussoirs: voussoirs.at(i).map(|v| v as u32),
+            outcome: outcome.at(&local[2], i),
+            regime: regime.at(&local[3], i),
+            thrust_r_min: rmin.at(i),
+            k_crit: k_crit.at(i),
+            k_windows: windows.get(i).cloned().unwrap_or_default(),
+            mu_crit: mu_crit.at(i),
+            thrust_min: tmin.at(i),
+            k_c_rotational: kcr.at(i),
+            mu_rotational_mixed: murm.at(i),
+            mu_min: mumin.at(i),
+            k_mixed_sliding: kms.at(i),
+            load_factor: load_factor.at(i),
+            gap: gap.at(&local[4], i),
+            collapse_value: collapse.at(i),
+            gap_width: width.at(i),
+            status: status.at(&local[5], i).unwrap_or_default(),
+            solve_time_us: time.at(i).unwrap_or(f64::NAN),
+        },
+    ));
     Ok(())
 }
 
