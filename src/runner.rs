@@ -290,20 +290,22 @@ pub(crate) fn stage<T>(
     Ok((out?, ms(t)))
 }
 
-/// Figure data, figures and both reports, from the stored files of the run; run.json is
-/// written first (the reports read it) and again with the figure and report timings.
+/// Figure data, figures and both reports, from the stored files of the run (`results`:
+/// results.parquet as read back for the report); run.json is written first (the reports
+/// read it) and again with the figure and report timings.
 fn publish(
     m: &Manifest,
     layout: &RunLayout,
     info: &mut RunInfo,
     progress: &dyn Progress,
+    results: report::data::ResultsRead,
 ) -> Result<()> {
     write_run_json(layout, info)?;
     let t = Instant::now();
     stage(progress, Stage::FigureData, || figdata::run(m, layout))?;
     // Every table is written: run.json records their hashes before the reports show it.
     info.table_sha256 = layout.table_sha256()?;
-    let mut data = report::data::load(layout)?;
+    let mut data = report::data::load_with(layout, Some(results))?;
     let (figs, _) = stage(progress, Stage::Figures, || {
         report::draw_figures(&data, layout)
     })?;
@@ -528,17 +530,27 @@ pub(crate) fn finish_run(
     let layout = staged.layout.clone();
     // The plan's description without its cases: they are expanded a chunk at a time.
     let empty = plan::build_slice(m.clone(), 0..0);
-    let (located, boundaries_ms) = stage(progress, Stage::Boundaries, || {
-        let located = pool.install(|| boundaries::locate_codes(&m, &written.codes, progress));
-        store::write_parquet(
-            &mut store::boundaries_frame(&empty, &located)?,
-            &layout.boundaries(),
-        )?;
-        store::write_parquet(
-            &mut store::bifurcations_frame(&empty, &located)?,
-            &layout.bifurcations(),
-        )?;
-        Ok(located)
+    // The report's rows come from results.parquet alone: they are read while the boundaries
+    // are located, which leaves a core idle for much of its time.
+    let ((located, boundaries_ms), results) = std::thread::scope(|scope| {
+        let reader =
+            scope.spawn(|| pool.install(|| report::data::read_results(&layout, written.total)));
+        let located = stage(progress, Stage::Boundaries, || {
+            let located = pool.install(|| boundaries::locate_codes(&m, &written.codes, progress));
+            store::write_parquet(
+                &mut store::boundaries_frame(&empty, &located)?,
+                &layout.boundaries(),
+            )?;
+            store::write_parquet(
+                &mut store::bifurcations_frame(&empty, &located)?,
+                &layout.bifurcations(),
+            )?;
+            Ok(located)
+        });
+        let results = reader
+            .join()
+            .map_err(|_| anyhow::anyhow!("reading results.parquet back failed"))?;
+        anyhow::Ok((located?, results?))
     })?;
     let (ok, total) = (written.ok, written.total);
     drop(written);
@@ -570,7 +582,7 @@ pub(crate) fn finish_run(
         shard_builds,
     };
     // Figure data, figures and reports, from the stored files.
-    publish(&m, &layout, &mut info, progress)?;
+    publish(&m, &layout, &mut info, progress, results)?;
     let dir = staged.commit()?;
     Ok(RunSummary {
         dir,

@@ -404,17 +404,18 @@ fn lattice_of(layout: &RunLayout) -> super::reduce::FigureLattice {
         .unwrap_or_default()
 }
 
-/// Reads the stored files of a run directory: results.parquet a block at a time, checked and
-/// reduced to the figure lattice as it is read.
-pub fn load(layout: &RunLayout) -> Result<RunData> {
-    let info = load_info(layout)?;
-    let manifest: ManifestView =
-        serde_json::from_value(info.manifest.clone()).with_context(|| {
-            format!(
-                "{}: the `manifest` object is not valid",
-                layout.run_json().display()
-            )
-        })?;
+/// The rows of results.parquet a report keeps (every row, or those of the figure lattice),
+/// checked and counted as they were read ([`read_results`]).
+#[derive(Debug, Default)]
+pub struct ResultsRead {
+    results: Vec<ResultRow>,
+    totals: super::reduce::ResultTotals,
+}
+
+/// Reads results.parquet of a run directory a block at a time, checked against `total`
+/// rows (run.json's count) and reduced to the figure lattice as it is read. It needs only
+/// the run's manifest and results, so a run reads them while it locates the boundaries.
+pub fn read_results(layout: &RunLayout, total: u64) -> Result<ResultsRead> {
     if !layout.results().is_file() {
         return Err(RunDirError {
             path: layout.dir.clone(),
@@ -424,11 +425,11 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
     }
     let lattice = lattice_of(layout);
     let file = layout.results();
-    super::checks::check_result_count(&file, store::parquet_rows(&file)?, info.cases.total)?;
+    let stored = store::parquet_rows(&file)?;
+    super::checks::check_result_count(&file, stored, total)?;
     // Each block's rows are built in place at the end of `results` (in parallel), checked
     // and counted there, then cut down to those of the figure lattice: the kept rows are
     // written once, into pages that the next block reuses when a row is dropped.
-    let stored = store::parquet_rows(&file)?;
     let block_rows = super::reduce::READ_BLOCK_ROWS;
     let mut results = Vec::with_capacity(lattice.kept().min(stored) + stored.min(block_rows));
     let mut totals = super::reduce::ResultTotals::default();
@@ -443,6 +444,31 @@ pub fn load(layout: &RunLayout) -> Result<RunData> {
         Ok(())
     })?;
     totals.finish();
+    Ok(ResultsRead { results, totals })
+}
+
+/// Reads the stored files of a run directory: results.parquet a block at a time, checked and
+/// reduced to the figure lattice as it is read.
+pub fn load(layout: &RunLayout) -> Result<RunData> {
+    load_with(layout, None)
+}
+
+/// [`load`], with results.parquet already read by [`read_results`] when `read` is given.
+pub fn load_with(layout: &RunLayout, read: Option<ResultsRead>) -> Result<RunData> {
+    let info = load_info(layout)?;
+    let manifest: ManifestView =
+        serde_json::from_value(info.manifest.clone()).with_context(|| {
+            format!(
+                "{}: the `manifest` object is not valid",
+                layout.run_json().display()
+            )
+        })?;
+    let ResultsRead { results, totals } = match read {
+        Some(r) => r,
+        None => read_results(layout, info.cases.total)?,
+    };
+    let file = layout.results();
+    let lattice = lattice_of(layout);
     let (load_factors, load_factor_singled) = if manifest.sampling.is_none()
         && manifest
             .load_cases
