@@ -13,6 +13,7 @@ use crate::provenance::{
 use crate::store;
 use crate::{citation, figdata, report};
 use anyhow::{Context, Result};
+use polars::prelude::DataFrame;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
@@ -374,15 +375,23 @@ impl ResultsWriter {
         rows: &[CaseResult],
         pool: &rayon::ThreadPool,
     ) -> Result<()> {
-        let mut df = pool.install(|| store::results_frame(plan, rows))?;
-        match self.appender.as_mut() {
-            Some(a) => a.append(&mut df)?,
-            None => self.appender = Some(store::ParquetAppender::create(&self.path, &mut df)?),
-        }
+        let df = self.table(plan, rows, pool)?;
+        append(&mut self.appender, &self.path, df)
+    }
+
+    /// The table of the rows of the cases of `plan` (a slice), their codes and counts taken:
+    /// what [`append`] writes next.
+    fn table(
+        &mut self,
+        plan: &Plan,
+        rows: &[CaseResult],
+        pool: &rayon::ThreadPool,
+    ) -> Result<DataFrame> {
+        let df = pool.install(|| store::results_frame(plan, rows))?;
         self.codes.extend(rows.iter().map(boundaries::cell_code));
         self.ok += rows.iter().filter(|r| r.status == Status::Ok).count() as u64;
         self.total += rows.len() as u64;
-        Ok(())
+        Ok(df)
     }
 
     /// Writes the footer and moves the file into place.
@@ -392,6 +401,32 @@ impl ResultsWriter {
             None => Ok(()),
         }
     }
+}
+
+/// Appends a chunk's table to the results file of `path` (started with it when `appender` is
+/// `None`).
+fn append(
+    appender: &mut Option<store::ParquetAppender>,
+    path: &Path,
+    mut df: DataFrame,
+) -> Result<()> {
+    match appender.as_mut() {
+        Some(a) => a.append(&mut df),
+        None => {
+            *appender = Some(store::ParquetAppender::create(path, &mut df)?);
+            Ok(())
+        }
+    }
+}
+
+/// A chunk's table being appended on its own thread; it gives the appender back.
+type Writing<'scope> =
+    std::thread::ScopedJoinHandle<'scope, Result<Option<store::ParquetAppender>>>;
+
+/// The appender back from a chunk's write, or its error.
+fn written_back(w: Writing<'_>) -> Result<Option<store::ParquetAppender>> {
+    w.join()
+        .map_err(|_| anyhow::anyhow!("writing results.parquet stopped unexpectedly"))?
 }
 
 /// What analysing a slice of a plan in chunks produced.
@@ -425,23 +460,44 @@ pub(crate) fn analyse_in_chunks(
     };
     // One progress stage over all chunks, so the bar and the rate do not restart.
     progress.begin(Stage::Analyse, Some(ids.end - ids.start));
-    // One buffer of rows for every chunk: its pages are cleared by the kernel once.
+    // One buffer of rows for every chunk: its pages are cleared by the kernel once. A chunk's
+    // table is written on its own thread while the next chunk is analysed (one at a time,
+    // so that at most two chunks' tables are held).
     let mut rows: Vec<CaseResult> = Vec::new();
-    for start in starts {
-        let plan = plan::build_slice(m.clone(), start..(start + chunk).min(ids.end));
-        let t = Instant::now();
-        pool.install(|| engine::analyse_into(&plan, progress, &mut rows));
-        if progress.stopped() {
-            return Err(crate::progress::Stopped.into());
+    let path = results.to_path_buf();
+    std::thread::scope(|scope| -> Result<()> {
+        let mut writing: Option<Writing<'_>> = None;
+        for &start in &starts {
+            let plan = plan::build_slice(m.clone(), start..(start + chunk).min(ids.end));
+            let t = Instant::now();
+            pool.install(|| engine::analyse_into(&plan, progress, &mut rows));
+            if progress.stopped() {
+                return Err(crate::progress::Stopped.into());
+            }
+            out.engine_ms += ms(t);
+            let t = Instant::now();
+            let df = out.written.table(&plan, &rows, pool)?;
+            // The rows' own allocations (hinges, messages) are freed; the buffer is kept.
+            rows.clear();
+            memory::release_freed_memory();
+            let mut appender = match writing.take() {
+                Some(w) => written_back(w)?,
+                None => out.written.appender.take(),
+            };
+            let path = &path;
+            writing = Some(scope.spawn(move || {
+                append(&mut appender, path, df)?;
+                Ok(appender)
+            }));
+            out.store_ms += ms(t);
         }
-        out.engine_ms += ms(t);
         let t = Instant::now();
-        out.written.push(&plan, &rows, pool)?;
-        // The rows' own allocations (hinges, messages) are freed; the buffer is kept.
-        rows.clear();
-        memory::release_freed_memory();
+        if let Some(w) = writing.take() {
+            out.written.appender = written_back(w)?;
+        }
         out.store_ms += ms(t);
-    }
+        Ok(())
+    })?;
     progress.end(Stage::Analyse);
     let t = Instant::now();
     out.written.finish()?;
