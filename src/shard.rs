@@ -336,4 +336,29 @@ mod tests {
         assert_eq!(t.columns.len(), read(&whole).columns.len() + 1);
         let _ = std::fs::remove_dir_all(&dir);
     }
+
+    #[test]
+    fn a_chunk_that_cannot_be_written_fails_the_slice_with_its_cause() {
+        // Chunks are written on their own thread while the next is analysed: a write that
+        // fails (here the first, into a directory that does not exist) still fails the slice,
+        // naming the file, and leaves nothing behind.
+        let m = crate::manifest::parse(
+            "name: a\ngrid:\n  k: {from: 1.05, to: 1.4, steps: 5}\n  mu: {from: 0.2, to: 0.7, steps: 6}\n",
+            std::path::Path::new("a.yaml"),
+        )
+        .unwrap();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        let dir = std::env::temp_dir().join(format!("archstudy-no-dir-{}", std::process::id()));
+        let results = dir.join("results.parquet");
+        let e = analyse_in_chunks(&m, 0..30, &pool, &crate::progress::Silent, (&results, 7))
+            .err()
+            .expect("the first chunk cannot be written");
+        let text = format!("{e:#}");
+        assert!(text.contains("cannot create"), "{text}");
+        assert!(text.contains("results.parquet"), "{text}");
+        assert!(!dir.exists());
+    }
 }
