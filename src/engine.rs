@@ -107,7 +107,8 @@ pub struct CaseResult {
     pub message: Option<String>,
 }
 
-fn panic_message(p: Box<dyn std::any::Any + Send>) -> String {
+/// The message a panic carried, when it carried one.
+pub(crate) fn panic_message(p: Box<dyn std::any::Any + Send>) -> String {
     if let Some(s) = p.downcast_ref::<&str>() {
         (*s).to_string()
     } else if let Some(s) = p.downcast_ref::<String>() {

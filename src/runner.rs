@@ -423,10 +423,10 @@ fn append(
 type Writing<'scope> =
     std::thread::ScopedJoinHandle<'scope, Result<Option<store::ParquetAppender>>>;
 
-/// The appender back from a chunk's write, or its error.
-fn written_back(w: Writing<'_>) -> Result<Option<store::ParquetAppender>> {
-    w.join()
-        .map_err(|_| anyhow::anyhow!("writing results.parquet stopped unexpectedly"))?
+/// What a scoped thread doing `what` gave, its error, or the panic that stopped it.
+fn joined<T>(h: std::thread::ScopedJoinHandle<'_, Result<T>>, what: &str) -> Result<T> {
+    h.join()
+        .map_err(|p| anyhow::anyhow!("{what} stopped unexpectedly: {}", engine::panic_message(p)))?
 }
 
 /// What analysing a slice of a plan in chunks produced.
@@ -467,33 +467,41 @@ pub(crate) fn analyse_in_chunks(
     let path = results.to_path_buf();
     std::thread::scope(|scope| -> Result<()> {
         let mut writing: Option<Writing<'_>> = None;
-        for &start in &starts {
-            let plan = plan::build_slice(m.clone(), start..(start + chunk).min(ids.end));
-            let t = Instant::now();
-            pool.install(|| engine::analyse_into(&plan, progress, &mut rows));
-            if progress.stopped() {
-                return Err(crate::progress::Stopped.into());
+        let mut chunks = || -> Result<()> {
+            for &start in &starts {
+                let plan = plan::build_slice(m.clone(), start..(start + chunk).min(ids.end));
+                let t = Instant::now();
+                pool.install(|| engine::analyse_into(&plan, progress, &mut rows));
+                if progress.stopped() {
+                    return Err(crate::progress::Stopped.into());
+                }
+                out.engine_ms += ms(t);
+                let t = Instant::now();
+                let df = out.written.table(&plan, &rows, pool)?;
+                // The rows' own allocations (hinges, messages) are freed; the buffer is kept.
+                rows.clear();
+                memory::release_freed_memory();
+                let mut appender = match writing.take() {
+                    Some(w) => joined(w, "writing results.parquet")?,
+                    None => out.written.appender.take(),
+                };
+                let path = &path;
+                writing = Some(scope.spawn(move || {
+                    append(&mut appender, path, df)?;
+                    Ok(appender)
+                }));
+                out.store_ms += ms(t);
             }
-            out.engine_ms += ms(t);
-            let t = Instant::now();
-            let df = out.written.table(&plan, &rows, pool)?;
-            // The rows' own allocations (hinges, messages) are freed; the buffer is kept.
-            rows.clear();
-            memory::release_freed_memory();
-            let mut appender = match writing.take() {
-                Some(w) => written_back(w)?,
-                None => out.written.appender.take(),
-            };
-            let path = &path;
-            writing = Some(scope.spawn(move || {
-                append(&mut appender, path, df)?;
-                Ok(appender)
-            }));
-            out.store_ms += ms(t);
-        }
+            Ok(())
+        };
+        let analysed = chunks();
+        // The last write is waited for whatever stopped the loop: its error (or panic) is
+        // reported after the loop's own.
         let t = Instant::now();
-        if let Some(w) = writing.take() {
-            out.written.appender = written_back(w)?;
+        let last = writing.take().map(|w| joined(w, "writing results.parquet"));
+        analysed?;
+        if let Some(appender) = last {
+            out.written.appender = appender?;
         }
         out.store_ms += ms(t);
         Ok(())
@@ -587,10 +595,12 @@ pub(crate) fn finish_run(
     // The plan's description without its cases: they are expanded a chunk at a time.
     let empty = plan::build_slice(m.clone(), 0..0);
     // The report's rows come from results.parquet alone: they are read while the boundaries
-    // are located, which leaves a core idle for much of its time.
+    // are located, which leaves a core idle for much of its time; the stage ends when both
+    // are done. A stop ends the read at its next block.
+    let stop = || progress.stopped();
     let ((located, boundaries_ms), results) = std::thread::scope(|scope| {
-        let reader =
-            scope.spawn(|| pool.install(|| report::data::read_results(&layout, written.total)));
+        let reader = scope
+            .spawn(|| pool.install(|| report::data::read_results(&layout, written.total, &stop)));
         let located = stage(progress, Stage::Boundaries, || {
             let located = pool.install(|| boundaries::locate_codes(&m, &written.codes, progress));
             store::write_parquet(
@@ -603,10 +613,10 @@ pub(crate) fn finish_run(
             )?;
             Ok(located)
         });
-        let results = reader
-            .join()
-            .map_err(|_| anyhow::anyhow!("reading results.parquet back failed"))?;
-        anyhow::Ok((located?, results?))
+        let t = Instant::now();
+        let results = joined(reader, "reading results.parquet back");
+        let (located, located_ms) = located?;
+        anyhow::Ok(((located, located_ms + ms(t)), results?))
     })?;
     let (ok, total) = (written.ok, written.total);
     drop(written);

@@ -341,7 +341,7 @@ mod tests {
     fn a_chunk_that_cannot_be_written_fails_the_slice_with_its_cause() {
         // Chunks are written on their own thread while the next is analysed: a write that
         // fails (here the first, into a directory that does not exist) still fails the slice,
-        // naming the file, and leaves nothing behind.
+        // naming the file, and creates nothing.
         let m = crate::manifest::parse(
             "name: a\ngrid:\n  k: {from: 1.05, to: 1.4, steps: 5}\n  mu: {from: 0.2, to: 0.7, steps: 6}\n",
             std::path::Path::new("a.yaml"),

@@ -406,16 +406,23 @@ fn lattice_of(layout: &RunLayout) -> super::reduce::FigureLattice {
 
 /// The rows of results.parquet a report keeps (every row, or those of the figure lattice),
 /// checked and counted as they were read ([`read_results`]).
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub struct ResultsRead {
     results: Vec<ResultRow>,
     totals: super::reduce::ResultTotals,
+    /// The lattice the rows were kept by.
+    lattice: super::reduce::FigureLattice,
 }
 
 /// Reads results.parquet of a run directory a block at a time, checked against `total`
 /// rows (run.json's count) and reduced to the figure lattice as it is read. It needs only
-/// the run's manifest and results, so a run reads them while it locates the boundaries.
-pub fn read_results(layout: &RunLayout, total: u64) -> Result<ResultsRead> {
+/// the run's manifest and results, so a run reads them while it locates the boundaries;
+/// when `stop` says so, it ends at the next block with [`Stopped`](crate::progress::Stopped).
+pub fn read_results(
+    layout: &RunLayout,
+    total: u64,
+    stop: &(dyn Fn() -> bool + Sync),
+) -> Result<ResultsRead> {
     if !layout.results().is_file() {
         return Err(RunDirError {
             path: layout.dir.clone(),
@@ -434,6 +441,9 @@ pub fn read_results(layout: &RunLayout, total: u64) -> Result<ResultsRead> {
     let mut results = Vec::with_capacity(lattice.kept().min(stored) + stored.min(block_rows));
     let mut totals = super::reduce::ResultTotals::default();
     store::append_results_in_blocks(&file, block_rows, &mut results, |offset, read, start| {
+        if stop() {
+            return Err(crate::progress::Stopped.into());
+        }
         let block = &read[start..];
         let (checked, ()) = rayon::join(
             || super::checks::check_result_rows(&file, offset, block),
@@ -444,7 +454,11 @@ pub fn read_results(layout: &RunLayout, total: u64) -> Result<ResultsRead> {
         Ok(())
     })?;
     totals.finish();
-    Ok(ResultsRead { results, totals })
+    Ok(ResultsRead {
+        results,
+        totals,
+        lattice,
+    })
 }
 
 /// Reads the stored files of a run directory: results.parquet a block at a time, checked and
@@ -463,12 +477,15 @@ pub fn load_with(layout: &RunLayout, read: Option<ResultsRead>) -> Result<RunDat
                 layout.run_json().display()
             )
         })?;
-    let ResultsRead { results, totals } = match read {
+    let ResultsRead {
+        results,
+        totals,
+        lattice,
+    } = match read {
         Some(r) => r,
-        None => read_results(layout, info.cases.total)?,
+        None => read_results(layout, info.cases.total, &|| false)?,
     };
     let file = layout.results();
-    let lattice = lattice_of(layout);
     let (load_factors, load_factor_singled) = if manifest.sampling.is_none()
         && manifest
             .load_cases

@@ -278,15 +278,28 @@ impl ParquetAppender {
     pub fn create(path: &Path, first: &mut DataFrame) -> Result<Self> {
         let tmp = crate::output::temp_sibling(path);
         crate::output::register_pending(&tmp);
-        let (file, errors) = RecordingFile::create(&tmp)?;
-        let mut appender = ParquetAppender {
-            writer: ParquetWriter::new(file)
+        let started = RecordingFile::create(&tmp).and_then(|(file, errors)| {
+            ParquetWriter::new(file)
                 .with_compression(ParquetCompression::Lz4Raw)
                 .with_key_value_metadata(Some(KeyValueMetadata::Static(vec![
                     schema::stored_schema(first),
                 ])))
                 .batched(first.schema())
-                .map_err(|e| errors.cause(e.into(), &tmp))?,
+                .map_err(|e| errors.cause(e.into(), &tmp))
+                .map(|writer| (writer, errors))
+        });
+        let (writer, errors) = match started {
+            Ok(w) => w,
+            Err(e) => {
+                // Nothing was started: no temporary file is left or still registered.
+                let _ = std::fs::remove_file(&tmp);
+                crate::output::unregister_pending(&tmp);
+                return Err(e);
+            }
+        };
+        // From here on, dropping the appender removes its temporary file.
+        let mut appender = ParquetAppender {
+            writer,
             errors,
             tmp,
             path: path.to_path_buf(),
