@@ -32,9 +32,9 @@ pub fn interrupted_by() -> Option<i32> {
 mod memory;
 use memory::gib;
 pub use memory::{
-    BYTES_PER_CASE, LATTICE_BYTES_PER_CASE, LATTICE_CASES, LOAD_FACTOR_BYTES_PER_CASE,
-    PROGRAM_BYTES, VERIFY_BYTES_PER_CASE, available_memory, base_bytes, bytes_per_case,
-    check_memory, check_memory_at, needed_bytes, needed_bytes_at,
+    ARCH_BYTES, BYTES_PER_CASE, CHUNK_BYTES_CRITICAL, CHUNK_BYTES_LOAD_FACTOR, CHUNK_BYTES_STATE,
+    LATTICE_BYTES_CRITICAL, LATTICE_BYTES_LOAD_FACTOR, LATTICE_BYTES_PER_CASE, LATTICE_CASES,
+    MemoryModel, PROGRAM_BYTES, VERIFY_BYTES_PER_CASE, available_memory,
 };
 
 /// Installs the handler of Ctrl-C (SIGINT) and SIGTERM: the staging directory and every
@@ -140,23 +140,20 @@ pub fn load_runnable(path: &Path) -> Result<(Manifest, Vec<u8>)> {
 }
 
 /// Why an unsharded run of a manifest is refused, or None when it fits: a plan whose run
-/// would need more than `available` bytes (see [`check_memory_at`]), or that has more than
+/// would need more than `available` bytes (see [`MemoryModel::check`]), or that has more than
 /// [`plan::MAX_CASES`] cases. Counted, never expanded. The message names `--shard` and the
 /// memory the run would need.
 pub fn unsharded_refusal(m: &Manifest, available: Option<u64>) -> Option<String> {
     let requested = plan::case_count(m);
-    if let Err(message) = check_memory_at(requested, bytes_per_case(m), available) {
+    let model = MemoryModel::of(m);
+    if let Err(message) = model.check(requested, available) {
         return Some(message);
     }
     if requested > u128::from(plan::MAX_CASES) {
         let e = plan::PlanTooLarge { requested };
         return Some(format!(
-            "{e} (its run would need about {} of memory at {} bytes a case)",
-            gib(needed_bytes_at(
-                u64::try_from(e.requested).unwrap_or(u64::MAX),
-                bytes_per_case(m)
-            )),
-            bytes_per_case(m)
+            "{e} (its run would need about {} of memory)",
+            gib(model.needed(u64::try_from(e.requested).unwrap_or(u64::MAX)))
         ));
     }
     None
@@ -190,12 +187,15 @@ pub fn check(study: &Path) -> Result<CheckSummary> {
     let cases = u64::try_from(plan::case_count(&m)).unwrap_or(u64::MAX);
     let mut plan = plan::describe(&m);
     match &refusal {
-        None => plan.push_str(&format!(
-            "memory: about {} for a run ({} bytes a case and {} besides)\n",
-            gib(needed_bytes_at(cases, bytes_per_case(&m))),
-            bytes_per_case(&m),
-            gib(base_bytes(cases))
-        )),
+        None => {
+            let model = MemoryModel::of(&m);
+            plan.push_str(&format!(
+                "memory: about {} for a run ({} bytes a case and {} besides)\n",
+                gib(model.needed(cases)),
+                model.per_case,
+                gib(model.base_bytes(cases))
+            ));
+        }
         Some(why) => plan.push_str(&format!(
             "runs in shards only: an unsharded run is refused: {why}\n"
         )),
@@ -341,7 +341,7 @@ pub fn worker_pool(jobs: Option<usize>) -> Result<(rayon::ThreadPool, usize)> {
 /// its number of cases. The rows are those of one pass (the engine's answer for a case does
 /// not depend on the other cases it runs with), and a chunk is a block of the results table
 /// ([`store::BLOCK_ROWS`]), so the file holds the data of one pass too.
-pub const CHUNK_CASES: u64 = store::BLOCK_ROWS as u64;
+pub const CHUNK_CASES: u64 = memory::CHUNK_CASES;
 
 /// results.parquet written chunk by chunk in plan order, with the count of the rows and the
 /// cell code ([`boundaries::cell_code`]) of each, all the boundaries stage reads of a row.

@@ -110,10 +110,18 @@ fn plan_cases(m: &crate::manifest::Manifest) -> Result<u64, UsageError> {
 /// does not grow with its size.
 pub const CHUNK_CASES: u64 = runner::CHUNK_CASES;
 
-/// Refuses a shard when even one chunk of it would not fit in memory.
-fn check_chunk(shard: Shard, cases: u64) -> Result<()> {
-    let chunk = u128::from(cases.min(CHUNK_CASES));
-    runner::check_memory(chunk, runner::available_memory()).map_err(|message| {
+/// Refuses a shard of a study of `model` that would not fit in memory: it analyses and stores
+/// a chunk at a time and draws nothing.
+fn check_chunk(shard: Shard, model: &runner::MemoryModel, cases: u64) -> Result<()> {
+    let needed = model.shard_needed(cases);
+    let fits = runner::available_memory().is_none_or(|a| needed <= a);
+    fits.then_some(()).ok_or_else(|| {
+        let message = format!(
+            "its {cases} cases need about {:.1} GiB of memory (a chunk of at most {CHUNK_CASES} \
+             analysed at a time), more than is available (the smaller of the free memory and \
+             `ulimit -v`); raise `ulimit -v`, free memory or run more shards",
+            needed as f64 / f64::from(1u32 << 30)
+        );
         UsageError::new(
             "--shard",
             format!("{}/{}", shard.index, shard.count),
@@ -144,7 +152,7 @@ pub fn run_shard(opts: &RunOptions, shard: Shard) -> Result<RunSummary> {
     let (m, bytes) = runner::load_manifest(&opts.study)?;
     let total = plan_cases(&m)?;
     let ids = plan::shard_ids(total, shard.index, shard.count);
-    check_chunk(shard, ids.end - ids.start)?;
+    check_chunk(shard, &runner::MemoryModel::of(&m), ids.end - ids.start)?;
     let empty = plan::build_slice(m.clone(), 0..0);
     let separable = empty.is_separable_state_grid();
     let grid_path = engine::GridPath::of(&empty).as_str().to_string();

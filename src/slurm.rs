@@ -7,7 +7,7 @@
 
 use crate::error::UsageError;
 use crate::runner;
-use crate::shard::{CHUNK_CASES, MAX_SHARDS};
+use crate::shard::MAX_SHARDS;
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 
@@ -149,16 +149,16 @@ fn mem_for_bytes(bytes: u64) -> String {
     format!("{}M", bytes.div_ceil(1 << 20))
 }
 
-/// The memory estimate of a run of `cases` cases, as a Slurm `--mem` value in megabytes.
-fn mem_for(cases: u64) -> String {
-    format!("{}M", runner::needed_bytes(cases).div_ceil(1 << 20))
+/// The memory estimate of a shard of `cases` cases of a study of `model`, as a Slurm `--mem`
+/// value in megabytes.
+fn mem_for(model: &runner::MemoryModel, cases: u64) -> String {
+    mem_for_bytes(model.shard_needed(cases))
 }
 
-/// The memory estimate of the merge of a manifest's `cases` cases, at its own cost per case,
-/// as a Slurm `--mem` value in megabytes.
-fn merge_mem_for(m: &crate::manifest::Manifest, cases: u64) -> String {
-    let bytes = runner::needed_bytes_at(cases, runner::bytes_per_case(m));
-    format!("{}M", bytes.div_ceil(1 << 20))
+/// The memory estimate of the merge of a study's `cases` cases, which draws its figures and
+/// reports, as a Slurm `--mem` value in megabytes.
+fn merge_mem_for(model: &runner::MemoryModel, cases: u64) -> String {
+    mem_for_bytes(model.needed(cases))
 }
 
 fn absolute(p: &Path) -> Result<PathBuf> {
@@ -204,11 +204,12 @@ pub fn write_scripts(o: &SlurmOptions) -> Result<SlurmScripts> {
     let (m, _) = runner::load_manifest(&o.study)?;
     let total = u64::try_from(crate::plan::case_count(&m)).unwrap_or(u64::MAX);
     let largest = crate::plan::shard_ids(total, 1, o.shards);
-    let task_cases = (largest.end - largest.start + 1).min(CHUNK_CASES);
+    let task_cases = largest.end - largest.start + 1;
+    let model = runner::MemoryModel::of(&m);
     if let Some(mem) = &o.mem {
-        check_mem(mem, runner::needed_bytes(task_cases))?;
+        check_mem(mem, model.shard_needed(task_cases))?;
     }
-    let shard_mem = o.mem.clone().unwrap_or_else(|| mem_for(task_cases));
+    let shard_mem = o.mem.clone().unwrap_or_else(|| mem_for(&model, task_cases));
     let (study, out, binary) = (absolute(&o.study)?, absolute(&o.out)?, absolute(&o.binary)?);
     check_path("--out", &out)?;
     check_path("STUDY", &study)?;
@@ -254,7 +255,7 @@ pub fn write_scripts(o: &SlurmOptions) -> Result<SlurmScripts> {
         name = m.name,
         run = out.join(&m.name).display(),
         output = output_pattern(&logs, "merge.out"),
-        common = common_lines(o, &merge_mem_for(&m, total)),
+        common = common_lines(o, &merge_mem_for(&model, total)),
         bin = quote_path(&binary),
         out = quote_path(&out),
         list = quote_path(&list),
@@ -343,12 +344,24 @@ mod tests {
     }
 
     #[test]
-    fn the_memory_estimate_is_the_runners() {
-        assert_eq!(mem_for(0), "128M");
-        // 64 bytes a case, 670 bytes a case of the figure lattice and 128 MiB besides.
+    fn the_memory_of_a_task_follows_its_find() {
+        let state = runner::MemoryModel::STATE;
+        assert_eq!(mem_for(&state, 0), "128M");
+        // A shard of 10⁶ states: 128 MiB, a chunk of 2¹⁸ rows at 1536 bytes and 64 bytes a
+        // case; its merge draws the figure lattice, 670 bytes a case, and one arch (1 MiB).
         assert_eq!(
-            mem_for(1_000_000),
-            format!("{}M", (734_000_000u64 + (128 << 20)).div_ceil(1 << 20))
+            mem_for(&state, 1_000_000),
+            format!(
+                "{}M",
+                ((128u64 << 20) + 262_144 * 1536 + 64_000_000).div_ceil(1 << 20)
+            )
+        );
+        assert_eq!(
+            merge_mem_for(&state, 1_000_000),
+            format!(
+                "{}M",
+                ((128u64 << 20) + 670_000_000 + 64_000_000 + (1 << 20)).div_ceil(1 << 20)
+            )
         );
     }
 }

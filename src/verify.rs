@@ -91,12 +91,13 @@ pub fn verify(opts: &VerifyOptions, out: &mut dyn Write) -> Result<bool> {
         return Ok(false);
     };
     // Re-running needs the memory of a run (the tables are compared a block at a time).
-    let needed = runner::needed_bytes_at(
-        u64::try_from(cases).unwrap_or(u64::MAX),
-        runner::VERIFY_BYTES_PER_CASE,
-    );
+    let model = runner::load_manifest(&dir.join("manifest.yaml"))
+        .map_or(runner::MemoryModel::STATE, |(m, _)| {
+            runner::MemoryModel::verify_of(&m)
+        });
+    let needed = model.needed(u64::try_from(cases).unwrap_or(u64::MAX));
     let available = runner::available_memory();
-    let too_big = runner::check_memory_at(cases, runner::VERIFY_BYTES_PER_CASE, available).is_err();
+    let too_big = model.check(cases, available).is_err();
     if too_big && opts.rerun {
         let gib = |b: u64| b as f64 / f64::from(1u32 << 30);
         return Err(UsageError::new(

@@ -125,7 +125,7 @@ fn a_plan_too_big_for_the_memory_limit_exits_2_naming_the_memory() {
     );
     let out = dir.join("out");
     let o = limited(
-        // 4,000,000 cases need about 1 GiB (0.75 GiB besides 64 bytes a case): refused in 0.76.
+        // 4,000,000 cases need about 1 GiB (0.8 GiB besides 64 bytes a case): refused in 0.76.
         "ulimit -v 800000",
         &[
             "run",
@@ -486,8 +486,8 @@ fn an_unknown_key_in_a_flow_mapping_is_named() {
 
 #[test]
 fn a_small_study_runs_under_a_tight_address_space_limit() {
-    // 37 load-factor cases need 128 MiB and 37 × 926 bytes: far below 600,000 KiB, which the
-    // estimate of a 1001² map (0.75 GiB besides its cases) refused with advice to run 37
+    // 37 load-factor cases need 128 MiB and 37 × 2624 bytes: far below 600,000 KiB, which the
+    // estimate of a 1001² map (0.75 GiB besides its cases) once refused with advice to run 37
     // shards that were refused in turn.
     let dir = scratch("ulimit-small");
     let m = manifest(
@@ -518,7 +518,7 @@ fn verify_of_a_run_too_large_to_redo_here_checks_integrity_within_the_memory_lim
     let dir = scratch("verify-large");
     let run = tiny_run(&dir);
     // The run of a 4000 × 3500 grid: 14,000,000 rows, more than 4 GB of memory can re-run
-    // (3.3 GiB at 256 bytes a case and 0.75 GiB besides).
+    // (3.3 GiB at 256 bytes a case and 0.8 GiB besides).
     let text = "name: tiny\ngrid:\n  k: {from: 1.05, to: 1.5, steps: 4000}\n  mu: {from: 0.2, to: 0.8, steps: 3500}\n";
     let old = archstudy::provenance::sha256_hex(&std::fs::read(run.join("manifest.yaml")).unwrap());
     std::fs::write(run.join("manifest.yaml"), text).unwrap();

@@ -173,6 +173,18 @@ pub enum AxisName {
 }
 
 impl AxisName {
+    /// True for the axes that change the arch itself: half-angle, eccentricity, joints and
+    /// voussoirs.
+    pub fn is_arch(self) -> bool {
+        matches!(
+            self,
+            AxisName::HalfAngleDeg
+                | AxisName::Eccentricity
+                | AxisName::Joints
+                | AxisName::Voussoirs
+        )
+    }
+
     /// The manifest key.
     pub fn as_str(self) -> &'static str {
         match self {

@@ -1,46 +1,225 @@
-//! The memory estimate of a run, from its plan: a fixed part for the program, a part that
-//! grows with the cases up to the figure lattice (at most 1001² of them are held for the
-//! figures), and the bytes every case keeps. A plan that does not fit is refused with the
-//! shards that would fit, or, when not even one case would, without advice to shard.
+//! The memory estimate of a run, from its plan. Besides the program, a run keeps a few bytes
+//! of every case (its cell code and solve time); while it analyses, it holds the rows of one
+//! chunk and their table; while it reports, the rows of the figure lattice it reads back; and a
+//! study that locates bifurcations arch by arch holds the states and figures of every arch's
+//! bifurcations. The two phases follow each other, so the larger counts. What a case holds
+//! depends on its find (a state, a load factor with its mechanism, a critical value with its
+//! collapse and gap), so each find has its own bytes per case, measured on release builds
+//! (`/usr/bin/time -v`, maximum resident set size). A plan that does not fit is refused with
+//! the shards that would fit (a shard analyses and stores, and draws nothing), or, when not
+//! even one case would fit, without advice to shard.
 
 use crate::manifest::Manifest;
+use crate::scene::Find;
 
-/// Memory of a run per case, in bytes: the case's cell code, its cell in the boundaries'
-/// grid and its solve time in the report's totals (the rows themselves are stored and
-/// dropped chunk by chunk). Measured (release build): a 1001² state map peaks at 583 MB and a
-/// 4001² one at 790 MB, 14 bytes more a case; 64 leaves a margin.
+/// Memory every case keeps for the whole run, in bytes: its cell code for the boundaries and
+/// its solve time for the report's totals. Measured: a 4001² state map peaks at 820 MB and a
+/// 1001² one at 590 MB, 15 bytes a case more; 64 leaves a margin.
 pub const BYTES_PER_CASE: u64 = 64;
 
 /// Memory of a run whatever its plan, in bytes: the program with its fonts and templates,
-/// the thread stacks and the Parquet writers. Measured (release build): a 37-case
-/// load-factor study peaks at 88 MB, a 2 × 2 state study at 61 MB.
+/// the thread stacks, the Parquet writers and the figures being drawn. Measured: a 37-case
+/// load-factor study peaks at 88 MB, a 4,900-case thresholds study at 44 MB.
 pub const PROGRAM_BYTES: u64 = 128 << 20;
 
 /// Cases of the figure lattice at most (1001 values of each of two axes): the rows the
-/// figures and the report hold, and beyond which a run's chunk does not grow.
+/// figures and the report hold.
 pub const LATTICE_CASES: u64 = 1001 * 1001;
 
-/// Memory per case of the figure lattice and of the chunk being analysed, in bytes: the
-/// engine's rows and their table, and the figure data of the lattice. Measured: a 1001²
-/// state map peaks at 612 MB, a 1001² load-factor map at 1.00 GB (since the engine keeps one
-/// buffer of rows for all chunks and the report builds the rows it keeps in place, one
-/// block of results.parquet at a time, the state map peaks at 539 MB); 670 bytes a lattice
-/// case and [`PROGRAM_BYTES`] give the 768 MiB besides the cases that both leave room in.
+/// Cases of the chunk a run analyses and stores at a time.
+pub const CHUNK_CASES: u64 = crate::store::BLOCK_ROWS as u64;
+
+/// Memory per case of the chunk being analysed of a study of states, thrusts or thresholds,
+/// in bytes: the engine's rows and their table. Measured: a 512² state map (262,144 cases)
+/// peaks at 385 MB and a 512² thrust map at 434 MB, 1.3 and 1.5 kB a case over 40 MB.
+pub const CHUNK_BYTES_STATE: u64 = 1536;
+
+/// Memory per case of the chunk being analysed of a study that finds load factors, in bytes:
+/// each row keeps the mechanism of its static limit and of its first complete solution.
+/// Measured: 61,061 cases peak at 236 MB, 262,262 at 583 MB, and a 1001² map at 607 MB while
+/// it analyses (2.4 and 1.9 kB a case over 88 MB).
+pub const CHUNK_BYTES_LOAD_FACTOR: u64 = 2560;
+
+/// Memory per case of the chunk being analysed of a study of critical thicknesses or
+/// frictions, in bytes. Measured: 61,000 friction finds hold 90 MB while they are analysed
+/// (1.1 kB a case).
+pub const CHUNK_BYTES_CRITICAL: u64 = 1536;
+
+/// Memory per case of the figure lattice of a study of states, thrusts or thresholds, in
+/// bytes: the rows the figures and the report read back. Measured: a 1001² state map peaks
+/// at 590 MB (550 bytes a case over 40 MB).
 pub const LATTICE_BYTES_PER_CASE: u64 = 670;
 
-/// Memory of a run per case when a load case finds a load factor, in bytes: the figure data
-/// and the report keep the load factor, position and mechanism of the cases of the figure
-/// lattice (every case up to 1001 values an axis, so at most 1001² of them) and a few cases
-/// singled out over all. Measured (release build): a 1001² load-factor map peaks at 1.00 GB
-/// (1.28 GB when every case was read whole), a 2001² one at 1.05 GB, 18 bytes a case more;
-/// 256 covers the lattice of a 1001² map with a margin.
-pub const LOAD_FACTOR_BYTES_PER_CASE: u64 = 256;
+/// Memory per case of the figure lattice of a study that finds load factors, in bytes: the
+/// load factor, position and mechanism of each. Measured: a 1001² load-factor map peaks at
+/// 1.08 GB while it reports (990 bytes a case over 88 MB).
+pub const LATTICE_BYTES_LOAD_FACTOR: u64 = 1024;
+
+/// Memory per case of the figure lattice of a study of critical thicknesses or frictions, in
+/// bytes: each row's critical value, collapse and gap. Measured: 30,500 and 61,000 friction
+/// finds over the same 244 arches peak at 327 and 384 MB, 1.9 kB a case more.
+pub const LATTICE_BYTES_CRITICAL: u64 = 2048;
+
+/// Memory per arch and load case of a study of states, thicknesses or frictions with an arch
+/// axis, in bytes: the limit states at the arch's bifurcations, their mechanisms and figures.
+/// Measured: thickness finds over 70 and 140 arches (4,900 and 19,600 cases) peak at 122 and
+/// 176 MB; friction finds over 244 arches (168 bifurcations) at 327 MB with 30,500 cases.
+pub const ARCH_BYTES: u64 = 1 << 20;
 
 /// Memory of `archstudy verify` per case, in bytes: it re-runs the study and compares the
-/// stored tables with the new ones a block of rows at a time, so it needs what the re-run
-/// needs (at most [`LOAD_FACTOR_BYTES_PER_CASE`]). Measured: verify of a 1001² state map
-/// peaks at 545 MB (2.14 GB when it compared whole tables).
-pub const VERIFY_BYTES_PER_CASE: u64 = LOAD_FACTOR_BYTES_PER_CASE;
+/// stored tables with the new ones a block of rows at a time. Measured: verify of a 1001²
+/// state map peaks at 545 MB (2.14 GB when it compared whole tables).
+pub const VERIFY_BYTES_PER_CASE: u64 = 256;
+
+/// What a run of a plan holds in memory, from its manifest: see the module's description.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MemoryModel {
+    /// Bytes every case keeps for the whole run.
+    pub per_case: u64,
+    /// Bytes per case of the chunk being analysed.
+    pub chunk: u64,
+    /// Bytes per case of the figure lattice.
+    pub lattice: u64,
+    /// Bytes of the bifurcation states and figures of every arch.
+    pub arches: u64,
+}
+
+impl MemoryModel {
+    /// The model of a study of states (the default find) on one arch.
+    pub const STATE: MemoryModel = MemoryModel {
+        per_case: BYTES_PER_CASE,
+        chunk: CHUNK_BYTES_STATE,
+        lattice: LATTICE_BYTES_PER_CASE,
+        arches: ARCH_BYTES,
+    };
+
+    /// The model of the run of `m`: the largest bytes per case of its load cases' finds, and
+    /// [`ARCH_BYTES`] for each arch and load case of a find that locates bifurcations arch by
+    /// arch (the product of the arch axes' values: half-angle, eccentricity, joints and
+    /// voussoirs).
+    pub fn of(m: &Manifest) -> Self {
+        let arches: u64 = m
+            .grid
+            .iter()
+            .filter(|a| a.name.is_arch())
+            .map(|a| a.values.len() as u64)
+            .product();
+        let mut out = MemoryModel {
+            per_case: BYTES_PER_CASE,
+            chunk: 0,
+            lattice: 0,
+            arches: 0,
+        };
+        for lc in &m.load_cases {
+            let (chunk, lattice) = match lc.find {
+                Find::LoadFactor => (CHUNK_BYTES_LOAD_FACTOR, LATTICE_BYTES_LOAD_FACTOR),
+                Find::Thickness | Find::Friction => (CHUNK_BYTES_CRITICAL, LATTICE_BYTES_CRITICAL),
+                Find::State | Find::Thrust | Find::Thresholds => {
+                    (CHUNK_BYTES_STATE, LATTICE_BYTES_PER_CASE)
+                }
+            };
+            out.chunk = out.chunk.max(chunk);
+            out.lattice = out.lattice.max(lattice);
+            if matches!(lc.find, Find::State | Find::Thickness | Find::Friction) {
+                out.arches = out.arches.saturating_add(arches.saturating_mul(ARCH_BYTES));
+            }
+        }
+        out
+    }
+
+    /// The model of `archstudy verify` of the run of `m`: the run's, at
+    /// [`VERIFY_BYTES_PER_CASE`] a case.
+    pub fn verify_of(m: &Manifest) -> Self {
+        MemoryModel {
+            per_case: VERIFY_BYTES_PER_CASE,
+            ..Self::of(m)
+        }
+    }
+
+    /// The larger of the chunk being analysed and the figure lattice, in bytes.
+    fn phase_bytes(&self, cases: u64) -> u64 {
+        let chunk = cases.min(CHUNK_CASES).saturating_mul(self.chunk);
+        let lattice = cases.min(LATTICE_CASES).saturating_mul(self.lattice);
+        chunk.max(lattice)
+    }
+
+    /// The memory of a run of `cases` cases besides the bytes each case keeps: the program,
+    /// the larger phase and the arches.
+    pub fn base_bytes(&self, cases: u64) -> u64 {
+        PROGRAM_BYTES
+            .saturating_add(self.phase_bytes(cases))
+            .saturating_add(self.arches)
+    }
+
+    /// The memory estimate of a run of `cases` cases, in bytes.
+    pub fn needed(&self, cases: u64) -> u64 {
+        cases
+            .saturating_mul(self.per_case)
+            .saturating_add(self.base_bytes(cases))
+    }
+
+    /// The memory estimate of a shard of `cases` cases, which analyses and stores them chunk
+    /// by chunk and draws nothing, in bytes.
+    pub fn shard_needed(&self, cases: u64) -> u64 {
+        PROGRAM_BYTES
+            .saturating_add(cases.min(CHUNK_CASES).saturating_mul(self.chunk))
+            .saturating_add(cases.saturating_mul(self.per_case))
+    }
+
+    /// The most cases a shard can hold in `available` bytes, or None when not even one case
+    /// fits.
+    fn shard_cases_that_fit(&self, available: u64) -> Option<u64> {
+        if self.shard_needed(1) > available {
+            return None;
+        }
+        let full = self.shard_needed(CHUNK_CASES);
+        let fits = if full <= available {
+            CHUNK_CASES + (available - full) / self.per_case.max(1)
+        } else {
+            (available - PROGRAM_BYTES) / self.chunk.saturating_add(self.per_case).max(1)
+        };
+        Some(fits.max(1))
+    }
+
+    /// Refuses a plan of `cases` cases whose run would need more memory than `available`,
+    /// naming both, before anything is allocated. The shards it advises each fit in
+    /// `available`; when not even one case of a shard fits, it advises more memory instead.
+    pub fn check(&self, cases: u128, available: Option<u64>) -> Result<(), String> {
+        let Some(available) = available else {
+            return Ok(());
+        };
+        let cases = u64::try_from(cases).unwrap_or(u64::MAX);
+        let needed = self.needed(cases);
+        if needed <= available {
+            return Ok(());
+        }
+        let head = format!(
+            "the study has {cases} cases, whose run needs about {} of memory ({} bytes per case \
+             and {} besides), but {} is available (the smaller of the free memory and `ulimit -v`)",
+            gib(needed),
+            self.per_case,
+            gib(self.base_bytes(cases)),
+            gib(available)
+        );
+        let Some(fits) = self.shard_cases_that_fit(available) else {
+            return Err(format!(
+                "{head}: a shard of a single case needs about {}, so no shard would fit \
+                 either; raise `ulimit -v` or free memory to at least {}",
+                gib(self.shard_needed(1)),
+                gib(needed)
+            ));
+        };
+        let shards = cases.div_ceil(fits);
+        Err(format!(
+            "{head}: run it in shards of at most {fits} cases, `archstudy run STUDY --shard I/N` \
+             with N ≥ {shards} (one process or cluster task per shard, then `archstudy merge` on a \
+             machine with about {} of memory; `archstudy slurm STUDY --shards N` writes the job \
+             array), or reduce the steps of the grid axes (or the samples of a study of \
+             uncertain parameters)",
+            gib(needed)
+        ))
+    }
+}
 
 /// Returns the memory freed by a chunk's rows to the operating system. The rows of a chunk
 /// (a load factor's hinges, sliding joints and work terms) are many small allocations made
@@ -85,119 +264,145 @@ pub(super) fn gib(bytes: u64) -> String {
     format!("{:.1} GiB", bytes as f64 / f64::from(1u32 << 30))
 }
 
-/// The memory of a run of `cases` cases besides the bytes each case keeps: [`PROGRAM_BYTES`]
-/// and [`LATTICE_BYTES_PER_CASE`] for each case up to [`LATTICE_CASES`].
-pub fn base_bytes(cases: u64) -> u64 {
-    PROGRAM_BYTES.saturating_add(
-        cases
-            .min(LATTICE_CASES)
-            .saturating_mul(LATTICE_BYTES_PER_CASE),
-    )
-}
-
-/// The memory estimate of a run of `cases` cases at `per_case` bytes a case.
-pub fn needed_bytes_at(cases: u64, per_case: u64) -> u64 {
-    cases
-        .saturating_mul(per_case)
-        .saturating_add(base_bytes(cases))
-}
-
-/// The memory estimate of a run of `cases` cases, in bytes.
-pub fn needed_bytes(cases: u64) -> u64 {
-    needed_bytes_at(cases, BYTES_PER_CASE)
-}
-
-/// The memory per case of a manifest's run ([`BYTES_PER_CASE`], or
-/// [`LOAD_FACTOR_BYTES_PER_CASE`] for a study that finds load factors).
-pub fn bytes_per_case(m: &Manifest) -> u64 {
-    if m.load_cases
-        .iter()
-        .any(|l| l.find == crate::scene::Find::LoadFactor)
-    {
-        LOAD_FACTOR_BYTES_PER_CASE
-    } else {
-        BYTES_PER_CASE
-    }
-}
-
-/// Refuses a plan of `cases` cases whose run would need more memory than `available`
-/// (see [`BYTES_PER_CASE`]), naming both, before anything is allocated.
-pub fn check_memory(cases: u128, available: Option<u64>) -> Result<(), String> {
-    check_memory_at(cases, BYTES_PER_CASE, available)
-}
-
-/// The most cases a run at `per_case` bytes a case can hold in `available` bytes, or None
-/// when not even one case fits.
-fn cases_that_fit(per_case: u64, available: u64) -> Option<u64> {
-    let room = available.checked_sub(PROGRAM_BYTES)?;
-    let in_lattice = per_case.saturating_add(LATTICE_BYTES_PER_CASE).max(1);
-    let fits = if room / in_lattice <= LATTICE_CASES {
-        room / in_lattice
-    } else {
-        LATTICE_CASES + (room - LATTICE_CASES * in_lattice) / per_case.max(1)
-    };
-    (fits >= 1).then_some(fits)
-}
-
-/// [`check_memory`] at `per_case` bytes a case. The shards it advises each fit in
-/// `available`; when not even one case fits, it advises more memory instead.
-pub fn check_memory_at(cases: u128, per_case: u64, available: Option<u64>) -> Result<(), String> {
-    let Some(available) = available else {
-        return Ok(());
-    };
-    let cases = u64::try_from(cases).unwrap_or(u64::MAX);
-    let needed = needed_bytes_at(cases, per_case);
-    if needed <= available {
-        return Ok(());
-    }
-    let head = format!(
-        "the study has {cases} cases, whose run needs about {} of memory ({} bytes per case and {} \
-         besides), but {} is available (the smaller of the free memory and `ulimit -v`)",
-        gib(needed),
-        per_case,
-        gib(base_bytes(cases)),
-        gib(available)
-    );
-    let Some(fits) = cases_that_fit(per_case, available) else {
-        return Err(format!(
-            "{head}: the program alone needs about {}, so no shard would fit either; raise \
-             `ulimit -v` or free memory to at least {}",
-            gib(PROGRAM_BYTES),
-            gib(needed)
-        ));
-    };
-    let shards = cases.div_ceil(fits);
-    Err(format!(
-        "{head}: run it in shards of at most {fits} cases, `archstudy run STUDY --shard I/N` \
-         with N ≥ {shards} (one process or cluster task per shard, then `archstudy merge` on a \
-         machine with that memory; `archstudy slurm STUDY --shards N` writes the job array), \
-         or reduce the steps of the grid axes (or the samples of a study of uncertain \
-         parameters)"
-    ))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use std::path::Path;
 
+    /// The manifest of a study of `find` under `kind` over `axes` (YAML lines of `grid:`).
+    fn study(find: &str, kind: &str, axes: &str) -> Manifest {
+        let text = format!(
+            "name: a\narch: {{shape: circular, joints: radial, weight: annular, voussoirs: continuum}}\n\
+             find: {find}\nload_cases:\n  - {{name: l, kind: {kind}}}\ngrid:\n{axes}"
+        );
+        crate::manifest::parse(&text, Path::new("a.yaml")).unwrap()
+    }
+
+    fn cases(m: &Manifest) -> u64 {
+        u64::try_from(crate::plan::case_count(m)).unwrap()
+    }
+
+    #[test]
+    fn every_measured_peak_is_covered_and_the_growth_within_two_and_a_half_times() {
+        let km = |k: u32, mu: u32| {
+            format!(
+                "  k: {{from: 1.1, to: 1.6, steps: {k}}}\n  mu: {{from: 0.3, to: 1.0, steps: {mu}}}\n"
+            )
+        };
+        let arches = |first: &str, n: u32, second: u32| {
+            format!(
+                "  {first}: {{from: 0.35, to: 0.9, steps: {second}}}\n  half_angle_deg: {{from: 60, to: 90, steps: {n}}}\n"
+            )
+        };
+        let friction = |k: u32| {
+            format!(
+                "  k: {{from: 1.1, to: 1.6, steps: {k}}}\n  half_angle_deg: {{from: 60, to: 90, steps: 244}}\n"
+            )
+        };
+        // Peak resident memory of runs of release builds (`/usr/bin/time -v`), in bytes.
+        let runs = [
+            (
+                study("state", "self_weight", &km(512, 512)),
+                385_372u64 << 10,
+            ),
+            (study("state", "self_weight", &km(1001, 1001)), 590_000_000),
+            (study("state", "self_weight", &km(4001, 4001)), 820_000_000),
+            (study("thrust", "self_weight", &km(512, 512)), 434_188 << 10),
+            (
+                study("load_factor", "horizontal", &km(1001, 61)),
+                236_000_000,
+            ),
+            (
+                study("load_factor", "horizontal", &km(1001, 262)),
+                583_000_000,
+            ),
+            (
+                study("load_factor", "horizontal", &km(1001, 1001)),
+                1_056_492 << 10,
+            ),
+            (
+                study("friction", "self_weight", &friction(125)),
+                326_860 << 10,
+            ),
+            (
+                study("friction", "self_weight", &friction(250)),
+                383_856 << 10,
+            ),
+            (
+                study("thickness", "self_weight", &arches("mu", 70, 70)),
+                121_548 << 10,
+            ),
+            (
+                study("thickness", "self_weight", &arches("mu", 140, 140)),
+                176_196 << 10,
+            ),
+            (
+                study(
+                    "thresholds",
+                    "self_weight",
+                    "  half_angle_deg: {from: 45, to: 90, steps: 4900}\n",
+                ),
+                43_516 << 10,
+            ),
+        ];
+        for (m, peak) in &runs {
+            // Small runs are dominated by the program's fixed part, whose measure is the
+            // smallest run's; the rest is held to the measured growth.
+            let estimate = MemoryModel::of(m).needed(cases(m));
+            assert!(
+                estimate >= *peak && estimate - PROGRAM_BYTES <= peak * 5 / 2,
+                "{} cases of {:?}: estimate {estimate}, peak {peak}",
+                cases(m),
+                m.load_cases[0].find
+            );
+        }
+        // The first of four shards of the 1001² load-factor map (250,501 cases) peaks at
+        // 549 MB; a shard draws nothing.
+        let lf = &runs[6].0;
+        let shard = MemoryModel::of(lf).shard_needed(250_501);
+        assert!(
+            (549_036u64 << 10..=2 * (549_036 << 10)).contains(&shard),
+            "{shard}"
+        );
+    }
+
+    #[test]
+    fn each_find_holds_its_own_rows_and_arches_count_for_bifurcations() {
+        let two = "  k: {from: 1.1, to: 1.6, steps: 3}\n  mu: {values: [0.4]}\n";
+        let lf = MemoryModel::of(&study("load_factor", "horizontal", two));
+        assert_eq!((lf.chunk, lf.lattice, lf.arches), (2560, 1024, 0));
+        let state = MemoryModel::of(&study("state", "self_weight", two));
+        assert_eq!(state, MemoryModel::STATE);
+        let by_arch = "  mu: {values: [0.4, 0.5]}\n  half_angle_deg: {values: [60, 70, 80]}\n  \
+                       voussoirs: {values: [5, 7]}\n";
+        let thickness = MemoryModel::of(&study("thickness", "self_weight", by_arch));
+        assert_eq!((thickness.chunk, thickness.lattice), (1536, 2048));
+        assert_eq!(thickness.arches, 6 << 20);
+        // 12 cases: 128 MiB, 12 × 2048 bytes of lattice, 12 × 64 and the six arches.
+        assert_eq!(
+            thickness.needed(12),
+            (128 << 20) + 12 * 2048 + 12 * 64 + (6 << 20)
+        );
+    }
+
     #[test]
     fn a_plan_too_large_for_the_memory_is_refused_naming_shards_and_the_memory() {
         let gib4 = 4u64 << 30;
-        assert!(check_memory(16_008_001, Some(gib4)).is_ok());
-        assert!(check_memory(100_000_000, None).is_ok());
-        let e = check_memory(100_000_000, Some(gib4)).unwrap_err();
-        // 10⁸ cases at 64 bytes, 128 MiB and 670 bytes a lattice case besides need 6.71 GiB;
-        // 4 GiB holds (4 GiB − 128 MiB − 1001² × 670)/64 + 1001² = 54,522,014 cases, so 2
-        // shards.
+        let state = MemoryModel::STATE;
+        assert!(state.check(16_008_001, Some(gib4)).is_ok());
+        assert!(state.check(100_000_000, None).is_ok());
+        let e = state.check(100_000_000, Some(gib4)).unwrap_err();
+        // 10⁸ cases at 64 bytes, 128 MiB, 1001² × 670 bytes of lattice and one arch besides
+        // need 6.72 GiB. A shard of s cases needs 128 MiB, 2¹⁸ × 1536 bytes and 64 s: 4 GiB
+        // holds s = (4 GiB − 128 MiB − 2¹⁸ × 1536)/64 = 58,720,256, so 2 shards.
         for part in [
             "100000000 cases",
             "6.7 GiB",
             "64 bytes per case",
             "4.0 GiB is available",
-            "shards of at most 54522014 cases",
+            "shards of at most 58720256 cases",
             "--shard I/N` with N ≥ 2",
-            "archstudy merge",
+            "archstudy merge` on a machine with about 6.7 GiB",
         ] {
             assert!(e.contains(part), "{part}: {e}");
         }
@@ -205,16 +410,21 @@ mod tests {
 
     #[test]
     fn a_small_plan_is_estimated_by_its_own_cases() {
-        // A 37-case load-factor study: 128 MiB + 37 × (670 + 256) bytes, far below the
-        // 768 MiB of a 1001² map's lattice; it fits under `ulimit -v 600000`.
-        let needed = needed_bytes_at(37, LOAD_FACTOR_BYTES_PER_CASE);
-        assert_eq!(needed, (128 << 20) + 37 * 926);
-        assert!(check_memory_at(37, LOAD_FACTOR_BYTES_PER_CASE, Some(600_000 << 10)).is_ok());
+        // A 37-case load-factor study: 128 MiB + 37 × (2560 + 64) bytes; it fits under
+        // `ulimit -v 600000`.
+        let m = study(
+            "load_factor",
+            "horizontal",
+            "  k: {from: 1.1, to: 1.6, steps: 37}\n  mu: {values: [0.6]}\n",
+        );
+        let model = MemoryModel::of(&m);
+        assert_eq!(model.needed(37), (128 << 20) + 37 * (2560 + 64));
+        assert!(model.check(37, Some(600_000 << 10)).is_ok());
     }
 
     #[test]
     fn no_shards_are_advised_when_not_even_one_case_fits() {
-        let e = check_memory_at(37, LOAD_FACTOR_BYTES_PER_CASE, Some(100 << 20)).unwrap_err();
+        let e = MemoryModel::STATE.check(37, Some(100 << 20)).unwrap_err();
         assert!(!e.contains("--shard"), "{e}");
         assert!(
             e.contains("no shard would fit") && e.contains("ulimit -v"),
@@ -224,42 +434,27 @@ mod tests {
 
     #[test]
     fn every_advised_shard_fits() {
-        for available in [200u64 << 20, 600_000 << 10, 1 << 30, 4 << 30] {
-            for cases in [10_000u64, 3_000_000, 100_000_000] {
-                let Err(e) = check_memory_at(u128::from(cases), 64, Some(available)) else {
-                    continue;
-                };
-                let fits = cases_that_fit(64, available).expect(&e);
-                assert!(needed_bytes_at(fits, 64) <= available, "{e}");
-                assert!(needed_bytes_at(fits + 1, 64) > available, "{e}");
+        let lf = MemoryModel {
+            chunk: CHUNK_BYTES_LOAD_FACTOR,
+            lattice: LATTICE_BYTES_LOAD_FACTOR,
+            arches: 0,
+            ..MemoryModel::STATE
+        };
+        for model in [MemoryModel::STATE, lf] {
+            for available in [200u64 << 20, 600_000 << 10, 1 << 30, 4 << 30] {
+                for cases in [10_000u64, 3_000_000, 100_000_000] {
+                    let Err(e) = model.check(u128::from(cases), Some(available)) else {
+                        continue;
+                    };
+                    let Some(fits) = model.shard_cases_that_fit(available) else {
+                        assert!(!e.contains("--shard"), "{e}");
+                        continue;
+                    };
+                    assert!(e.contains(&format!("at most {fits} cases")), "{e}");
+                    assert!(model.shard_needed(fits) <= available, "{e}");
+                    assert!(model.shard_needed(fits + 1) > available, "{e}");
+                }
             }
         }
-    }
-
-    #[test]
-    fn a_load_factor_map_is_estimated_at_its_own_cost_per_case() {
-        let gib4 = 4u64 << 30;
-        let m = |find: &str, kind: &str| {
-            crate::manifest::parse(
-                &format!("name: a\nfind: {find}\nload_cases:\n  - {{name: h, kind: {kind}}}\ngrid:\n  k: {{from: 1.1, to: 1.6, steps: 3}}\n  mu: {{values: [0.4]}}\n"),
-                Path::new("a.yaml"),
-            )
-            .unwrap()
-        };
-        assert_eq!(
-            bytes_per_case(&m("load_factor", "horizontal")),
-            LOAD_FACTOR_BYTES_PER_CASE
-        );
-        assert_eq!(bytes_per_case(&m("state", "self_weight")), BYTES_PER_CASE);
-        // 1.5 × 10⁷ load factors at 256 bytes need 4.3 GiB: refused at 4 GiB, in 2 shards of
-        // at most (4 GiB − 128 MiB − 1001² × 670)/256 + 1001² = 13,630,503 cases; the same
-        // count of states fits.
-        let e = check_memory_at(15_000_000, LOAD_FACTOR_BYTES_PER_CASE, Some(gib4)).unwrap_err();
-        assert!(
-            e.contains("256 bytes per case") && e.contains("at most 13630503 cases"),
-            "{e}"
-        );
-        assert!(e.contains("4.3 GiB") && e.contains("N ≥ 2"), "{e}");
-        assert!(check_memory_at(15_000_000, BYTES_PER_CASE, Some(gib4)).is_ok());
     }
 }
