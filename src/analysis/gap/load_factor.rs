@@ -3,17 +3,25 @@
 
 use super::joints;
 use super::mechanism::{self, JointMove, StateY};
+use super::refine::{self, Pattern};
 use super::rows::{RowKind, StateRows};
 use super::walk::{self, WalkLimits};
 use super::{Complete, GapSearch, GapStatus, Settings, complete_moves};
 use crate::analysis::general::{self, Outcome};
 use crate::analysis::lp;
-use crate::analysis::statics::ArchGeometry;
+use crate::analysis::statics::{ArchGeometry, Condition};
+
+/// A complete vertex: its moving joints, its state and the joint rows tight there.
+struct Lowest {
+    moves: Vec<JointMove>,
+    y: [f64; 4],
+    tight: Vec<(f64, Condition)>,
+}
 
 /// The lowest complete vertex of the polytope of one set of joints.
 struct Pass {
-    /// The lowest complete vertex and its moving joints.
-    best: Option<(Vec<JointMove>, [f64; 4])>,
+    /// The lowest complete vertex.
+    best: Option<Lowest>,
     /// The highest λ of the polytope (the static limit of these joints).
     top: f64,
     vertices: usize,
@@ -66,9 +74,24 @@ fn pass<G: ArchGeometry + ?Sized>(
     // The lowest complete vertex, the first of the walk's order among equal λ.
     let mut by_lambda: Vec<&walk::Vertex> = vertices.iter().collect();
     by_lambda.sort_by(|p, q| p.y[3].total_cmp(&q.y[3]));
-    let best = by_lambda
-        .into_iter()
-        .find_map(|v| complete_moves(geom, &rows, v, settings).map(|(moves, _)| (moves, v.y)));
+    let best = by_lambda.into_iter().find_map(|v| {
+        let (moves, _) = complete_moves(geom, &rows, v, settings)?;
+        let tight = v
+            .tight
+            .iter()
+            .filter_map(|&r| match rows.kind[r] {
+                RowKind::Joint {
+                    joint, condition, ..
+                } => Some((rows.thetas[joint], condition)),
+                RowKind::Bound => None,
+            })
+            .collect();
+        Some(Lowest {
+            moves,
+            y: v.y,
+            tight,
+        })
+    });
     Ok(Pass {
         best,
         top: top.x[3],
@@ -98,62 +121,36 @@ pub(super) fn initial_joints<G: ArchGeometry + ?Sized>(geom: &G, settings: &Sett
 /// The first complete solution along increasing λ ≥ 0 at friction angle φ (radians): the
 /// lowest load factor at which the live load of `geom` on its dead load can start a
 /// mechanism, searched up to [`Settings::lambda_cap`].
-pub fn first_complete_load_factor<G: ArchGeometry + ?Sized>(
+///
+/// A continuum is walked on sampled joints; the lowest complete vertex there is solved on the
+/// continuum itself (its hinges moved to where their rows are tangent, as for a path), and
+/// only where that fails are the joints it violates added and the polytope walked again.
+pub fn first_complete_load_factor<G: ArchGeometry + Copy>(
     geom: &G,
     phi: f64,
     settings: &Settings,
 ) -> GapSearch {
     let range = [0.0, settings.lambda_cap];
-    let general_settings = general::Settings::default();
-    let discrete = geom.discrete_joints();
     let mut thetas = joints::initial(geom, settings);
-    let mut visited = 0;
-    let mut result = None;
-    for _ in 0..settings.max_exchange_rounds {
-        let walked = thetas
-            .clone()
-            .or_else(|| discrete.clone())
-            .unwrap_or_default();
-        let p = match pass(geom, phi, &walked, settings) {
-            Ok(p) => p,
-            Err(PassError::Infeasible) => {
-                return GapSearch {
-                    status: GapStatus::NoCompleteSolution,
-                    first: None,
-                    static_limit: None,
-                    range,
-                    vertices: visited,
-                };
-            }
-            Err(PassError::Failed) => return GapSearch::failed(range),
-        };
-        visited += p.vertices;
-        let (Some(t), Some((_, y))) = (thetas.as_mut(), &p.best) else {
-            result = Some(p);
-            break;
-        };
-        let cuts = joints::violated_elsewhere(geom, phi, y, t);
-        if cuts.is_empty() {
-            result = Some(p);
-            break;
+    let walked = match walk_and_exchange(geom, phi, &mut thetas, settings) {
+        Ok(w) => w,
+        Err(None) => return GapSearch::failed(range),
+        Err(Some(visited)) => {
+            return GapSearch {
+                status: GapStatus::NoCompleteSolution,
+                first: None,
+                static_limit: None,
+                range,
+                vertices: visited,
+            };
         }
-        let before = t.len();
-        t.extend(cuts);
-        t.sort_by(f64::total_cmp);
-        t.dedup();
-        if t.len() == before || joints::too_many(t, settings) {
-            return GapSearch::failed(range);
-        }
-    }
-    let Some(p) = result else {
-        return GapSearch::failed(range);
     };
     // The static limit: the walk's own top when it walked every joint of a discrete arch; the
     // general route's otherwise.
-    let static_limit = if discrete.is_some() && thetas.is_none() {
-        Some(p.top)
+    let static_limit = if thetas.is_none() {
+        Some(walked.top)
     } else {
-        let lf = general::load_factor(geom, phi, &general_settings);
+        let lf = general::load_factor(geom, phi, &general::Settings::default());
         match lf.outcome {
             Outcome::Solved => Some(lf.lambda),
             Outcome::Unbounded => Some(f64::INFINITY),
@@ -168,7 +165,7 @@ pub fn first_complete_load_factor<G: ArchGeometry + ?Sized>(
         }
     });
     let mu = phi.tan();
-    let first = p.best.and_then(|(moves, y)| {
+    let first = walked.best.and_then(|(moves, y)| {
         let state = StateY { y, mu };
         let angle = |t: f64| geom.angle_deg(t);
         mechanism::check(geom, &moves, &state, &angle).map(|m| Complete {
@@ -189,6 +186,68 @@ pub fn first_complete_load_factor<G: ArchGeometry + ?Sized>(
         first,
         static_limit,
         range,
-        vertices: visited,
+        vertices: walked.vertices,
     }
+}
+
+/// What the walks of a load-factor search found: the lowest complete state (solved on the
+/// continuum where it could be), the highest λ of the last walk and the vertices visited.
+struct Walked {
+    best: Option<(Vec<JointMove>, [f64; 4])>,
+    top: f64,
+    vertices: usize,
+}
+
+/// Walks the polytope of the joints `thetas` (a small discrete arch's own when `None`) and,
+/// where joints are sampled, solves its lowest complete vertex on the continuum or adds the
+/// joints that vertex violates and walks again. `Err(Some(vertices))` when no state is
+/// admissible at any λ, `Err(None)` when a walk or the exchange failed.
+fn walk_and_exchange<G: ArchGeometry + Copy>(
+    geom: &G,
+    phi: f64,
+    thetas: &mut Option<Vec<f64>>,
+    settings: &Settings,
+) -> Result<Walked, Option<usize>> {
+    let discrete = geom.discrete_joints();
+    let continuum = discrete.is_none();
+    let mut visited = 0;
+    for _ in 0..settings.max_exchange_rounds {
+        let walked = thetas
+            .clone()
+            .or_else(|| discrete.clone())
+            .unwrap_or_default();
+        let p = match pass(geom, phi, &walked, settings) {
+            Ok(p) => p,
+            Err(PassError::Infeasible) => return Err(Some(visited)),
+            Err(PassError::Failed) => return Err(None),
+        };
+        visited += p.vertices;
+        let done = |best: Option<(Vec<JointMove>, [f64; 4])>| Walked {
+            best,
+            top: p.top,
+            vertices: visited,
+        };
+        let (Some(t), Some(low)) = (thetas.as_mut(), &p.best) else {
+            return Ok(done(p.best.map(|l| (l.moves, l.y))));
+        };
+        if continuum {
+            let pattern = Pattern::of(geom, &low.tight, t);
+            let at = |_: f64| Some((*geom, phi));
+            if let Some(r) = refine::on_continuum(&at, &pattern, low.y[3], &low.y, None, settings) {
+                return Ok(done(Some((r.moves, r.y))));
+            }
+        }
+        let cuts = joints::violated_elsewhere(geom, phi, &low.y, t);
+        if cuts.is_empty() {
+            return Ok(done(p.best.map(|l| (l.moves, l.y))));
+        }
+        let before = t.len();
+        t.extend(cuts);
+        t.sort_by(f64::total_cmp);
+        t.dedup();
+        if t.len() == before || joints::too_many(t, settings) {
+            return Err(None);
+        }
+    }
+    Err(None)
 }

@@ -494,7 +494,7 @@ fn first_complete_counted<G: ArchGeometry + Copy>(
         // On a continuum the sampled state is solved on the continuum's own joints first.
         if continuum {
             let pattern = Pattern::of(&geom, &f.tight, t);
-            if let Some(r) = refine::on_continuum(at, &pattern, f.p, &f.y, lambda, settings) {
+            if let Some(r) = refine::on_continuum(at, &pattern, f.p, &f.y, Some(lambda), settings) {
                 return (finish(at, r, settings), visited);
             }
         }

@@ -150,13 +150,14 @@ pub(super) fn least_squares(
 
 /// The complete state of the continuum near a sampled one: `None` when Newton does not
 /// converge, the state violates a joint of the continuum, or its twists are not positively
-/// dependent.
+/// dependent. On a path λ is fixed (`Some`); on a load-factor find (`None`) the path's
+/// parameter p is λ itself.
 pub(super) fn on_continuum<G: ArchGeometry>(
     at: SceneAt<'_, G>,
     pattern: &Pattern,
     p0: f64,
     y0: &[f64; 4],
-    lambda: f64,
+    lambda: Option<f64>,
     settings: &Settings,
 ) -> Option<FoundState> {
     let inner = pattern.inner();
@@ -170,6 +171,7 @@ pub(super) fn on_continuum<G: ArchGeometry>(
     let residual = |u: &[f64]| -> Option<Vec<f64>> {
         let (geom, phi) = at(u[3])?;
         let e = ends(&geom);
+        let lambda = lambda.unwrap_or(u[3]);
         let value = |t: f64, c: Condition| -> Option<f64> {
             let r = row_at(&geom, t, phi, c)?;
             Some(r.a[0] * u[0] + r.a[1] * u[1] + r.a[2] * u[2] + r.a[3] * lambda - r.b)
@@ -217,7 +219,7 @@ pub(super) fn on_continuum<G: ArchGeometry>(
         return None;
     }
     let (geom, phi) = at(u[3])?;
-    let y = [u[0], u[1], u[2], lambda];
+    let y = [u[0], u[1], u[2], lambda.unwrap_or(u[3])];
     if !general::violated_joints(&geom, phi, &y, &general::Settings::default()).is_empty() {
         return None;
     }

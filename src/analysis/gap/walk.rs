@@ -120,28 +120,41 @@ pub(super) fn vertices<const D: usize>(
     let mut scratch = Scratch::new(a.len());
     let mut too_many = false;
     let mut next = 0;
-    while let Some(v) = out.get(next).cloned() {
-        if next == 0 || !v.tight.iter().any(|&r| fence[r]) {
+    // The vertex being expanded, copied out of `out`, which its neighbours extend.
+    let mut at: Vec<usize> = Vec::new();
+    while let Some(v) = out.get(next) {
+        let y = v.y;
+        at.clear();
+        at.extend_from_slice(&v.tight);
+        if next == 0 || !at.iter().any(|&r| fence[r]) {
             let known = std::mem::take(&mut back[next]);
-            neighbours(a, b, &v, limits, &known, &mut scratch, |y, tight, d| {
-                let reverse = d.map(|c| -c);
-                if let Some(&w) = seen.get(tight) {
-                    if w > next {
-                        back[w].push(reverse);
+            neighbours(
+                a,
+                b,
+                (&y, &at),
+                limits,
+                &known,
+                &mut scratch,
+                |y, tight, d| {
+                    let reverse = d.map(|c| -c);
+                    if let Some(&w) = seen.get(tight) {
+                        if w > next {
+                            back[w].push(reverse);
+                        }
+                        return;
                     }
-                    return;
-                }
-                if out.len() >= limits.max_vertices {
-                    too_many = true;
-                    return;
-                }
-                seen.insert(tight.to_vec(), out.len());
-                out.push(Vertex {
-                    y,
-                    tight: tight.to_vec(),
-                });
-                back.push(vec![reverse]);
-            });
+                    if out.len() >= limits.max_vertices {
+                        too_many = true;
+                        return;
+                    }
+                    seen.insert(tight.to_vec(), out.len());
+                    out.push(Vertex {
+                        y,
+                        tight: tight.to_vec(),
+                    });
+                    back.push(vec![reverse]);
+                },
+            );
             if too_many {
                 return Err(WalkError::TooManyVertices);
             }
@@ -179,14 +192,14 @@ impl<const D: usize> Scratch<D> {
 fn neighbours<const D: usize>(
     a: &[[f64; D]],
     b: &[f64],
-    v: &Vertex<D>,
+    (vy, vt): (&[f64; D], &[usize]),
     limits: &WalkLimits,
     known: &[[f64; D]],
     scratch: &mut Scratch<D>,
     mut found: impl FnMut([f64; D], &[usize], [f64; D]),
 ) {
-    let t = &v.tight[..v.tight.len().min(limits.max_tight)];
-    let scale = 1.0 + v.y.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let t = &vt[..vt.len().min(limits.max_tight)];
+    let scale = 1.0 + vy.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
     let tol_dir = 1e-10;
     let Scratch {
         tight,
@@ -195,11 +208,11 @@ fn neighbours<const D: usize>(
         dirs,
         far,
     } = scratch;
-    for &r in &v.tight {
+    for &r in vt {
         tight[r] = true;
     }
     for ((s, row), br) in slack.iter_mut().zip(a).zip(b) {
-        *s = br - dot(row, &v.y);
+        *s = br - dot(row, vy);
     }
     dirs.clear();
     dirs.extend_from_slice(known);
@@ -210,7 +223,7 @@ fn neighbours<const D: usize>(
         }
         for s in [1.0, -1.0] {
             let d: [f64; D] = std::array::from_fn(|c| s * d[c] / n);
-            if v.tight.iter().any(|&r| dot(&a[r], &d) > tol_dir) {
+            if vt.iter().any(|&r| dot(&a[r], &d) > tol_dir) {
                 continue;
             }
             if dirs
@@ -223,14 +236,18 @@ fn neighbours<const D: usize>(
             let mut step = f64::INFINITY;
             for ((rt, row), (s, t)) in rate.iter_mut().zip(a).zip(slack.iter().zip(&*tight)) {
                 *rt = dot(row, &d);
+                // The nearest row ahead; a product spares a division per row.
                 if *rt > tol_dir && !*t {
-                    step = step.min((s / *rt).max(0.0));
+                    let s = s.max(0.0);
+                    if s < step * *rt {
+                        step = s / *rt;
+                    }
                 }
             }
             if !step.is_finite() || step <= limits.tol_tight * scale {
                 continue;
             }
-            let y: [f64; D] = std::array::from_fn(|c| v.y[c] + step * d[c]);
+            let y: [f64; D] = std::array::from_fn(|c| vy[c] + step * d[c]);
             let bound = limits.tol_tight * (1.0 + y.iter().fold(0.0_f64, |m, x| m.max(x.abs())));
             far.clear();
             far.extend((0..rate.len()).filter(|&r| (step * rate[r] - slack[r]).abs() <= bound));
@@ -249,7 +266,7 @@ fn neighbours<const D: usize>(
             }
         }
     }
-    for &r in &v.tight {
+    for &r in vt {
         tight[r] = false;
     }
 }
