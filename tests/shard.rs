@@ -369,18 +369,12 @@ fn slurm_writes_an_array_and_a_merge_that_run_as_the_scheduler_would() {
     let dir = scratch("slurm");
     let study = manifest(&dir, "s.yaml", STATE);
     let out = dir.join("out");
-    let o = archstudy(&[
-        "slurm",
-        study.to_str().unwrap(),
-        "--shards",
+    let o = slurm_cli(
+        &study,
         "4",
-        "--partition",
-        "short",
-        "--time",
-        "00:10:00",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+        &["--partition", "short", "--time", "00:10:00"],
+        &out,
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let commands = crate::common::stdout(&o);
     assert!(
@@ -414,27 +408,20 @@ fn slurm_writes_an_array_and_a_merge_that_run_as_the_scheduler_would() {
         ("--time", "1\n#SBATCH --x"),
         ("--mem", ""),
     ] {
-        let o = archstudy(&[
-            "slurm",
-            study.to_str().unwrap(),
-            "--shards",
-            "2",
-            flag,
-            bad,
-            "--out",
-            out.to_str().unwrap(),
-        ]);
+        let o = slurm_cli(&study, "2", &[flag, bad], &out);
         assert_usage_error(&o, &[flag]);
     }
-    let o = archstudy(&[
-        "slurm",
-        study.to_str().unwrap(),
-        "--shards",
-        "0",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = slurm_cli(&study, "0", &[], &out);
     assert_usage_error(&o, &["--shards", "0"]);
+}
+
+/// `archstudy slurm STUDY --shards N ... --out OUT` with further options before `--out`.
+fn slurm_cli(study: &Path, shards: &str, extra: &[&str], out: &Path) -> std::process::Output {
+    let (study, out) = (study.to_str().unwrap(), out.to_str().unwrap());
+    let mut args = vec!["slurm", study, "--shards", shards];
+    args.extend_from_slice(extra);
+    args.extend(["--out", out]);
+    archstudy(&args)
 }
 
 /// Runs the scripts of `slurm` as the scheduler would: each of the `tasks` array tasks with
@@ -463,14 +450,7 @@ fn slurm_scripts_quote_or_refuse_every_value() {
     let dir = scratch("slurm-quoting");
     let study = manifest(&dir, "s.yaml", &STATE.replace("name: state", "name: -dash"));
     let out = dir.join("out 50%");
-    let o = archstudy(&[
-        "slurm",
-        study.to_str().unwrap(),
-        "--shards",
-        "2",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = slurm_cli(&study, "2", &[], &out);
     assert!(o.status.success(), "{}", stderr(&o));
     let scripts = out.join("-dash.slurm");
     let array = std::fs::read_to_string(scripts.join("array.sh")).unwrap();
@@ -483,14 +463,7 @@ fn slurm_scripts_quote_or_refuse_every_value() {
     assert!(out.join("-dash/report.html").is_file());
     // A newline would end a comment or a #SBATCH line: refused, nothing written.
     let bad = dir.join("a\nrm -rf x");
-    let o = archstudy(&[
-        "slurm",
-        study.to_str().unwrap(),
-        "--shards",
-        "2",
-        "--out",
-        bad.to_str().unwrap(),
-    ]);
+    let o = slurm_cli(&study, "2", &[], &bad);
     assert_usage_error(&o, &["--out", "control characters"]);
     assert!(!bad.exists());
 }
