@@ -375,12 +375,12 @@ impl ResultsWriter {
         rows: &[CaseResult],
         pool: &rayon::ThreadPool,
     ) -> Result<()> {
-        let df = self.table(plan, rows, pool)?;
-        append(&mut self.appender, &self.path, df)
+        let mut df = self.table(plan, rows, pool)?;
+        store::ParquetAppender::append_or_create(&mut self.appender, &self.path, &mut df)
     }
 
     /// The table of the rows of the cases of `plan` (a slice), their codes and counts taken:
-    /// what [`append`] writes next.
+    /// what [`store::ParquetAppender::append_or_create`] writes next.
     fn table(
         &mut self,
         plan: &Plan,
@@ -399,22 +399,6 @@ impl ResultsWriter {
         match self.appender.take() {
             Some(a) => a.finish(),
             None => Ok(()),
-        }
-    }
-}
-
-/// Appends a chunk's table to the results file of `path` (started with it when `appender` is
-/// `None`).
-fn append(
-    appender: &mut Option<store::ParquetAppender>,
-    path: &Path,
-    mut df: DataFrame,
-) -> Result<()> {
-    match appender.as_mut() {
-        Some(a) => a.append(&mut df),
-        None => {
-            *appender = Some(store::ParquetAppender::create(path, &mut df)?);
-            Ok(())
         }
     }
 }
@@ -477,7 +461,7 @@ pub(crate) fn analyse_in_chunks(
                 }
                 out.engine_ms += ms(t);
                 let t = Instant::now();
-                let df = out.written.table(&plan, &rows, pool)?;
+                let mut df = out.written.table(&plan, &rows, pool)?;
                 // The rows' own allocations (hinges, messages) are freed; the buffer is kept.
                 rows.clear();
                 memory::release_freed_memory();
@@ -487,7 +471,7 @@ pub(crate) fn analyse_in_chunks(
                 };
                 let path = &path;
                 writing = Some(scope.spawn(move || {
-                    append(&mut appender, path, df)?;
+                    store::ParquetAppender::append_or_create(&mut appender, path, &mut df)?;
                     Ok(appender)
                 }));
                 out.store_ms += ms(t);

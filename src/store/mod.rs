@@ -309,6 +309,22 @@ impl ParquetAppender {
         Ok(appender)
     }
 
+    /// Appends `df` to the file of `appender`, or starts `path` with it when `appender` is
+    /// `None` (the first of a table's chunks).
+    pub fn append_or_create(
+        appender: &mut Option<Self>,
+        path: &Path,
+        df: &mut DataFrame,
+    ) -> Result<()> {
+        match appender.as_mut() {
+            Some(a) => a.append(df),
+            None => {
+                *appender = Some(Self::create(path, df)?);
+                Ok(())
+            }
+        }
+    }
+
     /// Appends the rows of `df` (the columns of the first chunk) as row groups.
     pub fn append(&mut self, df: &mut DataFrame) -> Result<()> {
         let chunked = polars::frame::chunk_df_for_writing(df, 512 * 512)?;

@@ -113,13 +113,7 @@ pub fn run(m: &Manifest, s: &Sampling, layout: &RunLayout) -> Result<SampledSumm
         }
         read += answers.len() as u64;
         let mut df = frame.finish()?;
-        match writer.as_mut() {
-            Some(w) => w.append(&mut df),
-            None => {
-                writer = Some(store::ParquetAppender::create(&layout.samples(), &mut df)?);
-                Ok(())
-            }
-        }
+        store::ParquetAppender::append_or_create(&mut writer, &layout.samples(), &mut df)
     })?;
     match writer {
         Some(w) => w.finish()?,
