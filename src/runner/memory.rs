@@ -22,10 +22,6 @@ pub const BYTES_PER_CASE: u64 = 64;
 /// load-factor study peaks at 88 MB, a 4,900-case thresholds study at 44 MB.
 pub const PROGRAM_BYTES: u64 = 128 << 20;
 
-/// Cases of the figure lattice at most (1001 values of each of two axes): the rows the
-/// figures and the report hold.
-pub const LATTICE_CASES: u64 = 1001 * 1001;
-
 /// Cases of the chunk a run analyses and stores at a time.
 pub const CHUNK_CASES: u64 = crate::store::BLOCK_ROWS as u64;
 
@@ -82,33 +78,44 @@ pub struct MemoryModel {
     pub lattice: u64,
     /// Bytes of the bifurcation states and figures of every arch.
     pub arches: u64,
+    /// Cases of the figure lattice, which the report reads back: at most 1001 values of each
+    /// K, t/R or μ axis, every value of the other axes, for each load case
+    /// ([`FigureLattice::kept`]; none for a study of uncertain parameters).
+    pub lattice_cases: u64,
 }
 
 impl MemoryModel {
     /// The model of a study of states (the default find) on one arch.
+    /// The model of a state map over K and μ on one arch: its figure lattice holds at most
+    /// 1001² cases.
     pub const STATE: MemoryModel = MemoryModel {
         per_case: BYTES_PER_CASE,
         chunk: CHUNK_BYTES_STATE,
         lattice: LATTICE_BYTES_PER_CASE,
         arches: ARCH_BYTES,
+        lattice_cases: 1001 * 1001,
     };
 
-    /// The model of the run of `m`: the largest bytes per case of its load cases' finds, and
-    /// [`ARCH_BYTES`] for each arch and load case of a find that locates bifurcations arch by
-    /// arch (the product of the arch axes' values: half-angle, eccentricity, joints and
-    /// voussoirs).
+    /// The model of the run of `m`: the largest bytes per case of its load cases' finds, its
+    /// figure lattice, and [`ARCH_BYTES`] for each group of cases in which bifurcations are
+    /// located (one for each value of the arch axes, half-angle, eccentricity, joints and
+    /// voussoirs, and of a point load's position) of each load case that locates them; a
+    /// study of uncertain parameters locates none.
     pub fn of(m: &Manifest) -> Self {
-        let arches: u64 = m
+        use crate::manifest::AxisName;
+        let groups: u64 = m
             .grid
             .iter()
-            .filter(|a| a.name.is_arch())
+            .filter(|a| a.name.is_arch() || matches!(a.name, AxisName::AtDeg | AxisName::AtX))
             .map(|a| a.values.len() as u64)
             .product();
+        let kept = crate::report::reduce::FigureLattice::of(m).kept();
         let mut out = MemoryModel {
             per_case: BYTES_PER_CASE,
             chunk: 0,
             lattice: 0,
             arches: 0,
+            lattice_cases: u64::try_from(kept).unwrap_or(u64::MAX),
         };
         for lc in &m.load_cases {
             let (chunk, lattice) = match lc.find {
@@ -120,8 +127,10 @@ impl MemoryModel {
             };
             out.chunk = out.chunk.max(chunk);
             out.lattice = out.lattice.max(lattice);
-            if matches!(lc.find, Find::State | Find::Thickness | Find::Friction) {
-                out.arches = out.arches.saturating_add(arches.saturating_mul(ARCH_BYTES));
+            if m.sampling.is_none()
+                && matches!(lc.find, Find::State | Find::Thickness | Find::Friction)
+            {
+                out.arches = out.arches.saturating_add(groups.saturating_mul(ARCH_BYTES));
             }
         }
         out
@@ -139,7 +148,7 @@ impl MemoryModel {
     /// The larger of the chunk being analysed and the figure lattice, in bytes.
     fn phase_bytes(&self, cases: u64) -> u64 {
         let chunk = cases.min(CHUNK_CASES).saturating_mul(self.chunk);
-        let lattice = cases.min(LATTICE_CASES).saturating_mul(self.lattice);
+        let lattice = cases.min(self.lattice_cases).saturating_mul(self.lattice);
         chunk.max(lattice)
     }
 
@@ -210,6 +219,16 @@ impl MemoryModel {
             ));
         };
         let shards = cases.div_ceil(fits);
+        if shards == 1 {
+            return Err(format!(
+                "{head}: its analysis fits without the figures: run it as one shard, \
+                 `archstudy run STUDY --shard 1/1`, which analyses and stores its {cases} cases \
+                 (about {}), then `archstudy merge` it on a machine with about {} of memory to \
+                 draw the figures and reports, or reduce the steps of the grid axes",
+                gib(self.shard_needed(cases)),
+                gib(needed)
+            ));
+        }
         Err(format!(
             "{head}: run it in shards of at most {fits} cases, `archstudy run STUDY --shard I/N` \
              with N ≥ {shards} (one process or cluster task per shard, then `archstudy merge` on a \
@@ -324,6 +343,19 @@ mod tests {
                 study("friction", "self_weight", &friction(125)),
                 326_860 << 10,
             ),
+            // Three arches of 1001² cases each (2026-11-26, a build that read every row
+            // back whole): every arch's lattice is read back.
+            (
+                study(
+                    "state",
+                    "self_weight",
+                    &format!(
+                        "{}  voussoirs: {{values: [8, 24, continuum]}}\n",
+                        km(1001, 1001)
+                    ),
+                ),
+                1_780_000_000,
+            ),
             (
                 study("friction", "self_weight", &friction(250)),
                 383_856 << 10,
@@ -372,7 +404,25 @@ mod tests {
         let lf = MemoryModel::of(&study("load_factor", "horizontal", two));
         assert_eq!((lf.chunk, lf.lattice, lf.arches), (2560, 1024, 0));
         let state = MemoryModel::of(&study("state", "self_weight", two));
-        assert_eq!(state, MemoryModel::STATE);
+        assert_eq!(
+            state,
+            MemoryModel {
+                lattice_cases: 3,
+                ..MemoryModel::STATE
+            }
+        );
+        // A 4001² map's figures are drawn from 1001 values of each axis; an arch axis and a
+        // point load's position are kept whole, and each is a group of bifurcations.
+        let big =
+            "  k: {from: 1.1, to: 1.6, steps: 4001}\n  mu: {from: 0.3, to: 1.0, steps: 4001}\n";
+        assert_eq!(
+            MemoryModel::of(&study("state", "self_weight", big)).lattice_cases,
+            1001 * 1001
+        );
+        let moving = "  k: {from: 1.1, to: 1.6, steps: 2001}\n  mu: {values: [0.4, 0.5]}\n  \
+                      at_deg: {from: -40, to: 40, steps: 5}\n";
+        let line = MemoryModel::of(&study("state", "point, lambda: 1", moving));
+        assert_eq!((line.lattice_cases, line.arches), (1001 * 2 * 5, 5 << 20));
         let by_arch = "  mu: {values: [0.4, 0.5]}\n  half_angle_deg: {values: [60, 70, 80]}\n  \
                        voussoirs: {values: [5, 7]}\n";
         let thickness = MemoryModel::of(&study("thickness", "self_weight", by_arch));
@@ -423,6 +473,24 @@ mod tests {
     }
 
     #[test]
+    fn a_plan_whose_figures_alone_do_not_fit_is_advised_one_shard_and_a_larger_merge() {
+        // 10⁶ cases whose lattice takes 10 kB a case: 9.5 GiB to draw, 0.6 GiB to analyse.
+        let heavy = MemoryModel {
+            lattice: 10_000,
+            ..MemoryModel::STATE
+        };
+        let e = heavy.check(1_000_000, Some(2 << 30)).unwrap_err();
+        for part in [
+            "--shard 1/1",
+            "(about 0.6 GiB)",
+            "9.5 GiB of memory to draw",
+        ] {
+            assert!(e.contains(part), "{part}: {e}");
+        }
+        assert!(!e.contains("N ≥ 1"), "{e}");
+    }
+
+    #[test]
     fn no_shards_are_advised_when_not_even_one_case_fits() {
         let e = MemoryModel::STATE.check(37, Some(100 << 20)).unwrap_err();
         assert!(!e.contains("--shard"), "{e}");
@@ -450,6 +518,11 @@ mod tests {
                         assert!(!e.contains("--shard"), "{e}");
                         continue;
                     };
+                    if fits >= cases {
+                        assert!(e.contains("--shard 1/1"), "{e}");
+                        assert!(model.shard_needed(cases) <= available, "{e}");
+                        continue;
+                    }
                     assert!(e.contains(&format!("at most {fits} cases")), "{e}");
                     assert!(model.shard_needed(fits) <= available, "{e}");
                     assert!(model.shard_needed(fits + 1) > available, "{e}");

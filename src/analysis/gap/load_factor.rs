@@ -16,6 +16,9 @@ struct Lowest {
     moves: Vec<JointMove>,
     y: [f64; 4],
     tight: Vec<(f64, Condition)>,
+    /// Whether a bound of the walk (λ = 0, the cap of λ, the box of the state) is tight there:
+    /// its joint rows alone then do not fix the state.
+    on_bound: bool,
 }
 
 /// The lowest complete vertex of the polytope of one set of joints.
@@ -90,6 +93,7 @@ fn pass<G: ArchGeometry + ?Sized>(
             moves,
             y: v.y,
             tight,
+            on_bound: v.tight.iter().any(|&r| rows.kind[r] == RowKind::Bound),
         })
     });
     Ok(Pass {
@@ -230,10 +234,13 @@ fn walk_and_exchange<G: ArchGeometry + Copy>(
         let (Some(t), Some(low)) = (thetas.as_mut(), &p.best) else {
             return Ok(done(p.best.map(|l| (l.moves, l.y))));
         };
-        if continuum {
+        // A vertex on a bound of the walk is left to the exchange: its joint rows do not fix λ,
+        // which Newton could then move out of the searched range.
+        if continuum && !low.on_bound {
             let pattern = Pattern::of(geom, &low.tight, t);
             let at = |_: f64| Some((*geom, phi));
-            if let Some(r) = refine::on_continuum(&at, &pattern, low.y[3], &low.y, None, settings) {
+            let solved = refine::on_continuum(&at, &pattern, low.y[3], &low.y, None, settings);
+            if let Some(r) = solved.filter(|r| (0.0..=settings.lambda_cap).contains(&r.y[3])) {
                 return Ok(done(Some((r.moves, r.y))));
             }
         }
