@@ -184,10 +184,19 @@ fn draw_points<DB: DrawingBackend>(
     // Every drawn point keeps labels off it: a label over another line's points reads as
     // naming that line.
     let rr = ctx.px(r);
-    for l in &p.lines {
+    for (i, l) in p.lines.iter().enumerate() {
         for q in l.points.iter().filter(|q| p.y_of(q.y).is_finite()) {
             let c = chart.backend_coord(&(q.x, p.y_of(q.y)));
             placer.block((c.0 - rr, c.1 - rr, c.0 + rr, c.1 + rr));
+        }
+        // So does every gap bar: a label over one reads as crossing it out.
+        let dx = gap_offset(ctx, i, p.lines.len());
+        for (a, b, w) in l
+            .points
+            .iter()
+            .filter_map(|q| gap_bar(chart, ctx, (p, q), (r, dx)))
+        {
+            placer.block((a.0 - w, a.1.min(b.1), a.0 + w, a.1.max(b.1)));
         }
     }
     let font = ctx.font(11.5);
@@ -236,40 +245,49 @@ fn draw_gaps<DB: DrawingBackend>(
     r: f64,
 ) -> DrawResult<(), DB> {
     let style = palette::GAP.stroke_width(ctx.upx(1.4));
-    let n = p.lines.len() as f64;
     for (i, l) in p.lines.iter().enumerate() {
-        let dx = ctx.px((i as f64 - 0.5 * (n - 1.0)) * 3.0);
-        for q in &l.points {
-            draw_gap(root, chart, ctx, (p, q), (r, dx), style)?;
+        let dx = gap_offset(ctx, i, p.lines.len());
+        for (a, b, w) in l
+            .points
+            .iter()
+            .filter_map(|q| gap_bar(chart, ctx, (p, q), (r, dx)))
+        {
+            root.draw(&PathElement::new(vec![a, b], style))?;
+            root.draw(&PathElement::new(
+                vec![(b.0 - w, b.1), (b.0 + w, b.1)],
+                style,
+            ))?;
         }
     }
     Ok(())
 }
 
-/// The gap bar of one point, `dx` pixels to the side.
-fn draw_gap<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
+/// How far to the side, in pixels, the gap bars of line `i` of `n` are set.
+fn gap_offset(ctx: &PlotContext, i: usize, n: usize) -> i32 {
+    ctx.px((i as f64 - 0.5 * (n as f64 - 1.0)) * 3.0)
+}
+
+/// A gap bar in pixels: its top (the point's value), its bottom (the collapse) and the
+/// half-width of the crossbar there.
+type GapBar = ((i32, i32), (i32, i32), i32);
+
+/// The gap bar of one point, `dx` pixels to the side; `None` without a gap.
+fn gap_bar<DB: DrawingBackend>(
     chart: &XyChart<DB>,
     ctx: &PlotContext,
     (p, q): (&LinePanel, &LinePoint),
     (r, dx): (f64, i32),
-    style: ShapeStyle,
-) -> DrawResult<(), DB> {
+) -> Option<GapBar> {
     let (top, bottom) = (p.y_of(q.y), p.y_of(q.collapse));
     if !top.is_finite() || !bottom.is_finite() {
-        return Ok(());
+        return None;
     }
     let shift = |c: (i32, i32)| (c.0 + dx, c.1);
     let (a, b) = (
         shift(chart.backend_coord(&(q.x, top))),
         shift(chart.backend_coord(&(q.x, bottom))),
     );
-    let w = ctx.px(r + 1.5);
-    root.draw(&PathElement::new(vec![a, b], style))?;
-    root.draw(&PathElement::new(
-        vec![(b.0 - w, b.1), (b.0 + w, b.1)],
-        style,
-    ))
+    Some((a, b, ctx.px(r + 1.5)))
 }
 
 impl Figure for LinesChart {
@@ -370,5 +388,85 @@ mod tests {
         let greys: Vec<u8> = (0..5).map(|i| line_grey(i, 5).0).collect();
         assert_eq!(greys, [30, 69, 108, 146, 185]);
         assert_eq!(line_grey(0, 1), RGBColor(30, 30, 30));
+    }
+
+    #[test]
+    fn an_end_label_clears_the_gap_bar_at_its_line_end() {
+        // Four lines; the last ends in a small gap, whose bar is set 4.5 px right of its point
+        // and whose crossbar ran under the start of the label.
+        let point = |x: f64, y: f64, collapse: f64| LinePoint {
+            x,
+            y,
+            mechanism: "mixed".into(),
+            collapse,
+        };
+        let lines = (0..4)
+            .map(|i| {
+                let top = 0.2 + 0.2 * i as f64;
+                let gap = if i == 3 { top - 0.005 } else { f64::NAN };
+                Line {
+                    label: ["K = 1.1", "K = 1.2", "K = 1.3", "K = 1.4"][i].into(),
+                    points: vec![point(0.4, top - 0.1, f64::NAN), point(1.0, top, gap)],
+                }
+            })
+            .collect();
+        let chart = LinesChart {
+            title: "λ against μ".into(),
+            panels: vec![LinePanel {
+                title: String::new(),
+                x_desc: "μ".into(),
+                y_desc: "λ".into(),
+                lines,
+                log_y: false,
+                marks: Vec::new(),
+            }],
+        };
+        let svg =
+            String::from_utf8(super::super::render(&chart, super::super::Format::Svg).unwrap())
+                .unwrap();
+        let number = |tag: &str, key: &str| -> f64 {
+            let at = tag.find(&format!(" {key}=\"")).unwrap() + key.len() + 3;
+            tag[at..].split('"').next().unwrap().parse().unwrap()
+        };
+        // The end label, drawn after the legend's entry of the same name.
+        let label = svg
+            .split('<')
+            .rfind(|t| t.starts_with("text") && t.ends_with("K = 1.4"))
+            .unwrap();
+        // The label's box (its text starts at x; its top is y, as drawn with `dy` 0.76em) and
+        // every gap bar's.
+        let size = number(label, "font-size");
+        let (x, y) = (number(label, "x"), number(label, "y"));
+        let text = (x, y, x + 3.0 * size, y + size);
+        let bars: Vec<(f64, f64, f64, f64)> = svg
+            .split('<')
+            .filter(|t| t.starts_with("polyline") && t.contains("stroke=\"#009E73\""))
+            .map(|t| {
+                let at = t.find("points=\"").unwrap() + 8;
+                t[at..]
+                    .split('"')
+                    .next()
+                    .unwrap()
+                    .split_whitespace()
+                    .map(|p| {
+                        let (x, y) = p.split_once(',').unwrap();
+                        (x.parse::<f64>().unwrap(), y.parse::<f64>().unwrap())
+                    })
+                    .fold(
+                        (
+                            f64::INFINITY,
+                            f64::INFINITY,
+                            f64::NEG_INFINITY,
+                            f64::NEG_INFINITY,
+                        ),
+                        |b, (x, y)| (b.0.min(x), b.1.min(y), b.2.max(x), b.3.max(y)),
+                    )
+            })
+            .collect();
+        assert!(bars.len() >= 2, "no gap bar drawn: {svg}");
+        for bar in &bars {
+            let apart = text.2 <= bar.0 || bar.2 <= text.0 || text.3 <= bar.1 || bar.3 <= text.1;
+            assert!(apart, "label box {text:?} over the gap bar {bar:?}");
+        }
     }
 }
