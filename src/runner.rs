@@ -30,7 +30,7 @@ pub fn interrupted_by() -> Option<i32> {
     }
 }
 mod memory;
-use memory::gib;
+pub use memory::gib;
 pub use memory::{
     ARCH_BYTES, BYTES_PER_CASE, CHUNK_BYTES_CRITICAL, CHUNK_BYTES_LOAD_FACTOR, CHUNK_BYTES_STATE,
     LATTICE_BYTES_CRITICAL, LATTICE_BYTES_LOAD_FACTOR, LATTICE_BYTES_PER_CASE, MemoryModel,

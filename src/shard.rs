@@ -117,10 +117,10 @@ fn check_chunk(shard: Shard, model: &runner::MemoryModel, cases: u64) -> Result<
     let fits = runner::available_memory().is_none_or(|a| needed <= a);
     fits.then_some(()).ok_or_else(|| {
         let message = format!(
-            "its {cases} cases need about {:.1} GiB of memory (a chunk of at most {CHUNK_CASES} \
+            "its {cases} cases need about {} of memory (a chunk of at most {CHUNK_CASES} \
              analysed at a time), more than is available (the smaller of the free memory and \
              `ulimit -v`); raise `ulimit -v`, free memory or run more shards",
-            needed as f64 / f64::from(1u32 << 30)
+            runner::gib(needed)
         );
         UsageError::new(
             "--shard",

@@ -99,16 +99,15 @@ pub fn verify(opts: &VerifyOptions, out: &mut dyn Write) -> Result<bool> {
     let available = runner::available_memory();
     let too_big = model.check(cases, available).is_err();
     if too_big && opts.rerun {
-        let gib = |b: u64| b as f64 / f64::from(1u32 << 30);
         return Err(UsageError::new(
             "ARCHIVE|RUN_DIR",
             target.display(),
             format!(
-                "a run small enough to re-run here: its {cases} cases need about {:.1} GiB of \
-                 memory, {:.1} GiB is available. Check its integrity only with `archstudy \
+                "a run small enough to re-run here: its {cases} cases need about {} of \
+                 memory, {} is available. Check its integrity only with `archstudy \
                  verify --no-rerun`, or verify it on a machine with that memory",
-                gib(needed),
-                gib(available.unwrap_or(0))
+                runner::gib(needed),
+                runner::gib(available.unwrap_or(0))
             ),
         )
         .into());

@@ -279,7 +279,7 @@ pub fn available_memory() -> Option<u64> {
 }
 
 /// Bytes as GiB to one decimal, e.g. `0.8 GiB`.
-pub(super) fn gib(bytes: u64) -> String {
+pub fn gib(bytes: u64) -> String {
     format!("{:.1} GiB", bytes as f64 / f64::from(1u32 << 30))
 }
 
