@@ -16,12 +16,76 @@ pub fn archstudy(args: &[&str]) -> Output {
         .expect("the archstudy binary runs")
 }
 
-/// A fresh, empty scratch directory for one test.
-pub fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("archstudy-test-{}-{name}", std::process::id()));
+/// A fresh, empty scratch directory for one test, removed when the test passes and kept
+/// (with its path printed) when it fails, to be looked at.
+pub struct Scratch(PathBuf);
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<Path> for Scratch {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<std::ffi::OsStr> for Scratch {
+    fn as_ref(&self) -> &std::ffi::OsStr {
+        self.0.as_os_str()
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            eprintln!("scratch directory kept: {}", self.0.display());
+        } else {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
+}
+
+/// The prefix of every scratch directory of this test binary, before the process id.
+const SCRATCH_PREFIX: &str = "archstudy-test-";
+
+/// `temp/archstudy-test-{pid}-{name}`, emptied. The first call also removes the directories
+/// that earlier runs kept (failed tests, killed runs) once their process has ended.
+pub fn scratch(name: &str) -> Scratch {
+    static SWEPT: std::sync::Once = std::sync::Once::new();
+    SWEPT.call_once(sweep_ended_runs);
+    let dir = std::env::temp_dir().join(format!("{SCRATCH_PREFIX}{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("scratch directory");
-    dir
+    Scratch(dir)
+}
+
+/// Removes the scratch directories of test processes that no longer run (Linux, where
+/// `/proc/{pid}` says whether a process runs; elsewhere nothing is removed).
+fn sweep_ended_runs() {
+    if !Path::new("/proc/self").exists() {
+        return;
+    }
+    let Ok(entries) = std::fs::read_dir(std::env::temp_dir()) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let name = e.file_name();
+        let Some(pid) = name
+            .to_str()
+            .and_then(|n| n.strip_prefix(SCRATCH_PREFIX))
+            .and_then(|rest| rest.split('-').next())
+            .filter(|pid| !pid.is_empty() && pid.bytes().all(|b| b.is_ascii_digit()))
+        else {
+            continue;
+        };
+        if !Path::new("/proc").join(pid).exists() {
+            let _ = std::fs::remove_dir_all(e.path());
+        }
+    }
 }
 
 /// Writes a manifest into a directory and returns its path.
@@ -109,6 +173,49 @@ pub fn run_study(dir: &Path, file: &str, text: &str) -> PathBuf {
     archstudy::runner::run_study(&opts)
         .expect("the study runs")
         .dir
+}
+
+/// A study run in its own scratch directory (see [`run_study`]), which lives as long as the
+/// run: it derefs to the run directory.
+pub struct StudyRun {
+    dir: PathBuf,
+    _scratch: Scratch,
+}
+
+impl std::ops::Deref for StudyRun {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.dir
+    }
+}
+
+impl AsRef<Path> for StudyRun {
+    fn as_ref(&self) -> &Path {
+        &self.dir
+    }
+}
+
+impl AsRef<std::ffi::OsStr> for StudyRun {
+    fn as_ref(&self) -> &std::ffi::OsStr {
+        self.dir.as_os_str()
+    }
+}
+
+impl StudyRun {
+    /// The run directory `dir`, inside `scratch`.
+    pub fn new(scratch: Scratch, dir: PathBuf) -> Self {
+        Self {
+            dir,
+            _scratch: scratch,
+        }
+    }
+}
+
+/// Runs a manifest text as a study in a fresh scratch directory named `name`.
+pub fn study_run(name: &str, file: &str, text: &str) -> StudyRun {
+    let scratch = scratch(name);
+    let dir = run_study(&scratch, file, text);
+    StudyRun::new(scratch, dir)
 }
 
 /// Asserts that a command was refused as bad usage or input: exit status 2 and a message on

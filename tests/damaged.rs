@@ -1,10 +1,10 @@
 //! `archstudy report` on damaged tables: each is refused with exit status 2, naming the file,
 //! the column and the row, and the report already there is left as it was.
 
-use crate::common::{archstudy, assert_usage_error, run_study, scratch};
+use crate::common::{StudyRun, archstudy, assert_usage_error, study_run};
 use archstudy::store;
 use polars::prelude::{Column, DataType, NamedFrom, Series};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// An 11 × 11 grid over the paper's range: both bifurcations, so mechanisms are drawn.
 const STUDY: &str = "name: damaged
@@ -13,9 +13,8 @@ grid:
   mu: {from: 0.2, to: 0.8, steps: 11}
 ";
 
-fn fresh_run(name: &str) -> PathBuf {
-    let dir = scratch(name);
-    run_study(&dir, "damaged.yaml", STUDY)
+fn fresh_run(name: &str) -> StudyRun {
+    study_run(name, "damaged.yaml", STUDY)
 }
 
 fn report_refuses(run: &Path, names: &[&str]) {

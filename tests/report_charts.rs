@@ -2,7 +2,7 @@
 //! over K and μ gets λ as a colour map with its mechanism regions, and a report leaves out a
 //! section with nothing in it.
 
-use crate::common::{run_study, scratch};
+use crate::common::study_run;
 use archstudy::output::RunLayout;
 use archstudy::report::{charts, data};
 use archstudy::store;
@@ -33,7 +33,7 @@ find: state
 
 #[test]
 fn boundaries_section_only_where_boundaries_were_located() {
-    let lf = run_study(&scratch("sections-lf"), "horizontal.yaml", HORIZONTAL_MAP);
+    let lf = study_run("sections-lf", "horizontal.yaml", HORIZONTAL_MAP);
     let layout = RunLayout::at(&lf);
     let rows = store::read_boundaries(&layout.boundaries()).expect("boundaries.parquet");
     assert!(rows.is_empty(), "{} boundary rows", rows.len());
@@ -49,7 +49,7 @@ fn boundaries_section_only_where_boundaries_were_located() {
         "contents link to no section"
     );
 
-    let st = run_study(&scratch("sections-state"), "state.yaml", STATE_MAP);
+    let st = study_run("sections-state", "state.yaml", STATE_MAP);
     let layout = RunLayout::at(&st);
     let rows = store::read_boundaries(&layout.boundaries()).expect("boundaries.parquet");
     assert!(rows.len() >= 8, "{} boundary rows", rows.len());
@@ -84,7 +84,7 @@ fn lambda_map(run: &std::path::Path) -> archstudy::plot::lambda_map::LambdaMap {
 
 #[test]
 fn lambda_map_draws_the_stored_load_factors_and_the_located_mechanism_changes() {
-    let run = run_study(&scratch("lambda-map"), "horizontal.yaml", HORIZONTAL_MAP);
+    let run = study_run("lambda-map", "horizontal.yaml", HORIZONTAL_MAP);
     let layout = RunLayout::at(&run);
     let map = lambda_map(&run);
     let cases = store::read_load_factor_cases(&layout.results()).expect("results.parquet");
@@ -278,7 +278,7 @@ fn lambda_map_only_where_k_and_mu_have_several_values() {
         "mu: {values: [0.3, 0.35, 0.4, 0.5, 0.6, 0.8, 1.0, inf]}",
         "mu: {values: [0.4, 0.6, inf]}",
     );
-    let run = run_study(&scratch("lambda-map-few"), "horizontal.yaml", &few);
+    let run = study_run("lambda-map-few", "horizontal.yaml", &few);
     let data = data::load(&RunLayout::at(&run)).expect("the run loads");
     let figures = charts::build(&data);
     assert!(figures.iter().any(|f| f.stem == "load-factor"));
@@ -298,7 +298,7 @@ find: state
 
 #[test]
 fn regime_map_panels_name_their_arch_and_the_caption_lists_their_bifurcations() {
-    let run = run_study(&scratch("panels-alpha"), "segmental.yaml", HALF_ANGLES);
+    let run = study_run("panels-alpha", "segmental.yaml", HALF_ANGLES);
     let data = data::load(&RunLayout::at(&run)).expect("the run loads");
     let figure = charts::build(&data)
         .into_iter()
@@ -344,7 +344,7 @@ fn regime_map_panels_name_their_arch_and_the_caption_lists_their_bifurcations() 
 
 #[test]
 fn mechanism_panels_explain_their_orange_joint_dots() {
-    let run = run_study(&scratch("mechanism-dots"), "state.yaml", STATE_MAP);
+    let run = study_run("mechanism-dots", "state.yaml", STATE_MAP);
     let data = data::load(&RunLayout::at(&run)).expect("the run loads");
     let figures = charts::build(&data);
     let mut seen = 0;
@@ -386,7 +386,7 @@ fn voussoir_study_overlays_the_collapse_curve_of_every_count() {
     use archstudy::scene::{self, Find, Scene};
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("studies/voussoirs.yaml");
     let text = std::fs::read_to_string(path).expect("studies/voussoirs.yaml");
-    let run = run_study(&scratch("voussoir-curves"), "voussoirs.yaml", &text);
+    let run = study_run("voussoir-curves", "voussoirs.yaml", &text);
     let data = data::load(&RunLayout::at(&run)).expect("the run loads");
     let figure = charts::build(&data)
         .into_iter()
@@ -441,7 +441,7 @@ fn a_friction_study_with_a_gap_draws_the_collapse_beside_the_critical_curve() {
         "/studies/vertical-joints-drop.yaml"
     ))
     .unwrap();
-    let run = run_study(&scratch("gap-critical"), "drop.yaml", &manifest);
+    let run = study_run("gap-critical", "drop.yaml", &manifest);
     let data = data::load(&RunLayout::at(&run)).expect("the run loads");
     let figure = charts::build(&data)
         .into_iter()
@@ -469,7 +469,7 @@ fn a_friction_study_with_a_gap_draws_the_collapse_beside_the_critical_curve() {
         figure.caption
     );
     // A study without a gap draws none.
-    let run = run_study(&scratch("gap-none"), "state.yaml", STATE_MAP);
+    let run = study_run("gap-none", "state.yaml", STATE_MAP);
     let data = data::load(&RunLayout::at(&run)).expect("the run loads");
     for f in charts::build(&data) {
         if let charts::Chart::Critical(c) = &f.chart {
@@ -486,7 +486,7 @@ fn load_factor_lines_bar_the_gap_from_the_collapse_up_to_the_static_limit() {
         "/studies/vertical-joints-horizontal.yaml"
     ))
     .unwrap();
-    let run = run_study(&scratch("gap-lines"), "vj.yaml", &manifest);
+    let run = study_run("gap-lines", "vj.yaml", &manifest);
     let data = data::load(&RunLayout::at(&run)).expect("the run loads");
     let figure = charts::build(&data)
         .into_iter()
@@ -530,11 +530,7 @@ fn load_factor_lines_bar_the_gap_from_the_collapse_up_to_the_static_limit() {
 fn the_lambda_map_bounds_its_grey_region_by_where_the_arch_starts_to_stand() {
     use crate::common::reference::{K_C, MU_MIN};
     use archstudy::figdata::stand_limit::{ALONG_K, ALONG_MU};
-    let run = run_study(
-        &scratch("lambda-map-stand"),
-        "horizontal.yaml",
-        HORIZONTAL_MAP,
-    );
+    let run = study_run("lambda-map-stand", "horizontal.yaml", HORIZONTAL_MAP);
     let layout = RunLayout::at(&run);
     let curves = store::read_curves(&layout.curves()).expect("curves.parquet");
     let along = |s: &str| -> Vec<(f64, f64)> {
@@ -582,8 +578,8 @@ fn the_lambda_map_bounds_its_grey_region_by_where_the_arch_starts_to_stand() {
 #[test]
 fn a_state_study_of_vertical_joints_draws_the_collapse_beside_its_critical_curves() {
     use archstudy::figdata::{MU_COLLAPSE_OF_K, MU_CRIT_OF_K, critical_figure};
-    let run = run_study(
-        &scratch("state-collapse"),
+    let run = study_run(
+        "state-collapse",
         "vertical.yaml",
         "name: vertical\narch: {joints: vertical}\ngrid:\n  k: {from: 1.15, to: 1.5, steps: 8}\n  mu: {from: 1.0, to: 3.0, steps: 9}\nload_cases:\n  - {name: gravity, kind: self_weight}\nfind: state\n",
     );
@@ -662,7 +658,7 @@ fn a_state_study_of_vertical_joints_draws_the_collapse_beside_its_critical_curve
     assert!(f.caption.contains("drawn dashed here"), "{}", f.caption);
     // The circular arch with radial joints has no gap: no collapse series at all, and none
     // on its regime map.
-    let lf = run_study(&scratch("state-collapse-seed"), "state.yaml", STATE_MAP);
+    let lf = study_run("state-collapse-seed", "state.yaml", STATE_MAP);
     let curves = store::read_curves(&RunLayout::at(&lf).curves()).expect("curves.parquet");
     assert!(!curves.iter().any(|p| p.series == MU_COLLAPSE_OF_K));
     let f = regime(&lf);
@@ -674,8 +670,8 @@ fn a_state_study_of_vertical_joints_draws_the_collapse_beside_its_critical_curve
     // The pointed arch (e = 0.2) can move at the start of the thickness path below μ = 0.26,
     // where it stands only beyond the map's largest K, and its collapse is its static curve
     // elsewhere: the map shows no gap and says none.
-    let pointed = run_study(
-        &scratch("state-collapse-pointed"),
+    let pointed = study_run(
+        "state-collapse-pointed",
         "pointed.yaml",
         "name: pointed\narch: {shape: pointed, eccentricity: 0.2}\ngrid:\n  k: {from: 1.03, to: 1.4, steps: 6}\n  mu: {values: [0.15, 0.2, 0.3, 0.5, 0.8]}\nload_cases:\n  - {name: gravity, kind: self_weight}\nfind: state\n",
     );

@@ -4,7 +4,7 @@
 //! line of thrust passes through its hinges (a limit state) or stays inside the masonry (a
 //! state that stands).
 
-use crate::common::{run_study, scratch};
+use crate::common::{run_study, scratch, study_run};
 use archstudy::output::RunLayout;
 use archstudy::report::charts::state::geometry::of_state;
 use archstudy::store::{self, LoadFactorCase, StateRow};
@@ -360,11 +360,7 @@ fn assert_supports(
 /// y = √(K² − d²).
 #[test]
 fn pointed_arch_bifurcations_have_their_mechanisms_drawn_on_the_pointed_arch() {
-    let run = run_study(
-        &scratch("states-pointed-state"),
-        "pointed.yaml",
-        POINTED_STATE,
-    );
+    let run = study_run("states-pointed-state", "pointed.yaml", POINTED_STATE);
     let all = assert_bifurcation_mechanisms(&run, 2);
     let mut drawn = 0;
     for (k, drawings) in all {
@@ -394,11 +390,7 @@ fn pointed_arch_bifurcations_have_their_mechanisms_drawn_on_the_pointed_arch() {
 /// (±1, √(K² − 1)/2) and running straight up.
 #[test]
 fn vertical_joint_bifurcations_have_their_mechanisms_drawn_on_vertical_joints() {
-    let run = run_study(
-        &scratch("states-vertical-state"),
-        "vertical.yaml",
-        VERTICAL_STATE,
-    );
+    let run = study_run("states-vertical-state", "vertical.yaml", VERTICAL_STATE);
     let all = assert_bifurcation_mechanisms(&run, 1);
     let mut sections = 0;
     for (k, drawings) in all {
@@ -512,7 +504,7 @@ find: load_factor
 scenes:
   - {k: 1.3, mu: 0.5}
 ";
-    let run = run_study(&scratch("scene-position"), "scene.yaml", manifest);
+    let run = study_run("scene-position", "scene.yaml", manifest);
     let states = store::read_states(&RunLayout::at(&run).states()).expect("states.parquet");
     let scene = states
         .iter()

@@ -1,7 +1,7 @@
 //! The drawings of states, checked on their own geometry: the angle labels of hinges and
 //! sliding joints stand clear of the masonry and of the hatched supports.
 
-use crate::common::{run_study, scratch};
+use crate::common::{StudyRun, study_run};
 use archstudy::manifest::FigureWidth;
 use archstudy::output::RunLayout;
 use archstudy::plot::state::{StateDrawing, box_meets_polygon, boxes_meet};
@@ -11,12 +11,12 @@ use archstudy::report::data;
 use std::path::Path;
 
 /// A study of the repository's `studies/` directory, run into a scratch directory.
-fn run_example(name: &str) -> std::path::PathBuf {
+fn run_example(name: &str) -> StudyRun {
     let file = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("studies")
         .join(format!("{name}.yaml"));
     let text = std::fs::read_to_string(&file).expect("the example study");
-    run_study(&scratch(&format!("labels-{name}")), "study.yaml", &text)
+    study_run(&format!("labels-{name}"), "study.yaml", &text)
 }
 
 /// The state drawings of a run, as the report draws them.

@@ -3,14 +3,14 @@
 //! median friction, Sobol indices against a brute-force variance decomposition, the same
 //! samples for any thread count, and every bad input refused.
 
-use crate::common::{archstudy, manifest, scratch, stderr};
+use crate::common::{StudyRun, archstudy, manifest, scratch, stderr};
 use archstudy::analysis::symmetric;
 use archstudy::model::{Arch, Discretisation, Friction, WeightModel, t_over_r_from_k};
 use archstudy::runner::{RunOptions, run_study};
 use archstudy::store::{EstimateRow, read_estimates};
 use std::path::Path;
 
-fn run(name: &str, text: &str, jobs: Option<usize>) -> (std::path::PathBuf, Vec<EstimateRow>) {
+fn run(name: &str, text: &str, jobs: Option<usize>) -> (StudyRun, Vec<EstimateRow>) {
     let dir = scratch(name);
     let study = manifest(&dir, "s.yaml", text);
     let opts = RunOptions {
@@ -19,7 +19,7 @@ fn run(name: &str, text: &str, jobs: Option<usize>) -> (std::path::PathBuf, Vec<
     };
     let out = run_study(&opts).expect("the study runs").dir;
     let rows = read_estimates(&out.join("estimates.parquet")).unwrap();
-    (out, rows)
+    (StudyRun::new(dir, out), rows)
 }
 
 fn one<'a>(
