@@ -55,6 +55,8 @@ type Key = (
     (bool, u64, crate::model::JointOrientation, bool),
 );
 
+/// The group of a case: one for each load case and each value of the axes that
+/// [`crate::manifest::AxisName::splits_groups`] (the arch and the load's position).
 fn key_of(case: &plan::Case) -> Key {
     let a = &case.scene.arch;
     // A group per position as given: an x/L position's angle moves with K.

@@ -687,13 +687,5 @@ fn run_sampled(
 /// True when every case uses the manifest's arch (no arch axis: half-angle, eccentricity,
 /// joints or voussoirs).
 pub fn single_model(manifest: &Manifest) -> bool {
-    !manifest.grid.iter().any(|a| {
-        matches!(
-            a.name,
-            AxisName::Voussoirs
-                | AxisName::HalfAngleDeg
-                | AxisName::Eccentricity
-                | AxisName::Joints
-        )
-    })
+    !manifest.grid.iter().any(|a| a.name.is_arch())
 }

@@ -173,6 +173,24 @@ pub enum AxisName {
 }
 
 impl AxisName {
+    /// Every axis.
+    pub const ALL: [AxisName; 9] = [
+        AxisName::K,
+        AxisName::TOverR,
+        AxisName::Mu,
+        AxisName::HalfAngleDeg,
+        AxisName::Eccentricity,
+        AxisName::Joints,
+        AxisName::Voussoirs,
+        AxisName::AtDeg,
+        AxisName::AtX,
+    ];
+
+    /// The axis of a manifest key ([`AxisName::as_str`]), as run.json stores it.
+    pub fn from_key(key: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|a| a.as_str() == key)
+    }
+
     /// True for the axes that change the arch itself: half-angle, eccentricity, joints and
     /// voussoirs.
     pub fn is_arch(self) -> bool {
@@ -183,6 +201,18 @@ impl AxisName {
                 | AxisName::Joints
                 | AxisName::Voussoirs
         )
+    }
+
+    /// True for the axes of a point load's position, `at_deg` and `at_x`.
+    pub fn is_position(self) -> bool {
+        matches!(self, AxisName::AtDeg | AxisName::AtX)
+    }
+
+    /// True for the axes each of whose values makes a group of cases of its own, in which
+    /// boundaries and bifurcations are located along K and μ: the arch axes and the positions
+    /// (the boundaries' grid keys its groups by the values of these axes).
+    pub fn splits_groups(self) -> bool {
+        self.is_arch() || self.is_position()
     }
 
     /// The manifest key.
@@ -418,5 +448,35 @@ impl Manifest {
     /// t/R_c for a K value.
     pub fn t_over_r(k: f64) -> f64 {
         t_over_r_from_k(k)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::AxisName;
+
+    #[test]
+    fn every_axis_reads_back_from_its_key_as_run_json_stores_it() {
+        for a in AxisName::ALL {
+            assert_eq!(AxisName::from_key(a.as_str()), Some(a));
+            // run.json stores the serde name, which the report reads back with `from_key`.
+            assert_eq!(serde_json::to_value(a).unwrap(), a.as_str());
+        }
+        assert_eq!(AxisName::from_key("half_angle"), None);
+        let groups: Vec<&str> = (AxisName::ALL.into_iter())
+            .filter(|a| a.splits_groups())
+            .map(AxisName::as_str)
+            .collect();
+        assert_eq!(
+            groups,
+            [
+                "half_angle_deg",
+                "eccentricity",
+                "joints",
+                "voussoirs",
+                "at_deg",
+                "at_x"
+            ]
+        );
     }
 }

@@ -102,11 +102,10 @@ impl MemoryModel {
     /// voussoirs, and of a point load's position) of each load case that locates them; a
     /// study of uncertain parameters locates none.
     pub fn of(m: &Manifest) -> Self {
-        use crate::manifest::AxisName;
         let groups: u64 = m
             .grid
             .iter()
-            .filter(|a| a.name.is_arch() || matches!(a.name, AxisName::AtDeg | AxisName::AtX))
+            .filter(|a| a.name.splits_groups())
             .map(|a| a.values.len() as u64)
             .product();
         let kept = crate::report::reduce::FigureLattice::of(m).kept();

@@ -17,7 +17,7 @@ pub use uncertain::{MAX_BOOTSTRAP, MAX_SAMPLES};
 
 use super::error::ManifestError;
 use super::raw::{RawBoundaries, RawFigures, RawManifest, RawScene};
-use super::types::{AxisName, DEFAULT_BOUNDARY_TOLERANCE, FigureWidth, Manifest, SceneSpec};
+use super::types::{DEFAULT_BOUNDARY_TOLERANCE, FigureWidth, Manifest, SceneSpec};
 use crate::scene::Find;
 use serde_saphyr::{Location, Spanned};
 use std::path::Path;
@@ -103,11 +103,7 @@ pub(super) fn manifest(raw: RawManifest, path: &Path) -> Result<Manifest, Manife
     let shadow = sampled.as_ref().map_or(&[][..], |v| &v.shadow[..]);
     let grid = grid::validate_grid(raw.grid.as_ref(), &load_cases, shadow, cx)?;
     let mut checked = grid.clone();
-    checked.extend(
-        (shadow.iter())
-            .filter(|a| !matches!(a.name, AxisName::AtDeg | AxisName::AtX))
-            .cloned(),
-    );
+    checked.extend((shadow.iter()).filter(|a| !a.name.is_position()).cloned());
     let checked_lcs = match &sampled {
         Some(v) => uncertain::as_checked(&v.sampling, &load_cases),
         None => load_cases.clone(),

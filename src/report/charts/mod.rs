@@ -182,10 +182,6 @@ pub fn single_model_of(data: &RunData) -> bool {
 }
 
 pub(super) fn single_model(data: &RunData) -> bool {
-    !data.manifest.grid.iter().any(|a| {
-        matches!(
-            a.name.as_str(),
-            "voussoirs" | "half_angle_deg" | "eccentricity" | "joints"
-        )
-    })
+    !(data.manifest.grid.iter())
+        .any(|a| crate::manifest::AxisName::from_key(&a.name).is_some_and(|n| n.is_arch()))
 }
