@@ -96,7 +96,18 @@ fn bifurcation_and_scene_states_carry_their_own_half_angle() {
         approx::assert_abs_diff_eq!(angle_deg(line[0]), -alpha, epsilon = 1e-6);
     }
     let md = std::fs::read_to_string(run.join("report.md")).expect("report.md");
-    assert!(md.contains("α = 70°"), "the figures name the half-angle");
+    // Every figure of one arch names it, the semicircle (α = 90°, the default) included.
+    let one_arch: Vec<&str> = md
+        .lines()
+        .filter(|l| l.starts_with("### Figure") && !l.contains("by half-angle"))
+        .filter(|l| l.contains("bifurcation (") || l.contains("bifurcation") || l.contains("scene"))
+        .filter(|l| !l.contains("against the half-angle"))
+        .collect();
+    assert!(one_arch.len() >= 8, "{one_arch:#?}");
+    for l in &one_arch {
+        assert!(l.contains("(α = 70°)") || l.contains("(α = 90°)"), "{l}");
+    }
+    assert!(one_arch.iter().filter(|l| l.contains("α = 90°")).count() >= 4);
 }
 
 #[test]

@@ -235,7 +235,9 @@ impl SceneView {
         }
         let row = solution::state_row(&self.state);
         let curves = figdata::curves::domain_curves(&self.scene.arch, self.scene.friction);
-        let mut spec = crate::report::charts::domains::figure_of(&row, |s| curves.series(s));
+        let mut spec = crate::report::charts::domains::figure_of(&row, Default::default(), |s| {
+            curves.series(s)
+        });
         // The thrusts of the states drawn beside it: the least and the largest admissible.
         if let Some((lo, hi)) = &self.thrust
             && let Chart::Domains(d) = &mut spec.chart

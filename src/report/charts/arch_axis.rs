@@ -28,8 +28,8 @@ pub fn arches_of(data: &RunData, lc: &str) -> Vec<ArchKey> {
     v
 }
 
-/// Which arch axes a study has.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Which arch axes a study has (none: a single arch, as `solve` draws it).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct ArchAxes {
     /// A `half_angle_deg` axis.
     pub alpha: bool,

@@ -10,12 +10,19 @@ use crate::store::StateRow;
 /// The thrust-domains figure of a scene, from the curves stored for it.
 pub fn figure(data: &RunData, s: &StateRow) -> FigureSpec {
     let fig = figdata::domains_figure(&s.state_id);
-    figure_of(s, |series| data.curve(&fig, series))
+    figure_of(s, super::arch_axis::axes(data), |series| {
+        data.curve(&fig, series)
+    })
 }
 
 /// The thrust-domains figure of a scene whose Fig. 2 curves `c` gives by series name
-/// (`h_min_r_extrados`, …, `h_max_s`, as curves.parquet names them).
-pub fn figure_of(s: &StateRow, c: impl Fn(&str) -> Vec<(f64, f64)>) -> FigureSpec {
+/// (`h_min_r_extrados`, …, `h_max_s`, as curves.parquet names them), in a study whose arch
+/// axes are `varied`.
+pub fn figure_of(
+    s: &StateRow,
+    varied: super::arch_axis::ArchAxes,
+    c: impl Fn(&str) -> Vec<(f64, f64)>,
+) -> FigureSpec {
     let curve = |label: &str, series: &str, family, upper| BoundCurve {
         label: label.into(),
         points: c(series),
@@ -66,7 +73,7 @@ pub fn figure_of(s: &StateRow, c: impl Fn(&str) -> Vec<(f64, f64)>) -> FigureSpe
     let regime = s.regime.as_deref().unwrap_or("");
     let r_exists = !matches!(regime, "rotational" | "none");
     let s_exists = !matches!(regime, "sliding" | "none");
-    let arch = super::state::arch_text(s);
+    let arch = super::state::arch_text(s, varied);
     let on = if arch.is_empty() {
         String::new()
     } else {

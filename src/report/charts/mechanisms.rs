@@ -47,7 +47,7 @@ pub fn figure(data: &RunData, s: &StateRow) -> Option<FigureSpec> {
         return None;
     }
     let mech = s.mechanism.clone().unwrap_or_default().replace('/', " / ");
-    let arch = super::state::arch_text(s);
+    let arch = super::state::arch_text(s, super::arch_axis::axes(data));
     let on = if arch.is_empty() {
         String::new()
     } else {

@@ -5,6 +5,7 @@
 //! sliding joints); any other find draws the scene's state of largest margin when it stands,
 //! else the arch alone with a note that no equilibrium exists.
 
+use super::arch_axis::ArchAxes;
 use super::state::figure_with_lines;
 use super::{Chart, FigureSpec};
 use crate::analysis::MechanismKind;
@@ -95,7 +96,7 @@ fn finite(x: f64) -> Option<f64> {
 pub fn figure(sol: &Solution) -> Result<FigureSpec> {
     if let Some(row) = collapse_row(sol) {
         let (line, on_joints) = figdata::lines_of_state(&row)?.unwrap_or_default();
-        let mut spec = figure_with_lines(&row, line, on_joints, false);
+        let mut spec = figure_with_lines(&row, line, on_joints, false, ArchAxes::default());
         if let Chart::State(d) = &mut spec.chart {
             d.subtitle.push(gap_words(sol));
         }
@@ -103,7 +104,13 @@ pub fn figure(sol: &Solution) -> Result<FigureSpec> {
     }
     let row = state_row(sol);
     let (line, on_joints) = figdata::lines_of_state(&row)?.unwrap_or_default();
-    Ok(figure_with_lines(&row, line, on_joints, false))
+    Ok(figure_with_lines(
+        &row,
+        line,
+        on_joints,
+        false,
+        ArchAxes::default(),
+    ))
 }
 
 /// The state row of a critical find's first complete solution when it comes before the
@@ -201,7 +208,7 @@ pub fn thrust_states_figure(
     let (row_lo, row_hi) = (row_of(lo, "minimum_thrust"), row_of(hi, "maximum_thrust"));
     let (line_lo, joints_lo) = figdata::lines_of_state(&row_lo)?.unwrap_or_default();
     let (line_hi, _) = figdata::lines_of_state(&row_hi)?.unwrap_or_default();
-    let mut spec = figure_with_lines(&row_lo, line_lo, joints_lo, false);
+    let mut spec = figure_with_lines(&row_lo, line_lo, joints_lo, false, ArchAxes::default());
     let h = |s: &ThrustState| crate::report::format::short(s.thrust_over_half_weight);
     if let Chart::State(d) = &mut spec.chart {
         d.title = format!(

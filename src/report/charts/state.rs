@@ -1,6 +1,7 @@
 //! Figure 3: a state of the arch drawn to scale with its line of thrust, hinges and sliding
 //! joints.
 
+use super::arch_axis::ArchAxes;
 use super::{Chart, FigureSpec, mu_text, safe};
 use crate::figdata;
 use crate::plot::state::{StateDrawing, Xy};
@@ -17,17 +18,19 @@ pub fn figure(data: &RunData, s: &StateRow) -> FigureSpec {
     let line = data.curve(&fig, figdata::LINE_OF_THRUST);
     let on_joints = data.curve(&fig, figdata::LINE_ON_JOINTS);
     let moving = data.manifest.axis("at_deg").is_some() || data.manifest.axis("at_x").is_some();
-    figure_with_lines(s, line, on_joints, moving)
+    figure_with_lines(s, line, on_joints, moving, super::arch_axis::axes(data))
 }
 
 /// The drawing of a state from its line of thrust and the line's points on the voussoir
 /// joints (empty for the continuum); `moving` when the study moves its point load (the
-/// caption then names the weakest position).
+/// caption then names the weakest position); `varied` the arch axes of the study, whose
+/// values every title names.
 pub fn figure_with_lines(
     s: &StateRow,
     line: Vec<Xy>,
     on_joints: Vec<Xy>,
     moving: bool,
+    varied: ArchAxes,
 ) -> FigureSpec {
     let mut geometry = geometry::of_state(s);
     let mut on_joints = on_joints;
@@ -43,7 +46,7 @@ pub fn figure_with_lines(
         " Open circles: the line's points on the joints, the only sections where it must stay within the arch."
     };
     let mut texts = StateTexts::of(s, moving);
-    let arch = arch_text(s);
+    let arch = arch_text(s, varied);
     if !arch.is_empty() {
         texts.title = format!("{} ({arch})", texts.title);
         texts.heading = format!("{} ({arch})", texts.heading);
@@ -91,19 +94,23 @@ pub fn figure_with_lines(
 /// The arch and load of a state where they differ from the paper's semicircle under its own
 /// weight: half-angle, voussoir count, shape, joints, load, its position and λ (empty for the
 /// paper's arch).
-pub fn arch_text(s: &StateRow) -> String {
+pub fn arch_text(s: &StateRow, varied: ArchAxes) -> String {
     let mut parts = Vec::new();
     if s.shape == "pointed" {
         parts.push(format!("pointed, e = {}", short(s.eccentricity)));
+    } else if varied.e {
+        parts.push("e = 0".into());
     }
-    if (s.half_angle_deg - 90.0).abs() > 1e-9 {
+    if varied.alpha || (s.half_angle_deg - 90.0).abs() > 1e-9 {
         parts.push(format!("α = {}°", given(s.half_angle_deg)));
     }
-    if let Some(n) = s.voussoirs {
-        parts.push(format!("N = {n} voussoirs"));
+    match s.voussoirs {
+        Some(n) => parts.push(format!("N = {n} voussoirs")),
+        None if varied.n => parts.push("continuum".into()),
+        None => {}
     }
-    if s.joint_orientation == "vertical" {
-        parts.push("vertical joints".into());
+    if varied.joints || s.joint_orientation == "vertical" {
+        parts.push(format!("{} joints", s.joint_orientation));
     }
     if s.weight != "annular" {
         parts.push(format!("{} weight", s.weight));
