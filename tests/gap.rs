@@ -682,6 +682,42 @@ fn the_papers_scenes_have_no_gap() {
 }
 
 #[test]
+fn the_thickness_path_of_a_shallow_arch_stays_among_arches_thicker_than_nothing() {
+    // K_c of a 5–15° segment lies within 1e-4 of 1: the path stepped past it into K < 1,
+    // where a "collapse" at K = −0.978 was once reported.
+    for (half, k_c) in [
+        (5.0, 1.000001207308),
+        (10.0, 1.000019273294),
+        (15.0, 1.000097209879),
+    ] {
+        for mu in [0.5, 1.0, 2.0] {
+            let s = solve(Case {
+                find: Find::Thickness,
+                k: 1.3,
+                half,
+                joints: Discretisation::Continuum,
+                form: ArchForm::default(),
+                mu,
+                load: Load::SelfWeight,
+            });
+            let at = format!("α = {half}°, μ = {mu}");
+            assert!(
+                (s.k_crit.unwrap() - k_c).abs() < 1e-9,
+                "{at}: {:?}",
+                s.k_crit
+            );
+            let collapse = s.collapse_value.expect(&at);
+            assert!(
+                collapse >= s.k_crit.unwrap() && collapse > 1.0,
+                "{at}: {collapse}"
+            );
+            assert!(s.gap_width.unwrap() >= 0.0, "{at}");
+            assert_checked(&s);
+        }
+    }
+}
+
+#[test]
 fn a_crown_part_drops_between_vertical_joints_far_above_the_critical_friction() {
     let vertical = ArchForm {
         shape: Shape::Circular,

@@ -395,7 +395,7 @@ fn form_error(e: FormError, t_over_r: Option<f64>) -> SceneOptionError {
                 short_number(t_over_r.unwrap_or_default()),
             ),
         ),
-        FormError::PointedTooThick { k, .. } => bad("k", k, e.to_string()),
+        FormError::PointedTooThick { k, .. } | FormError::NotThick(k) => bad("k", k, e.to_string()),
         FormError::VerticalBeyondQuadrant(a) => bad("half_angle", a, e.to_string()),
         FormError::LoadOutside { at_deg, .. }
         | FormError::LoadInsideKeystone { at_deg, .. }

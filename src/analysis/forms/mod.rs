@@ -73,6 +73,9 @@ pub fn eccentricity_allowed(e: f64) -> bool {
 /// Why a form, an arch and a load do not make a valid scene.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FormError {
+    /// The extrados must lie outside the intrados: K = R/r > 1.
+    #[error("K = R/r must exceed 1 (the extrados outside the intrados), not {0}")]
+    NotThick(f64),
     /// The eccentricity must lie in [`ECCENTRICITY_RANGE`].
     #[error(
         "eccentricity {0} is not allowed: it must lie in [0, 0.9999] (beyond, the critical thickness t/R_c ≈ 0.175 (1 − e) is below what the margins resolve)"
@@ -234,6 +237,9 @@ impl ArchModel {
     /// The model, its half weight computed when `weigh` (else left at 1).
     fn build(arch: Arch, form: ArchForm, load: Load, weigh: bool) -> Result<Self, FormError> {
         let k = arch.k;
+        if !(k > 1.0) {
+            return Err(FormError::NotThick(k));
+        }
         let alpha = arch.half_angle;
         let e = form.shape.eccentricity();
         if !eccentricity_allowed(e) {

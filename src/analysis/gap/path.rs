@@ -600,6 +600,20 @@ pub(super) fn search_result(
     settings: &Settings,
 ) -> GapSearch {
     let range = [static_value, value(start)];
+    // A complete state beyond the static limit (past it no state is admissible) can only be
+    // an artefact of sampled joints or of a failed refinement: the search failed.
+    let tol = settings.tol_gap * (1.0 + static_value.abs());
+    let beyond = |p: f64| {
+        (value(p) - static_value) * (value(start) - static_value) < 0.0
+            && (value(p) - static_value).abs() > tol
+    };
+    if found.as_ref().is_some_and(|(p, _)| beyond(*p)) {
+        return GapSearch {
+            static_limit: Some(static_value),
+            vertices: visited,
+            ..GapSearch::failed(range)
+        };
+    }
     let status = match &found {
         None if visited == usize::MAX => GapStatus::Failed,
         None => GapStatus::NoCompleteSolution,
