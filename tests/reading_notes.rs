@@ -36,6 +36,25 @@ fn cases_where_no_requested_mu_stands_are_named() {
 }
 
 #[test]
+fn a_friction_study_says_which_thicknesses_stand_at_no_mu() {
+    let dir = scratch("notes-never-stands-friction");
+    let run = run_study(
+        &dir,
+        "fr.yaml",
+        "name: fr\nfind: friction\ngrid:\n  k: {values: [1.05, 1.1, 1.2, 1.3]}\n",
+    );
+    let md = report(&run);
+    // K_c = 1.1136 at μ = ∞: the two thinner arches stand at no μ; a friction find has no μ
+    // of its own to blame.
+    assert!(md.contains("The arch never stands in 2 of 4 cases"), "{md}");
+    assert!(
+        md.contains("a friction case stands at no μ, however large"),
+        "{md}"
+    );
+    assert!(!md.contains("No requested μ"), "{md}");
+}
+
+#[test]
 fn positions_with_an_unbounded_lambda_are_named() {
     let dir = scratch("notes-unbounded");
     let run = run_study(

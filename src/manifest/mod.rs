@@ -72,11 +72,23 @@ pub fn parse(text: &str, path: &Path) -> Result<Manifest, ManifestError> {
         {
             first = first[i + 2..].to_string();
         }
+        // A missing key is reported where its mapping ends, after the mapping's last key:
+        // the key at fault is the missing one.
+        let missing = (first.strip_prefix("missing field `"))
+            .and_then(|rest| rest.split('`').next())
+            .map(str::to_string);
         ManifestError {
             path: path.to_path_buf(),
             position,
-            key: position.and_then(|(l, c)| parse_errors::key_at(text, l, c)),
-            message: parse_errors::friendly(&first),
+            key: missing
+                .clone()
+                .or_else(|| position.and_then(|(l, c)| parse_errors::key_at(text, l, c))),
+            message: match missing {
+                Some(k) => format!(
+                    "`{k}` is required here and missing (the position is where its mapping ends)"
+                ),
+                None => parse_errors::friendly(&first),
+            },
         }
     })?;
     validate::manifest(raw, path)
@@ -89,6 +101,16 @@ mod tests {
 
     fn p(s: &str) -> Result<Manifest, ManifestError> {
         parse(s, Path::new("study.yaml"))
+    }
+
+    #[test]
+    fn a_missing_key_is_named_itself_not_the_key_before_it() {
+        let e = p("grid:\n  k: {values: [1.2]}\n  mu: {values: [0.4]}\nfind: state\n").unwrap_err();
+        assert_eq!(e.key.as_deref(), Some("name"), "{e}");
+        assert!(e.to_string().contains("`name` is required"), "{e}");
+        let e =
+            p("name: a\ngrid:\n  k: {values: [1.2]}\nload_cases:\n  - {name: g}\n").unwrap_err();
+        assert_eq!(e.key.as_deref(), Some("kind"), "{e}");
     }
 
     const TWO_FINDS: &str = "name: a

@@ -350,6 +350,16 @@ fn range_values(
             ),
         ));
     }
+    if steps.value == 1 && t != f {
+        return Err(cx.err(
+            Some(steps.referenced),
+            &format!("{key}.steps"),
+            format!(
+                "one step from {f} to {t} would keep `from` alone and drop `to`; give at least \
+                 2 steps to span the range, or `values: [{f}]` for one value"
+            ),
+        ));
+    }
     let vals = decimal_range(f, t, steps.value as usize);
     if name == AxisName::Voussoirs {
         for &v in &vals {
@@ -469,6 +479,22 @@ mod range_tests {
             &format!("name: a\ngrid:\n  k: {{values: [1.2]}}\n{grid}"),
             std::path::Path::new("a.yaml"),
         )
+    }
+
+    #[test]
+    fn one_step_over_a_range_is_refused_rather_than_dropping_its_end() {
+        let e = parse("  mu: {from: 0.2, to: 0.4, steps: 1}\n").unwrap_err();
+        assert!(
+            e.to_string().contains("grid.mu.steps") && e.to_string().contains("at least 2"),
+            "{e}"
+        );
+        assert_eq!(
+            parse("  mu: {from: 0.4, to: 0.4, steps: 1}\n")
+                .unwrap()
+                .grid[1]
+                .values,
+            [0.4]
+        );
     }
 
     #[test]

@@ -123,7 +123,7 @@ fn slivers(data: &RunData) -> Option<String> {
     ))
 }
 
-/// Cases where the arch does not stand under its own weight at the μ of the case, and the K
+/// Cases where the arch never stands (see [`never_stands_opening`]), and the K
 /// (with the arch of a voussoir axis) at which not one requested μ stands.
 fn never_stands(data: &RunData) -> Option<String> {
     let count = data
@@ -136,11 +136,7 @@ fn never_stands(data: &RunData) -> Option<String> {
         return None;
     }
     let total = data.totals.rows;
-    let mut text = format!(
-        "No requested μ stands in {count} of {total} cases: there the arch does not stand under \
-         its own weight at the μ of the case (outcome never_stands in results.parquet), so it \
-         has no load factor or critical value; the figures leave those cases out."
-    );
+    let mut text = never_stands_opening(data, count, total);
     let rows = |r: &&ResultRow| r.find.as_ref() != "state";
     let lines = |stands: bool| -> Vec<(u64, Option<u32>)> {
         let mut v: Vec<(u64, Option<u32>)> = data
@@ -199,6 +195,52 @@ fn never_stands(data: &RunData) -> Option<String> {
         }
     }
     Some(text)
+}
+
+/// The first sentence of [`never_stands`]: how many cases never stand and what that means for
+/// each find among them (no μ for a friction find, no K for a thickness find, not even λ = 0
+/// for a load factor).
+fn never_stands_opening(data: &RunData, count: usize, total: u64) -> String {
+    // What "never stands" means depends on the find: no μ for a friction find, no K for a
+    // thickness find, not even λ = 0 for a load factor.
+    let mut finds: Vec<&str> = (data.results.iter())
+        .filter(|r| r.outcome.as_deref() == Some("never_stands"))
+        .map(|r| r.find.as_ref())
+        .collect();
+    finds.sort_unstable();
+    finds.dedup();
+    let meaning: Vec<&str> = finds
+        .iter()
+        .filter_map(|f| match *f {
+            "load_factor" => Some(
+                "a load-factor case does not stand under its own weight at the μ of the case, \
+                 so it has no load factor",
+            ),
+            "thickness" => Some(
+                "a thickness case stands at no K of the scan at the μ (and λ) of the case, so it \
+                 has no critical thickness",
+            ),
+            "friction" => Some(
+                "a friction case stands at no μ, however large, at the K (and λ) of the case, so \
+                 it has no critical friction",
+            ),
+            _ => None,
+        })
+        .collect();
+    let opening = if finds == ["load_factor"] {
+        format!("No requested μ stands in {count} of {total} cases")
+    } else {
+        format!("The arch never stands in {count} of {total} cases")
+    };
+    format!(
+        "{opening} (outcome never_stands in results.parquet): {}; the figures leave those cases \
+         out.",
+        if meaning.is_empty() {
+            "the arch has no value there".to_string()
+        } else {
+            meaning.join("; ")
+        }
+    )
 }
 
 /// The friction find of the study's arch under its own weight at each of the first
