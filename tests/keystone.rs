@@ -196,6 +196,14 @@ fn keystone_usage_errors() {
         let m = manifest(&dir, "bad.yaml", &text);
         assert_usage_error(&archstudy(&["check", m.to_str().unwrap()]), names);
     }
+    // A thickness find has no K axis: its path runs down towards K = 1, where the keystone's
+    // extrados starts at asin 0.3 = 17.4576°; `solve` refuses 10° there, and so does a manifest.
+    let text = "name: bad\narch: {shape: pointed, eccentricity: 0.3, keystone: true}\ngrid:\n  mu: {values: [0.6]}\nload_cases:\n  - {name: p, kind: point, at_deg: 10, lambda: 0.2}\nfind: thickness\n";
+    let m = manifest(&dir, "thickness.yaml", text);
+    assert_usage_error(
+        &archstudy(&["check", m.to_str().unwrap()]),
+        &["at_deg", "10", "17.457603", "x/L"],
+    );
     let o = archstudy(&[
         "solve",
         "--find",

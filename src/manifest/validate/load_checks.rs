@@ -500,7 +500,9 @@ fn check_pointed_arch(
         .as_ref()
         .and_then(|g| g.k.as_ref().or(g.t_over_r.as_ref()));
     let Some(ks) = k_values(grid) else {
-        return Ok(());
+        // No K axis: a thickness find, whose path runs down towards K = 1, where the
+        // keystone's extrados shrinks to ψ_e = asin e at the apex.
+        return keystone_angles_without_k(form, e, positions, cx);
     };
     let k_top = ks.iter().copied().fold(1.0, f64::max);
     for &alpha in alphas {
@@ -550,6 +552,31 @@ fn check_pointed_arch(
         }
     }
     Ok(())
+}
+
+/// A load given by an angle on the keystone of a study without a K axis (a thickness find):
+/// refused in (0, asin e), which has no extrados point on the thinnest arches.
+fn keystone_angles_without_k(
+    form: &ArchForm,
+    e: f64,
+    positions: &[Position],
+    cx: &Ctx,
+) -> Result<(), ManifestError> {
+    if !form.keystone || form.joints != JointOrientation::Radial {
+        return Ok(());
+    }
+    let psi_e = e.min(1.0).asin().to_degrees();
+    match positions.iter().find(|p| p.0 != 0.0 && p.0.abs() < psi_e) {
+        Some(&(a, at, key)) => Err(cx.err(
+            at,
+            key,
+            format!(
+                "value {} is not allowed: a thickness find runs down towards K = 1, where the keystone's extrados starts at the apex (0°) at ±{psi_e:.6}° (asin e) from its arc's centre; give the load as x/L",
+                fmt_num(a)
+            ),
+        )),
+        None => Ok(()),
+    }
 }
 
 /// The K values of the grid's K or t/R_c axis, as K.
