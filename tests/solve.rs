@@ -206,3 +206,40 @@ fn bad_input_exits_2_naming_option_value_and_allowed() {
     let o = archstudy(&["solve", "--find", "everything"]);
     assert_usage_error(&o, &["--find", "everything"]);
 }
+
+#[test]
+fn a_joint_at_the_crown_is_reported_at_zero_degrees_not_a_few_ulps_beside_it() {
+    // The load at mid-span splits the crown joint; the family beside it ends one ulp from the
+    // crown (−4.9e-324 rad), once reported as a sliding joint at 2.8e-322°.
+    let j = solve_json(&[
+        "--find",
+        "load-factor",
+        "--half-angle",
+        "75",
+        "--k",
+        "1.2",
+        "--mu",
+        "0.3",
+        "--load",
+        "point",
+        "--at-x",
+        "0.5",
+    ]);
+    let mut crown = 0;
+    for key in [
+        "sliding_joints",
+        "collapse_sliding_joints",
+        "hinges",
+        "collapse_hinges",
+    ] {
+        for joint in j[key].as_array().into_iter().flatten() {
+            let a = joint["angle_deg"].as_f64().expect("an angle");
+            assert!(a == 0.0 || a.abs() > 1e-6, "{key}: {a}");
+            if a == 0.0 {
+                assert!(a.is_sign_positive(), "{key}: −0");
+                crown += 1;
+            }
+        }
+    }
+    assert!(crown >= 2, "{j}");
+}

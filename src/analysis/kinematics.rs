@@ -123,7 +123,7 @@ impl ActiveJoint {
 
     /// The joint angle in degrees.
     pub fn angle_deg(&self) -> f64 {
-        self.theta.to_degrees()
+        crate::analysis::statics::joint_angle_deg(self.theta)
     }
 
     /// +1 when the crown-side part is the left part (θ ≥ 0), −1 otherwise.

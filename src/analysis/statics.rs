@@ -112,7 +112,7 @@ pub trait ArchGeometry {
     /// The angle that names joint θ in results, degrees from the crown, positive to the
     /// right; default θ itself.
     fn angle_deg(&self, theta: f64) -> f64 {
-        theta.to_degrees()
+        joint_angle_deg(theta)
     }
 
     /// True when the row of `condition` at `theta` is left out (always satisfied): the two
@@ -270,5 +270,20 @@ impl JointFrame {
             }
         }
         rows
+    }
+}
+
+/// Largest |angle| in degrees reported as the crown itself: a family's end next to a load at
+/// the crown lies a few ulps from it (−4.9e-324 rad, 2.8e-322° once in degrees), and −0.
+pub const CROWN_ANGLE_DEG: f64 = 1e-9;
+
+/// A joint parameter θ (radians) in degrees from the crown as reported: within
+/// [`CROWN_ANGLE_DEG`] of the crown, exactly 0.
+pub fn joint_angle_deg(theta: f64) -> f64 {
+    let deg = theta.to_degrees();
+    if deg.abs() <= CROWN_ANGLE_DEG {
+        0.0
+    } else {
+        deg
     }
 }

@@ -348,7 +348,7 @@ impl ArchGeometry for ArchModel {
             // The vertical joints through the intrados apex are the crown joint.
             0.0
         } else {
-            theta.to_degrees()
+            crate::analysis::statics::joint_angle_deg(theta)
         }
     }
 }
