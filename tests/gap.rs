@@ -718,6 +718,46 @@ fn the_thickness_path_of_a_shallow_arch_stays_among_arches_thicker_than_nothing(
 }
 
 #[test]
+fn a_thickness_path_whose_static_limit_lies_near_k_1_still_sees_it_complete() {
+    // Pointed arches under a small horizontal load with K_c ≈ 1.02: the step past the static
+    // limit would leave the form's domain (K ≤ 1); it is taken inside it, where the events at
+    // the static limit show its state complete (no gap), as the other scenes of the form do.
+    for (e, half, mu, lambda, k_c) in [
+        (
+            0.30155223585597524,
+            40.89162512538833,
+            1.2690214509187014,
+            0.009317354461727089,
+            1.0245004013537884,
+        ),
+        (
+            0.24527939852493122,
+            33.800091171515525,
+            0.4144808797575459,
+            0.10940183629729602,
+            1.0194358614560937,
+        ),
+    ] {
+        let s = solve_at(
+            Case {
+                find: Find::Thickness,
+                k: 1.3,
+                half,
+                joints: Discretisation::Continuum,
+                form: form(true, false, e),
+                mu,
+                load: Load::Horizontal,
+            },
+            lambda,
+        );
+        assert!((s.k_crit.unwrap() - k_c).abs() < 1e-9, "{:?}", s.k_crit);
+        assert_eq!(s.gap, Some(GapStatus::NoGap), "e = {e}");
+        assert_eq!(s.collapse_value, s.k_crit);
+        assert_checked(&s);
+    }
+}
+
+#[test]
 fn a_crown_part_drops_between_vertical_joints_far_above_the_critical_friction() {
     let vertical = ArchForm {
         shape: Shape::Circular,

@@ -196,6 +196,30 @@ impl<G: ArchGeometry> Walker<'_, G> {
         Some((geom, out))
     }
 
+    /// A point of the path between `inside` (where the form exists) and `outside` (where it
+    /// does not): halfway from `inside` to the edge of the form's domain, found by bisection;
+    /// `outside` itself when no point nearer it exists, which ends the scan there.
+    fn last_inside(&self, inside: f64, outside: f64) -> f64 {
+        let (mut lo, mut hi) = (inside, outside);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if mid == lo || mid == hi {
+                break;
+            }
+            if (self.at)(mid).is_some() {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        // Halfway to the edge of the domain: the form degenerates at its edge (K → 1).
+        if lo == inside {
+            outside
+        } else {
+            0.5 * (inside + lo)
+        }
+    }
+
     /// True when the search has walked as many slices as it may.
     fn exhausted(&self) -> bool {
         self.slices.get() > self.settings.max_slices
@@ -368,6 +392,13 @@ impl<G: ArchGeometry> Walker<'_, G> {
             };
             i += 1;
             let beyond = i > n;
+            // Past the static limit a step may leave the form's domain (K ≤ 1 on a thickness
+            // path whose K_c lies near 1): the slice is then taken inside it,
+            // halfway to the domain's edge, so that the events at the static limit are still seen.
+            let p = match &prev {
+                Some(pr) if beyond && (self.at)(p).is_none() => self.last_inside(pr.p, p),
+                _ => p,
+            };
             let Some(cur) = self.slice(p) else {
                 if beyond || self.exhausted() {
                     break;
