@@ -197,7 +197,8 @@ fn main() {
         let mut out = std::io::BufWriter::new(std::fs::File::create(&path).expect("a CSV file"));
         writeln!(
             out,
-            "find,form_and_load,k,mu,half_angle_deg,lambda,voussoirs,status,static_limit,collapse"
+            "find,form_and_load,k,mu,half_angle_deg,lambda,voussoirs,status,static_limit,collapse,\
+             eccentricity,collapse_work_loads"
         )
         .expect("writable");
         out
@@ -221,7 +222,7 @@ fn main() {
         if let Some(out) = csv.as_mut() {
             writeln!(
                 out,
-                "{},\"{}\",{:?},{:?},{:?},{:?},{},{},{:?},{:?}",
+                "{},\"{}\",{:?},{:?},{:?},{:?},{},{},{:?},{:?},{:?},{:?}",
                 scene.find.as_str(),
                 class(&scene),
                 scene.arch.k,
@@ -232,6 +233,8 @@ fn main() {
                 status.as_str(),
                 static_limit(&s),
                 s.collapse_value.unwrap_or(f64::NAN),
+                scene.form.shape.eccentricity(),
+                s.collapse_work_loads.unwrap_or(f64::NAN),
             )
             .expect("writable");
         }
