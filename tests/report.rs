@@ -600,3 +600,21 @@ fn convergence_report_has_an_error_table_and_an_order_per_threshold() {
     assert!(run.join("plots/speed-accuracy.png").exists());
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn the_widest_gap_is_located_by_the_values_given_not_by_the_value_found() {
+    // A thickness find has no K of its own: the widest gap is placed by its arch and μ
+    // (it once read "the widest at K found, μ = 1.2").
+    let dir = scratch("key-results-widest-gap");
+    let run = run_study(
+        &dir,
+        "gp.yaml",
+        "name: gp\narch: {joints: vertical, voussoirs: 7}\ngrid:\n  half_angle_deg: {values: [60, 80]}\n  mu: {values: [0.8, 1.2]}\nfind: thickness\n",
+    );
+    let md = std::fs::read_to_string(run.join("report.md")).expect("report.md");
+    assert!(
+        md.contains("(a gap: 4 of 4); the widest at α = 60°, μ = 1.2: collapse"),
+        "{md}"
+    );
+    assert!(!md.contains(" found,") && !md.contains("μ found"), "{md}");
+}

@@ -333,7 +333,7 @@ impl Rows {
             .max_by(|a, b| relative(a.1).total_cmp(&relative(b.1)))
         {
             let limit = widest.load_factor.or(widest.k_crit).or(widest.mu_crit);
-            let at = where_(widest);
+            let at = where_(data, i, widest);
             self.out.push(KeyResult {
                 quantity: format!(
                     "finds in which the arch can start to move before its static limit (a gap: {} of {critical}); the widest at {at}: collapse (first complete solution) against static limit",
@@ -355,7 +355,7 @@ impl Rows {
                 quantity: format!(
                     "finds with no complete solution up to the static limit ({} of {critical}): no mechanism obeying the flow rules can start before it; the first at {}",
                     none.len(),
-                    where_(first)
+                    where_(data, i, first)
                 ),
                 value: "—".into(),
                 paper: "—".into(),
@@ -521,10 +521,21 @@ fn continuum_cells(r: &ResultRow) -> Vec<Cell> {
 
 /// Where a case of a critical find lies: its given K and μ; the one a find searches for is
 /// named as found.
-fn where_(r: &ResultRow) -> String {
-    let k =
-        r.k.map_or("K found".into(), |k| format!("K = {}", given(k)));
-    let mu =
-        r.mu.map_or("μ found".into(), |m| format!("μ = {}", given(m)));
-    format!("{k}, {mu}")
+/// Where row `i` of results.parquet lies: its arch on the study's arch axes, the given K
+/// and μ (a thickness find has no K of its own, a friction find no μ), and its load case when
+/// the study has several.
+fn where_(data: &RunData, i: usize, r: &ResultRow) -> String {
+    let mut parts = Vec::new();
+    if data.result_arches.len() == data.results.len() {
+        let arch = crate::report::charts::arch_axis::arch_label(data, data.result_arches[i]);
+        if !arch.is_empty() {
+            parts.push(arch);
+        }
+    }
+    parts.extend(r.k.map(|k| format!("K = {}", given(k))));
+    parts.extend(r.mu.map(|m| format!("μ = {}", given(m))));
+    if data.manifest.load_cases.len() > 1 {
+        parts.push(format!("load case {}", r.load_case));
+    }
+    parts.join(", ")
 }
