@@ -602,7 +602,7 @@ fn convergence_report_has_an_error_table_and_an_order_per_threshold() {
 }
 
 #[test]
-fn the_widest_gap_is_located_by_the_values_given_not_by_the_value_found() {
+fn key_results_name_the_arch_of_each_critical_value_and_of_the_widest_gap() {
     // A thickness find has no K of its own: the widest gap is placed by its arch and μ
     // (it once read "the widest at K found, μ = 1.2").
     let dir = scratch("key-results-widest-gap");
@@ -617,4 +617,11 @@ fn the_widest_gap_is_located_by_the_values_given_not_by_the_value_found() {
         "{md}"
     );
     assert!(!md.contains(" found,") && !md.contains("μ found"), "{md}");
+    // The critical values of the two arches read apart.
+    for alpha in [60, 80] {
+        assert!(
+            md.contains(&format!("| K_c at μ = 0.8 (α = {alpha}°) |")),
+            "{md}"
+        );
+    }
 }

@@ -292,7 +292,16 @@ impl Rows {
                 )
             };
             let Some(v) = v else { continue };
-            let model = r.voussoirs.map_or(String::new(), |n| format!(", N = {n}"));
+            // Which arch and load case: rows of different arches or load cases would read alike.
+            let parts: Vec<String> = arch_of(data, i)
+                .into_iter()
+                .chain(case_of(data, r))
+                .collect();
+            let model = if parts.is_empty() {
+                r.voussoirs.map_or(String::new(), |n| format!(", N = {n}"))
+            } else {
+                format!(" ({})", parts.join(", "))
+            };
             let printed = match (col, self.paper, r.mu) {
                 ("k_crit", true, Some(mu)) if mu.is_infinite() => Some(paper::K_C),
                 _ => None,
@@ -525,17 +534,24 @@ fn continuum_cells(r: &ResultRow) -> Vec<Cell> {
 /// and μ (a thickness find has no K of its own, a friction find no μ), and its load case when
 /// the study has several.
 fn where_(data: &RunData, i: usize, r: &ResultRow) -> String {
-    let mut parts = Vec::new();
-    if data.result_arches.len() == data.results.len() {
-        let arch = crate::report::charts::arch_axis::arch_label(data, data.result_arches[i]);
-        if !arch.is_empty() {
-            parts.push(arch);
-        }
-    }
-    parts.extend(r.k.map(|k| format!("K = {}", given(k))));
-    parts.extend(r.mu.map(|m| format!("μ = {}", given(m))));
-    if data.manifest.load_cases.len() > 1 {
-        parts.push(format!("load case {}", r.load_case));
-    }
-    parts.join(", ")
+    (arch_of(data, i).into_iter())
+        .chain(r.k.map(|k| format!("K = {}", given(k))))
+        .chain(r.mu.map(|m| format!("μ = {}", given(m))))
+        .chain(case_of(data, r))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Row `i`'s arch on the study's arch axes; `None` without them.
+fn arch_of(data: &RunData, i: usize) -> Option<String> {
+    let a = data
+        .result_arches
+        .get(i)
+        .filter(|_| data.result_arches.len() == data.results.len())?;
+    Some(crate::report::charts::arch_axis::arch_label(data, *a)).filter(|l| !l.is_empty())
+}
+
+/// Row `r`'s load case when the study has several.
+fn case_of(data: &RunData, r: &ResultRow) -> Option<String> {
+    (data.manifest.load_cases.len() > 1).then(|| format!("load case {}", r.load_case))
 }
