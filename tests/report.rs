@@ -625,3 +625,26 @@ fn key_results_name_the_arch_of_each_critical_value_and_of_the_widest_gap() {
         );
     }
 }
+
+#[test]
+fn a_thrust_study_reports_the_range_of_admissible_thrusts() {
+    let dir = scratch("key-results-thrust");
+    let run = run_study(
+        &dir,
+        "th.yaml",
+        "name: th\ngrid:\n  k: {values: [1.1, 1.2]}\n  mu: {values: [0.4, inf]}\nfind: thrust\n",
+    );
+    let md = std::fs::read_to_string(run.join("report.md")).expect("report.md");
+    // At K = 1.2 the minimum thrust is μ_c(1.2) = 0.3232251; with μ = 0.4 the springing
+    // slides at H = μ W_half.
+    assert!(
+        md.contains("| admissible crown thrust H/W_half at K = 1.2, μ = 0.4 (minimum to maximum) | 0.3232251130 to 0.4000000000 |"),
+        "{md}"
+    );
+    assert!(
+        md.contains("at K = 1.2, μ = ∞ (minimum to maximum) | 0.3232251130 to"),
+        "{md}"
+    );
+    // K = 1.1 is below K_c = 1.1136: nothing stands at any μ.
+    assert!(md.contains("a thrust case admits no crown thrust"), "{md}");
+}

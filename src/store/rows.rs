@@ -132,6 +132,8 @@ pub struct ResultRow {
     pub mu_crit: Option<f64>,
     /// Minimum admissible thrust over W_half (thrust find).
     pub thrust_min: Option<f64>,
+    /// Maximum admissible thrust over W_half (thrust find).
+    pub thrust_max: Option<f64>,
     /// Collapse thickness at infinite friction (thresholds find).
     pub k_c_rotational: Option<f64>,
     /// μ of the rotational/mixed bifurcation (thresholds find).
@@ -168,6 +170,7 @@ impl ResultRow {
             "k_crit" => self.k_crit,
             "mu_crit" => self.mu_crit,
             "thrust_min" => self.thrust_min,
+            "thrust_max" => self.thrust_max,
             "thrust_r_min" => self.thrust_r_min,
             "k_c_rotational" => self.k_c_rotational,
             "mu_rotational_mixed" => self.mu_rotational_mixed,
@@ -257,7 +260,7 @@ fn required<T>(v: Vec<Option<T>>, name: &str, path: &Path) -> Result<Vec<T>> {
 }
 
 /// The columns of results.parquet that make a [`ResultRow`].
-const RESULT_ROW_COLUMNS: [&str; 26] = [
+const RESULT_ROW_COLUMNS: [&str; 27] = [
     "case_id",
     "load_case",
     "find",
@@ -274,6 +277,7 @@ const RESULT_ROW_COLUMNS: [&str; 26] = [
     "k_windows_scanned_to",
     "mu_crit",
     "thrust_min",
+    "thrust_max",
     "k_c_rotational",
     "mu_rotational_mixed",
     "mu_min",
@@ -376,7 +380,7 @@ pub fn extend_results_of_frame(
     let rmin = f("thrust_r_min")?;
     let (k_crit, mu_crit) = (f("k_crit")?, f("mu_crit")?);
     let windows = window_lists(df, f("k_windows_scanned_to")?).with_context(cx)?;
-    let tmin = f("thrust_min")?;
+    let (tmin, tmax) = (f("thrust_min")?, f("thrust_max")?);
     let (kcr, murm) = (f("k_c_rotational")?, f("mu_rotational_mixed")?);
     let (mumin, kms) = (f("mu_min")?, f("k_mixed_sliding")?);
     let load_factor = f("load_factor")?;
@@ -402,6 +406,7 @@ pub fn extend_results_of_frame(
             k_windows: windows.get(i).cloned().unwrap_or_default(),
             mu_crit: mu_crit.at(i),
             thrust_min: tmin.at(i),
+            thrust_max: tmax.at(i),
             k_c_rotational: kcr.at(i),
             mu_rotational_mixed: murm.at(i),
             mu_min: mumin.at(i),

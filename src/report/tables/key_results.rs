@@ -85,6 +85,7 @@ pub fn key_results(data: &RunData) -> (Vec<KeyResult>, String) {
         rows.bifurcations(data, &lc.name, &on);
     }
     rows.critical_values(data);
+    rows.thrust_ranges(data);
     rows.continuum_values(data, multi);
     let out = rows.out;
     let note = if out.is_empty() {
@@ -257,6 +258,34 @@ impl Rows {
                     source: src("hinge_angles_deg"),
                 });
             }
+        }
+    }
+
+    /// Thrust finds: the range of admissible crown thrusts of each case that stands (about two
+    /// dozen listed at most, evenly through the study).
+    fn thrust_ranges(&mut self, data: &RunData) {
+        let found: Vec<(usize, &ResultRow)> = (data.results.iter().enumerate())
+            .filter(|(_, r)| &*r.find == "thrust" && r.outcome.as_deref() == Some("found"))
+            .collect();
+        let step = if found.len() <= 30 {
+            1
+        } else {
+            found.len().div_ceil(24)
+        };
+        for &(i, r) in found.iter().step_by(step) {
+            let (Some(lo), Some(hi)) = (r.thrust_min, r.thrust_max) else {
+                continue;
+            };
+            self.out.push(KeyResult {
+                quantity: format!(
+                    "admissible crown thrust H/W_half at {} (minimum to maximum)",
+                    where_(data, i, r)
+                ),
+                value: format!("{} to {}", value(lo), value(hi)),
+                paper: "—".into(),
+                difference: "—".into(),
+                source: format!("results.parquet row {i} thrust_min, thrust_max"),
+            });
         }
     }
 

@@ -220,6 +220,10 @@ fn never_stands_opening(data: &RunData, count: usize, total: u64) -> String {
                 "a thickness case stands at no K of the scan at the μ (and λ) of the case, so it \
                  has no critical thickness",
             ),
+            "thrust" => Some(
+                "a thrust case admits no crown thrust at the K and μ of the case (no state \
+                 stands there)",
+            ),
             "friction" => Some(
                 "a friction case stands at no μ, however large, at the K (and λ) of the case, so \
                  it has no critical friction",
