@@ -59,6 +59,26 @@ impl Format {
 /// can be converted from). Every joint is still analysed.
 pub const MAX_DRAWN_JOINTS: usize = 2000;
 
+/// Largest number of points of a line of thrust drawn: an arch of a million voussoirs has a
+/// point on each joint, which no figure can show apart (and which made an 8.8 MB SVG); a line
+/// with more is drawn through evenly spaced points of it, its ends kept.
+pub const MAX_DRAWN_LINE_POINTS: usize = 4000;
+
+/// `line` thinned to at most [`MAX_DRAWN_LINE_POINTS`] points, evenly spaced along its
+/// indices, the first and the last kept.
+pub fn thinned<T: Copy>(line: Vec<T>) -> Vec<T> {
+    let n = line.len();
+    if n <= MAX_DRAWN_LINE_POINTS {
+        return line;
+    }
+    let step = (n - 1).div_ceil(MAX_DRAWN_LINE_POINTS - 1);
+    let mut out: Vec<T> = line.iter().step_by(step).copied().collect();
+    if !(n - 1).is_multiple_of(step) {
+        out.push(line[n - 1]);
+    }
+    out
+}
+
 /// How much larger a PNG is than the design size: an 800 px design becomes 2400 px.
 pub const PNG_SCALE: f64 = 3.0;
 /// Print resolution written into PNGs, dots per inch.
@@ -340,4 +360,31 @@ fn encode_png(rgb: &[u8], w: u32, h: u32, dpi: f64) -> Result<Vec<u8>, PlotError
         writer.finish().map_err(err)?;
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod thinning_tests {
+    use super::{MAX_DRAWN_LINE_POINTS, thinned};
+
+    #[test]
+    fn a_long_line_is_thinned_to_the_limit_with_both_ends_kept() {
+        for n in [
+            10,
+            MAX_DRAWN_LINE_POINTS,
+            MAX_DRAWN_LINE_POINTS + 1,
+            1_000_001,
+            123_457,
+        ] {
+            let line: Vec<usize> = (0..n).collect();
+            let t = thinned(line);
+            assert!(t.len() <= MAX_DRAWN_LINE_POINTS, "{n}: {}", t.len());
+            assert_eq!((t[0], *t.last().unwrap()), (0, n - 1), "{n}");
+            assert!(t.windows(2).all(|w| w[0] < w[1]));
+            if n <= MAX_DRAWN_LINE_POINTS {
+                assert_eq!(t.len(), n);
+            } else {
+                assert!(t.len() > MAX_DRAWN_LINE_POINTS / 2, "{n}: {}", t.len());
+            }
+        }
+    }
 }

@@ -35,6 +35,7 @@ pub fn figure_with_lines(
     let mut geometry = geometry::of_state(s);
     let mut on_joints = on_joints;
     let too_many = geometry.voussoir_joints.len() > crate::plot::MAX_DRAWN_JOINTS;
+    let line = crate::plot::thinned(line);
     let n_joints = geometry.voussoir_joints.len();
     if too_many {
         geometry.voussoir_joints.clear();
