@@ -211,20 +211,8 @@ fn bad_input_exits_2_naming_option_value_and_allowed() {
 fn a_joint_at_the_crown_is_reported_at_zero_degrees_not_a_few_ulps_beside_it() {
     // The load at mid-span splits the crown joint; the family beside it ends one ulp from the
     // crown (−4.9e-324 rad), once reported as a sliding joint at 2.8e-322°.
-    let j = solve_json(&[
-        "--find",
-        "load-factor",
-        "--half-angle",
-        "75",
-        "--k",
-        "1.2",
-        "--mu",
-        "0.3",
-        "--load",
-        "point",
-        "--at-x",
-        "0.5",
-    ]);
+    let args = "--find load-factor --half-angle 75 --k 1.2 --mu 0.3 --load point --at-x 0.5";
+    let j = solve_json(&args.split(' ').collect::<Vec<_>>());
     let mut crown = 0;
     for key in [
         "sliding_joints",
