@@ -758,28 +758,6 @@ fn a_thickness_path_whose_static_limit_lies_near_k_1_still_sees_it_complete() {
 }
 
 #[test]
-fn a_thick_pointed_arch_has_no_zero_work_collapse_at_the_top_of_its_form() {
-    // e = 0.5: complete states whose loads do no work lie near K = 3, the thickest arch of the
-    // form; they were once reported as a collapse at K = 2.999999998, a gap of 1.94.
-    let s = solve(Case {
-        find: Find::Thickness,
-        k: 1.3,
-        half: 90.0,
-        joints: Discretisation::Continuum,
-        form: form(true, false, 0.5),
-        mu: 0.5,
-        load: Load::SelfWeight,
-    });
-    assert!(
-        (s.k_crit.unwrap() - 1.057365349796).abs() < 1e-9,
-        "{:?}",
-        s.k_crit
-    );
-    assert_eq!(s.gap, Some(GapStatus::NoGap));
-    assert_eq!(s.collapse_value, s.k_crit);
-}
-
-#[test]
 fn a_crown_part_drops_between_vertical_joints_far_above_the_critical_friction() {
     let vertical = ArchForm {
         shape: Shape::Circular,

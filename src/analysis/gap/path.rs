@@ -107,8 +107,6 @@ pub(super) struct Walker<'a, G> {
     pub(super) settings: &'a Settings,
     /// What the path's parameter is.
     pub(super) path: Path,
-    /// The static limit the path runs to.
-    pub(super) end: f64,
     /// The frames of the joints walked, on a friction path (one geometry throughout).
     pub(super) frames: std::cell::OnceCell<Option<Vec<JointFrame>>>,
 }
@@ -231,9 +229,6 @@ impl<G: ArchGeometry> Walker<'_, G> {
     fn found_at(&self, geom: &G, s: &Slice, k: &[(usize, u8)], v: &Vertex) -> Option<Found> {
         let joints = joints_at(geom, self.thetas)?;
         let (moves, support) = complete_moves(geom, &s.rows, v, self.settings)?;
-        if self.drives_nothing(geom, s.p, &moves, v) {
-            return None;
-        }
         Some(Found {
             p: s.p,
             y: v.y,
@@ -244,28 +239,6 @@ impl<G: ArchGeometry> Walker<'_, G> {
                 .collect(),
             support: names(&s.rows, &joints, &support),
         })
-    }
-
-    /// True when the complete state at vertex `v` of the slice at p lies before the path's
-    /// static limit and the loads do no work on its mechanism
-    /// ([`Settings::tol_driving_work`]): nothing starts it, and the search goes on. At the
-    /// static limit itself the mechanism of a limit state does no work by definition.
-    fn drives_nothing(&self, geom: &G, p: f64, moves: &[JointMove], v: &Vertex) -> bool {
-        // Both paths run down to their static limit; a state at it, or past it on sampled
-        // joints (which stand a little further than the arch), is a limit state.
-        if p - self.end <= self.settings.tol_gap * (1.0 + self.end.abs()) {
-            return false;
-        }
-        let Some((_, phi)) = (self.at)(p) else {
-            return false;
-        };
-        let state = StateY {
-            y: v.y,
-            mu: phi.tan(),
-        };
-        let angle = |t: f64| geom.angle_deg(t);
-        mechanism::check(geom, moves, &state, &angle)
-            .is_some_and(|m| m.work.work_loads <= self.settings.tol_driving_work)
     }
 
     /// The first complete vertex of a slice. On a friction path, a vertex whose rows were
@@ -512,7 +485,6 @@ fn first_complete_counted<G: ArchGeometry + Copy>(
             lambda,
             settings,
             path,
-            end,
             frames: std::cell::OnceCell::new(),
         };
         let scan = walker.scan(start, end, step);

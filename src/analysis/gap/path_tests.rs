@@ -58,7 +58,6 @@ fn a_friction_step_that_skips_known_vertices_finds_what_testing_every_vertex_fin
             lambda,
             settings: &settings,
             path: Path::Friction,
-            end: f64::NEG_INFINITY,
             frames: std::cell::OnceCell::new(),
         };
         let mut prev: Option<Slice> = None;
