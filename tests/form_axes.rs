@@ -95,6 +95,11 @@ fn an_eccentricity_axis_puts_the_semicircle_and_a_pointed_arch_side_by_side() {
         md.contains("(e = 0.2)") && md.contains("eccentricity e: grid axis"),
         "{md}"
     );
+    // Captions print the eccentricity as given, not padded to four decimals.
+    assert!(
+        md.contains("pointed, e = 0.2") && !md.contains("e = 0.2000"),
+        "{md}"
+    );
     // run.json keeps the axis as given.
     let info: serde_json::Value =
         serde_json::from_slice(&std::fs::read(run.join("run.json")).unwrap()).unwrap();

@@ -98,7 +98,7 @@ pub fn figure_with_lines(
 pub fn arch_text(s: &StateRow, varied: ArchAxes) -> String {
     let mut parts = Vec::new();
     if s.shape == "pointed" {
-        parts.push(format!("pointed, e = {}", short(s.eccentricity)));
+        parts.push(format!("pointed, e = {}", given(s.eccentricity)));
     } else if varied.e {
         parts.push("e = 0".into());
     }
