@@ -146,7 +146,13 @@ fn json_has_the_documented_keys() {
         ),
     ];
     for (find, keys) in per_find {
-        let v = solve_json(&["--find", find, "--mu", "0.4"]);
+        // The friction find computes μ: it is given none.
+        let mu: &[&str] = if find == "friction" {
+            &[]
+        } else {
+            &["--mu", "0.4"]
+        };
+        let v = solve_json(&[&["--find", find], mu].concat());
         for k in always.iter().chain(keys.iter()) {
             assert!(v.get(*k).is_some(), "{find}: key {k} missing in {v}");
         }
@@ -174,7 +180,7 @@ fn json_has_the_documented_keys() {
 
 #[test]
 fn bad_input_exits_2_naming_option_value_and_allowed() {
-    let cases: [(&[&str], &str, &str); 8] = [
+    let cases: [(&[&str], &str, &str); 11] = [
         (&["--k", "1"], "--k", "greater than 1"),
         (&["--k", "0.5"], "--k", "greater than 1"),
         (&["--mu", "-0.1"], "--mu", "≥ 0"),
@@ -191,6 +197,14 @@ fn bad_input_exits_2_naming_option_value_and_allowed() {
             "--t-over-r",
             "not both",
         ),
+        // What the find computes is no input: it would be left out without a word.
+        (&["--find", "thickness", "--k", "1.3"], "--k", "computes K"),
+        (
+            &["--find", "thresholds", "--t-over-r", "0.1"],
+            "--t-over-r",
+            "computes K",
+        ),
+        (&["--find", "friction", "--mu", "0.4"], "--mu", "computes μ"),
     ];
     for (args, option, allowed) in cases {
         let mut all = vec!["solve"];

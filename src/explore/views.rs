@@ -68,10 +68,13 @@ fn with_find(options: &SceneOptions, find: Find) -> Result<Scene, QueryError> {
     if find == Find::LoadFactor {
         o.lambda = None;
     }
-    if matches!(find, Find::Thickness | Find::Thresholds) {
+    if !find.needs_k() {
         // The thickness is what these finds find: K is not an input.
         o.k = None;
         o.t_over_r = None;
+    }
+    if !find.needs_mu() {
+        o.mu = f64::INFINITY;
     }
     Ok(o.scene()?)
 }

@@ -107,6 +107,7 @@ impl SceneOptions {
                 "one of state, thickness, friction, thrust, thresholds, load-factor",
             )
         })?;
+        self.unknowns_left_out(find)?;
         let k = self.k()?;
         let friction = Friction::new(self.mu)
             .ok_or_else(|| bad("mu", self.mu, "μ must be a number ≥ 0 or inf"))?;
@@ -162,6 +163,30 @@ impl SceneOptions {
         };
         scene.check().map_err(|e| form_error(e, self.t_over_r))?;
         Ok(scene)
+    }
+
+    /// Refuses a K or μ given to a find that computes it (K of `thickness`, μ of
+    /// `friction`, both of `thresholds`): the value would be left out without a word. μ = ∞,
+    /// the default, counts as not given.
+    fn unknowns_left_out(&self, find: Find) -> Result<(), SceneOptionError> {
+        if !find.needs_k() {
+            let given = [("k", self.k), ("t_over_r", self.t_over_r)];
+            if let Some((option, Some(v))) = given.into_iter().find(|(_, v)| v.is_some()) {
+                return Err(bad(
+                    option,
+                    short_number(v),
+                    format!("the {find} find computes K: give neither K nor t/R_c"),
+                ));
+            }
+        }
+        if !find.needs_mu() && self.mu.is_finite() {
+            return Err(bad(
+                "mu",
+                short_number(self.mu),
+                format!("the {find} find computes μ: give no μ"),
+            ));
+        }
+        Ok(())
     }
 
     /// K from `k` or `t_over_r`, within (1, MAX_K].
@@ -419,6 +444,43 @@ mod tests {
         assert_eq!(s.arch.k, 1.35);
         assert!(s.friction.is_infinite());
         assert_eq!(s.load, Load::SelfWeight);
+    }
+
+    #[test]
+    fn a_value_given_for_what_the_find_computes_is_refused_not_left_out() {
+        let refused = |o: SceneOptions| o.scene().unwrap_err();
+        let e = refused(SceneOptions {
+            k: Some(1.3),
+            find: "thickness".into(),
+            ..SceneOptions::default()
+        });
+        assert_eq!((e.option, e.value.as_str()), ("k", "1.3"));
+        assert!(e.allowed.contains("computes K"), "{e}");
+        let e = refused(SceneOptions {
+            t_over_r: Some(0.1),
+            find: "thresholds".into(),
+            ..SceneOptions::default()
+        });
+        assert_eq!(e.option, "t_over_r");
+        let e = refused(SceneOptions {
+            mu: 0.4,
+            find: "friction".into(),
+            ..SceneOptions::default()
+        });
+        assert_eq!((e.option, e.value.as_str()), ("mu", "0.4"));
+        assert!(e.allowed.contains("computes μ"), "{e}");
+        // μ = ∞ is the default: a friction find with it, and a thickness find with a μ, stand.
+        let ok = SceneOptions {
+            find: "friction".into(),
+            ..SceneOptions::default()
+        };
+        assert_eq!(ok.scene().unwrap().find, Find::Friction);
+        let ok = SceneOptions {
+            mu: 0.4,
+            find: "thickness".into(),
+            ..SceneOptions::default()
+        };
+        assert_eq!(ok.scene().unwrap().find, Find::Thickness);
     }
 
     #[test]

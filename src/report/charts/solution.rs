@@ -327,7 +327,6 @@ mod tests {
     fn an_arch_of_more_voussoirs_than_a_figure_can_draw_is_drawn_as_its_outline() {
         let spec = |n: i64| {
             let scene = SceneOptions {
-                k: Some(1.3),
                 mu: 0.6,
                 voussoirs: Some(n),
                 find: "thickness".into(),
