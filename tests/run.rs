@@ -297,6 +297,26 @@ fn check_prints_the_plan() {
 }
 
 #[test]
+fn the_closing_line_counts_one_case_as_one_case() {
+    let dir = scratch("one-case");
+    let m = manifest(
+        &dir,
+        "one.yaml",
+        "name: one\ngrid:\n  k: {values: [1.2]}\n  mu: {values: [0.4]}\n",
+    );
+    let o = run(&dir, &m, &[]);
+    let e = stderr(&o);
+    assert!(o.status.success(), "{e}");
+    assert!(e.contains("1 case (1 ok, 0 failed) in "), "{e}");
+    let o = run(&dir, &manifest(&dir, "small.yaml", SMALL), &[]);
+    assert!(
+        stderr(&o).contains("133 cases (133 ok, 0 failed) in "),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
 fn a_rerun_replaces_the_earlier_run_and_leaves_no_staging_directory() {
     let dir = scratch("rerun");
     let m = manifest(&dir, "small.yaml", SMALL);

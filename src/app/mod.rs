@@ -90,9 +90,16 @@ fn run_study(args: &RunArgs) -> Result<ExitCode> {
 
 /// The closing lines of a run, a shard or a merge.
 fn report_run(summary: &runner::RunSummary) {
+    let cases = |n: u64| {
+        if n == 1 {
+            "1 case".to_string()
+        } else {
+            format!("{n} cases")
+        }
+    };
     eprintln!(
-        "{} cases ({} ok, {} failed) in {:.2} s; written to {}",
-        summary.info.cases.total,
+        "{} ({} ok, {} failed) in {:.2} s; written to {}",
+        cases(summary.info.cases.total),
         summary.info.cases.ok,
         summary.info.cases.error,
         summary.wall_s,
@@ -100,8 +107,8 @@ fn report_run(summary: &runner::RunSummary) {
     );
     if summary.info.cases.error > 0 {
         eprintln!(
-            "warning: {} cases failed; their rows carry status `error` and a message",
-            summary.info.cases.error
+            "warning: {} failed; their rows carry status `error` and a message",
+            cases(summary.info.cases.error)
         );
     }
 }

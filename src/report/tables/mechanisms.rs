@@ -51,7 +51,8 @@ fn work_text(v: f64) -> String {
     if v.abs() < WORK_ZERO {
         "0".into()
     } else {
-        format!("{v:.6}")
+        // Six decimals; a value that rounds to zero is 0, never −0.000000.
+        crate::report::format::num(Some(v), 6)
     }
 }
 
@@ -106,4 +107,17 @@ pub fn mechanism_sections(data: &RunData, figures: &[FigureView]) -> Vec<Mechani
         });
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::work_text;
+
+    #[test]
+    fn a_work_that_rounds_to_zero_is_printed_without_a_sign() {
+        assert_eq!(work_text(-4e-10), "0");
+        assert_eq!(work_text(-4e-7), "0.000000");
+        assert_eq!(work_text(-0.25), "-0.250000");
+        assert_eq!(work_text(0.125), "0.125000");
+    }
 }
