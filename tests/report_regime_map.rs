@@ -314,7 +314,7 @@ fn half_angle_study_gets_one_regime_map_per_arch_and_its_collapse_curves() {
     // The bifurcations by arch, tabulated.
     assert!(md.contains("### Bifurcations by arch"), "{md}");
     assert!(
-        md.contains("| α = 90° | mixed / rotational | 0.3953 | 1.1136 | 0.1075 |"),
+        md.contains("| α = 90° | rotational / mixed | 0.3953 | 1.1136 | 0.1075 |"),
         "{md}"
     );
 }

@@ -250,7 +250,7 @@ fn a_standing_pointed_arch_with_vertical_joints_has_its_line_inside_the_masonry(
 }
 
 /// A pointed arch (e = 0.2) under self-weight over a grid that holds both its bifurcations
-/// (mixed / rotational at μ ≈ 0.319, sliding / mixed at μ ≈ 0.259).
+/// (rotational / mixed at μ ≈ 0.319, mixed / sliding at μ ≈ 0.259).
 const POINTED_STATE: &str = "\
 name: pointed-state
 arch: {shape: pointed, eccentricity: 0.2}
@@ -263,7 +263,7 @@ find: state
 ";
 
 /// The semicircle with vertical joints under self-weight over a grid that holds its
-/// mixed / rotational bifurcation (μ ≈ 2.02, K ≈ 1.116).
+/// rotational / mixed bifurcation (μ ≈ 2.02, K ≈ 1.116).
 const VERTICAL_STATE: &str = "\
 name: vertical-state
 arch: {joints: vertical}

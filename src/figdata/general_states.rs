@@ -166,7 +166,7 @@ impl LoadCaseStates<'_> {
             None
         };
         fill(&mut row, &c, None);
-        row.mechanism = Some(format!("{}/{}", b.mechanism_a, b.mechanism_b));
+        row.mechanism = Some(super::bifurcation_name(&b.mechanism_a, &b.mechanism_b));
         row.joints = b.joints.clone();
         mechs.extend(bifurcation_mechanisms(&model, &row, &c, index));
         Ok(Some(row))

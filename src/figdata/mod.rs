@@ -341,7 +341,7 @@ fn bifurcation_state(
     row.state = "bifurcation".into();
     (row.scene_k, row.scene_mu, row.k, row.mu) = (b.k, b.mu, b.k, b.mu);
     row.t_over_r = b.t_over_r;
-    row.mechanism = Some(format!("{}/{}", b.mechanism_a, b.mechanism_b));
+    row.mechanism = Some(bifurcation_name(&b.mechanism_a, &b.mechanism_b));
     row.thrust_over_half_weight = b.thrust_over_half_weight;
     row.crown_moment = b.crown_moment;
     row.joints = b.joints.clone();
@@ -688,4 +688,34 @@ fn run_sampled(
 /// joints or voussoirs).
 pub fn single_model(manifest: &Manifest) -> bool {
     !manifest.grid.iter().any(|a| a.name.is_arch())
+}
+
+/// The name of a bifurcation between two collapse mechanisms, in the order of the paper's
+/// regimes (rotational, mixed, sliding): "rotational/mixed", "mixed/sliding", whichever
+/// mechanism the boundary search names first.
+pub fn bifurcation_name(a: &str, b: &str) -> String {
+    let rank = |m: &str| match m {
+        "rotational" => 0,
+        "mixed" => 1,
+        "sliding" => 2,
+        _ => 3,
+    };
+    let (first, second) = if (rank(a), a) <= (rank(b), b) {
+        (a, b)
+    } else {
+        (b, a)
+    };
+    format!("{first}/{second}")
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn a_bifurcation_is_named_in_the_order_of_the_regimes_whichever_way_it_was_found() {
+        use super::bifurcation_name as name;
+        assert_eq!(name("mixed", "rotational"), "rotational/mixed");
+        assert_eq!(name("rotational", "mixed"), "rotational/mixed");
+        assert_eq!(name("sliding", "mixed"), "mixed/sliding");
+        assert_eq!(name("sliding", "rotational"), "rotational/sliding");
+    }
 }

@@ -207,7 +207,8 @@ pub fn regime_map_of(
             mu: b.mu,
             k: b.k,
             lines: vec![
-                format!("{} / {}", b.mechanism_a, b.mechanism_b),
+                crate::figdata::bifurcation_name(&b.mechanism_a, &b.mechanism_b)
+                    .replace('/', " / "),
                 format!("μ = {}", short(b.mu)),
                 format!("K = {}  (t/R_c = {})", short(b.k), short(b.t_over_r)),
             ],

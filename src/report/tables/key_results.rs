@@ -107,6 +107,17 @@ struct Rows {
     paper: bool,
 }
 
+/// The rows a key-results list gives of many: every one up to 30, else evenly spaced through
+/// the study, about two dozen.
+fn listed<T>(rows: &[T]) -> std::iter::StepBy<std::slice::Iter<'_, T>> {
+    let step = if rows.len() <= 30 {
+        1
+    } else {
+        rows.len().div_ceil(24)
+    };
+    rows.iter().step_by(step)
+}
+
 impl Rows {
     /// A computed value, beside the paper's printed one for the paper's case.
     fn push(&mut self, q: String, v: f64, p: Option<Printed>, src: String) {
@@ -202,7 +213,7 @@ impl Rows {
                 .bifurcation_groups
                 .get(i)
                 .map_or(String::new(), |g| group_text(data, g));
-            let name = format!("{}/{}", b.mechanism_a, b.mechanism_b);
+            let name = crate::figdata::bifurcation_name(&b.mechanism_a, &b.mechanism_b);
             let on = format!("{arch}{on}");
             let on = on.as_str();
             let printed = paper::bifurcation(&b.mechanism_a, &b.mechanism_b);
@@ -267,12 +278,7 @@ impl Rows {
         let found: Vec<(usize, &ResultRow)> = (data.results.iter().enumerate())
             .filter(|(_, r)| &*r.find == "thrust" && r.outcome.as_deref() == Some("found"))
             .collect();
-        let step = if found.len() <= 30 {
-            1
-        } else {
-            found.len().div_ceil(24)
-        };
-        for &(i, r) in found.iter().step_by(step) {
+        for &(i, r) in listed(&found) {
             let (Some(lo), Some(hi)) = (r.thrust_min, r.thrust_max) else {
                 continue;
             };
@@ -303,12 +309,7 @@ impl Rows {
             .filter(|(_, r)| r.outcome.as_deref() == Some("found"))
             .filter_map(|(i, r)| Some((i, r, col_of(r)?)))
             .collect();
-        let step = if found.len() <= 30 {
-            1
-        } else {
-            found.len().div_ceil(24)
-        };
-        for &(i, r, col) in found.iter().step_by(step) {
+        for &(i, r, col) in listed(&found) {
             let (v, label) = if col == "k_crit" {
                 (
                     r.k_crit,

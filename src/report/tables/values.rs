@@ -52,7 +52,8 @@ fn bifurcations_by_arch(data: &RunData) -> Option<ValueTable> {
                 }
                 row.extend([
                     arch_label(data, arch),
-                    format!("{} / {}", b.mechanism_a, b.mechanism_b),
+                    crate::figdata::bifurcation_name(&b.mechanism_a, &b.mechanism_b)
+                        .replace('/', " / "),
                     short(b.mu),
                     short(b.k),
                     short(b.t_over_r),
