@@ -204,6 +204,17 @@ fn keystone_usage_errors() {
         &archstudy(&["check", m.to_str().unwrap()]),
         &["at_deg", "10", "17.457603", "x/L"],
     );
+    // Without a keystone no joint lies there on any arch of the path: `solve` refuses it, and
+    // so does a manifest.
+    let m = manifest(
+        &dir,
+        "no-keystone.yaml",
+        &text.replace(", keystone: true", ""),
+    );
+    assert_usage_error(
+        &archstudy(&["check", m.to_str().unwrap()]),
+        &["at_deg", "10", "17.457603", "thickness find"],
+    );
     let o = archstudy(&[
         "solve",
         "--find",

@@ -499,11 +499,16 @@ fn check_pointed_arch(
         .grid
         .as_ref()
         .and_then(|g| g.k.as_ref().or(g.t_over_r.as_ref()));
-    let Some(ks) = k_values(grid) else {
-        // No K axis: a thickness find, whose path runs down towards K = 1, where the
-        // keystone's extrados shrinks to ψ_e = asin e at the apex.
-        return keystone_angles_without_k(form, e, positions, cx);
+    // No K axis: a thickness find, whose path runs down towards K = 1, where the keystone's
+    // extrados and the first joint both come nearest the apex (ψ_e = ψ₁ = asin e).
+    let (ks, at_k) = match k_values(grid) {
+        Some(ks) => (ks, None),
+        None => (
+            vec![1.0],
+            Some("on the path of a thickness find, which runs down towards K = 1"),
+        ),
     };
+    let where_k = |k: f64| at_k.map_or_else(|| format!("at K = {k}"), String::from);
     let k_top = ks.iter().copied().fold(1.0, f64::max);
     for &alpha in alphas {
         let k_lim = form.max_k(alpha.to_radians());
@@ -532,8 +537,9 @@ fn check_pointed_arch(
                 at,
                 key,
                 format!(
-                    "value {} is not allowed: a point load on the keystone lies on its extrados, which starts at the apex (0°) at ±{psi_e:.6}° from its arc's centre at K = {k_low}",
-                    fmt_num(a)
+                    "value {} is not allowed: a point load on the keystone lies on its extrados, which starts at the apex (0°) at ±{psi_e:.6}° from its arc's centre {}; give the load as x/L",
+                    fmt_num(a),
+                    where_k(k_low)
                 ),
             )),
             None => Ok(()),
@@ -545,38 +551,14 @@ fn check_pointed_arch(
                 at,
                 key,
                 format!(
-                    "value {} is not allowed: a point load must sit at a joint, and this pointed arch has none between its crown (0°) and ±{psi_1:.6}° at K = {k_top} (with `keystone: true` a load may sit on the keystone)",
-                    fmt_num(a)
+                    "value {} is not allowed: a point load must sit at a joint, and this pointed arch has none between its crown (0°) and ±{psi_1:.6}° {} (with `keystone: true` a load may sit on the keystone)",
+                    fmt_num(a),
+                    where_k(k_top)
                 ),
             ));
         }
     }
     Ok(())
-}
-
-/// A load given by an angle on the keystone of a study without a K axis (a thickness find):
-/// refused in (0, asin e), which has no extrados point on the thinnest arches.
-fn keystone_angles_without_k(
-    form: &ArchForm,
-    e: f64,
-    positions: &[Position],
-    cx: &Ctx,
-) -> Result<(), ManifestError> {
-    if !form.keystone || form.joints != JointOrientation::Radial {
-        return Ok(());
-    }
-    let psi_e = e.min(1.0).asin().to_degrees();
-    match positions.iter().find(|p| p.0 != 0.0 && p.0.abs() < psi_e) {
-        Some(&(a, at, key)) => Err(cx.err(
-            at,
-            key,
-            format!(
-                "value {} is not allowed: a thickness find runs down towards K = 1, where the keystone's extrados starts at the apex (0°) at ±{psi_e:.6}° (asin e) from its arc's centre; give the load as x/L",
-                fmt_num(a)
-            ),
-        )),
-        None => Ok(()),
-    }
 }
 
 /// The K values of the grid's K or t/R_c axis, as K.
