@@ -758,6 +758,66 @@ fn a_thickness_path_whose_static_limit_lies_near_k_1_still_sees_it_complete() {
 }
 
 #[test]
+fn a_thick_pointed_arch_has_no_zero_work_collapse_at_the_top_of_its_form() {
+    // e = 0.5: complete states whose loads do no work lie near K = 3, the thickest arch of the
+    // form; they were once reported as a collapse at K = 2.999999998, a gap of 1.94.
+    let s = solve(Case {
+        find: Find::Thickness,
+        k: 1.3,
+        half: 90.0,
+        joints: Discretisation::Continuum,
+        form: form(true, false, 0.5),
+        mu: 0.5,
+        load: Load::SelfWeight,
+    });
+    assert!(
+        (s.k_crit.unwrap() - 1.057365349796).abs() < 1e-9,
+        "{:?}",
+        s.k_crit
+    );
+    assert_eq!(s.gap, Some(GapStatus::NoGap));
+    assert_eq!(s.collapse_value, s.k_crit);
+}
+
+#[test]
+fn a_symmetric_static_limit_whose_mechanism_obeys_the_flow_rules_is_the_collapse() {
+    // e = 0.2: at μ = 0.26 the limit state at K_c has four hinges and both springings
+    // sliding outward; at μ = 0.15 it slides on four joints. The walk stops short of the limit
+    // and steps past it; the limit state's own mechanism obeys the flow rules, so it is the
+    // first complete solution. Zero-work states at the top of the form (K = 9) are none.
+    for (mu, k_c, hinges, slides) in [(0.26, 1.146780521170, 4, 2), (0.15, 8.402701247036, 0, 4)] {
+        let s = solve(Case {
+            find: Find::Thickness,
+            k: 1.3,
+            half: 90.0,
+            joints: Discretisation::Continuum,
+            form: form(true, false, 0.2),
+            mu,
+            load: Load::SelfWeight,
+        });
+        assert!(
+            (s.k_crit.unwrap() - k_c).abs() < 1e-9,
+            "μ {mu}: {:?}",
+            s.k_crit
+        );
+        assert_eq!(s.gap, Some(GapStatus::NoGap), "μ {mu}");
+        assert_eq!(s.collapse_value, s.k_crit);
+        assert_eq!(s.gap_width, Some(0.0));
+        assert_eq!(
+            (s.collapse_hinges.len(), s.collapse_sliding_joints.len()),
+            (hinges, slides),
+            "μ {mu}"
+        );
+        // Its work equation: the loads' work is dissipated by friction.
+        let (a, f) = (
+            s.collapse_work_loads.unwrap(),
+            s.collapse_work_friction.unwrap(),
+        );
+        assert!(a > 0.1 && (a + f).abs() < 1e-9 * a, "μ {mu}: {a} {f}");
+    }
+}
+
+#[test]
 fn a_crown_part_drops_between_vertical_joints_far_above_the_critical_friction() {
     let vertical = ArchForm {
         shape: Shape::Circular,

@@ -667,9 +667,10 @@ fn a_state_study_of_vertical_joints_draws_the_collapse_beside_its_critical_curve
     };
     assert!(m.gap_collapse.is_empty());
     assert!(!f.caption.contains("drawn dashed here"));
-    // The pointed arch (e = 0.2) can move at the start of the thickness path below μ = 0.26,
-    // where it stands only beyond the map's largest K, and its collapse is its static curve
-    // elsewhere: the map shows no gap and says none.
+    // The pointed arch (e = 0.2) below μ = 0.26 has complete states at the top of its form
+    // (K = 9) whose mechanisms the loads do no work on: nothing drives them, so they are no
+    // collapse. Its collapse is its static curve everywhere (the static limit's own mechanism
+    // obeys the flow rules), and the map shows no gap and says none.
     let pointed = study_run(
         "state-collapse-pointed",
         "pointed.yaml",
@@ -677,7 +678,8 @@ fn a_state_study_of_vertical_joints_draws_the_collapse_beside_its_critical_curve
     );
     let curves = store::read_curves(&RunLayout::at(&pointed).curves()).expect("curves.parquet");
     let at_start = |s: &str| curves.iter().filter(|p| p.series == s).count();
-    assert!(at_start(archstudy::figdata::K_COLLAPSE_AT_START) > 0);
+    assert_eq!(at_start(archstudy::figdata::K_COLLAPSE_AT_START), 0);
+    assert_eq!(at_start(archstudy::figdata::K_COLLAPSE_OF_MU), 0);
     let f = regime(&pointed);
     let charts::Chart::RegimeMap(m) = &f.chart else {
         panic!("not a regime map");

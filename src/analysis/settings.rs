@@ -381,6 +381,13 @@ pub struct GapSettings {
     /// A complete solution before the static limit by more than this·(1 + |limit|) along the
     /// path opens a gap; one closer is the static limit itself (default 1e-7).
     pub tol_gap: f64,
+    /// A complete state on a thickness or friction path before its static limit starts a
+    /// mechanism only when the loads do more work than this on it, over W_half·r at a
+    /// largest block-corner speed of 1: a mechanism they do no work on (and which
+    /// dissipates nothing) is a neutral configuration that nothing drives, as thick pointed
+    /// arches show near their largest K. Rounding leaves such works near 1e-16; mechanisms
+    /// that collapse an arch do work of order 1e-3 to 1 (default 1e-9).
+    pub tol_driving_work: f64,
     /// Largest load factor searched (default 1e3, as the confirmation of unbounded answers).
     pub lambda_cap: f64,
     /// Largest |F_x|, |F_y|, |M₀| searched, over W_half and W_half·r (default 1e6).
@@ -444,6 +451,7 @@ impl GapSettings {
         tol_complete: 1e-9,
         tol_hull: 1e-12,
         tol_gap: 1e-7,
+        tol_driving_work: 1e-9,
         lambda_cap: 1e3,
         state_cap: 1e6,
         max_vertices: 200_000,

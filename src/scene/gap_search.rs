@@ -13,6 +13,7 @@ use std::f64::consts::FRAC_PI_2;
 /// (or, for the load factor, is unbounded) and records it in `out`.
 pub(super) fn record(scene: &Scene, out: &mut Solution) {
     let settings = Settings::DEFAULT;
+    let tol_work = crate::analysis::settings::KinematicsSettings::DEFAULT.tol_work;
     let model = |k: f64| ArchModel::new(scene.arch.with_k(k), scene.form, scene.load).ok();
     match scene.find {
         Find::LoadFactor => {
@@ -26,6 +27,9 @@ pub(super) fn record(scene: &Scene, out: &mut Solution) {
             };
             let search = gap::first_complete_load_factor(&m, scene.friction.angle(), &settings);
             out.set_gap(&search, static_value, 1.0);
+            if let Some(v) = static_value {
+                out.complete_at_static_limit(v, tol_work);
+            }
         }
         Find::Friction => {
             let (Some(mu_c), Some(m)) = (out.mu_crit, model(scene.arch.k)) else {
@@ -33,6 +37,7 @@ pub(super) fn record(scene: &Scene, out: &mut Solution) {
             };
             let search = gap::first_complete_friction(&m, scene.lambda, mu_c, &settings);
             out.set_gap(&search, Some(mu_c), -1.0);
+            out.complete_at_static_limit(mu_c, tol_work);
             if let Some(mu) = out.collapse_value {
                 let phi = Friction::new(mu).map_or(FRAC_PI_2, Friction::angle);
                 out.collapse_on_loading = on_loading(scene, &m, phi, &settings);
@@ -57,6 +62,7 @@ pub(super) fn record(scene: &Scene, out: &mut Solution) {
                 &settings,
             );
             out.set_gap(&search, Some(k_c), -1.0);
+            out.complete_at_static_limit(k_c, tol_work);
             if let Some(m) = out.collapse_value.and_then(model) {
                 out.collapse_on_loading = on_loading(scene, &m, scene.friction.angle(), &settings);
             }

@@ -504,6 +504,36 @@ impl Solution {
         self.collapse_flow_violation = finite(m.work.flow_violation);
     }
 
+    /// A search that met no complete state on its way to the static limit `value`, whose own
+    /// mechanism obeys every flow rule there (`mechanism_admissible`, with its work
+    /// equation): the static limit is itself a complete solution, and the first. The walk
+    /// stops just short of the limit and steps past it, and a symmetric limit state, where
+    /// more rows than a vertex holds meet at once, can be missed by both steps.
+    pub(super) fn complete_at_static_limit(&mut self, value: f64, tol_work: f64) {
+        let balanced = self.work_residual.is_some_and(|r| r <= tol_work);
+        if self.gap != Some(GapStatus::NoCompleteSolution)
+            || self.mechanism_admissible != Some(true)
+            || !balanced
+            || !value.is_finite()
+        {
+            return;
+        }
+        self.gap = Some(GapStatus::NoGap);
+        self.collapse_value = Some(value);
+        self.gap_width = Some(0.0);
+        self.collapse_mechanism = self.mechanism;
+        self.collapse_hinges = self.hinges.clone();
+        self.collapse_sliding_joints = self.sliding_joints.clone();
+        self.collapse_lifted_joints = Vec::new();
+        self.collapse_thrust_over_half_weight = self.thrust_over_half_weight;
+        self.collapse_crown_shear = self.crown_shear;
+        self.collapse_crown_moment = self.crown_moment;
+        self.collapse_work_loads = self.work_loads;
+        self.collapse_work_friction = self.work_friction;
+        self.collapse_work_residual = self.work_residual;
+        self.collapse_flow_violation = None;
+    }
+
     /// Records the windows of a thickness find.
     pub(super) fn set_windows(&mut self, w: Option<&Windows>) {
         let Some(w) = w else {

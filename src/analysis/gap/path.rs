@@ -23,6 +23,8 @@ use std::collections::BTreeMap;
 
 #[path = "path_events.rs"]
 mod events;
+#[path = "path_skip.rs"]
+mod skip;
 
 /// A row named by its joint (index into the joint list) and condition.
 type RowName = (usize, Condition);
@@ -107,6 +109,8 @@ pub(super) struct Walker<'a, G> {
     pub(super) settings: &'a Settings,
     /// What the path's parameter is.
     pub(super) path: Path,
+    /// The static limit the path runs to.
+    pub(super) end: f64,
     /// The frames of the joints walked, on a friction path (one geometry throughout).
     pub(super) frames: std::cell::OnceCell<Option<Vec<JointFrame>>>,
 }
@@ -199,7 +203,7 @@ impl<G: ArchGeometry> Walker<'_, G> {
     /// A point of the path between `inside` (where the form exists) and `outside` (where it
     /// does not): halfway from `inside` to the edge of the form's domain, found by bisection;
     /// `outside` itself when no point nearer it exists, which ends the scan there.
-    fn last_inside(&self, inside: f64, outside: f64) -> f64 {
+    fn halfway_to_edge(&self, inside: f64, outside: f64) -> f64 {
         let (mut lo, mut hi) = (inside, outside);
         for _ in 0..60 {
             let mid = 0.5 * (lo + hi);
@@ -241,13 +245,43 @@ impl<G: ArchGeometry> Walker<'_, G> {
         })
     }
 
-    /// The first complete vertex of a slice. On a friction path, a vertex whose rows were
+    /// True when the loads drive the mechanism of `f` (they do more work on it than
+    /// [`Settings::tol_driving_work`]), or when `f` lies at or past the path's static limit,
+    /// where the mechanism of a limit state does no work by definition. Before the limit, a
+    /// mechanism that the loads do no work on (and which dissipates nothing) is a neutral
+    /// configuration that nothing starts: thick pointed arches have such complete states
+    /// near their largest K.
+    fn drives(&self, geom: &G, f: &Found) -> bool {
+        // Both paths run down to their static limit; a state at it, or past it on sampled
+        // joints (which stand a little further than the arch), is a limit state.
+        if f.p - self.end <= self.settings.tol_gap * (1.0 + self.end.abs()) {
+            return true;
+        }
+        let Some((_, phi)) = (self.at)(f.p) else {
+            return true;
+        };
+        let state = StateY {
+            y: f.y,
+            mu: phi.tan(),
+        };
+        let angle = |t: f64| geom.angle_deg(t);
+        mechanism::check(geom, &f.moves, &state, &angle)
+            .is_none_or(|m| m.work.work_loads > self.settings.tol_driving_work)
+    }
+
+    /// The first complete vertex of a slice that `accept` takes. On a friction path, a vertex whose rows were
     /// tight together at the `checked` slice is skipped: a row's twist does not move with μ
     /// (a hinge turns about its face point, a slip runs along the joint), so those rows were
     /// found not positively dependent there and are not here. Vertices on a bound of the walk
     /// (never complete, whatever their joint rows) and rows that allow a slip only without
     /// force (μ = ∞, which depends on the state) are checked again.
-    fn complete_in(&self, geom: &G, s: &Slice, checked: Option<&Slice>) -> Option<Found> {
+    fn complete_in(
+        &self,
+        geom: &G,
+        s: &Slice,
+        checked: Option<&Slice>,
+        accept: &dyn Fn(&G, &Found) -> bool,
+    ) -> Option<Found> {
         let plain = |rows: &StateRows, v: &Vertex| {
             v.tight.iter().all(|&r| {
                 matches!(
@@ -267,25 +301,29 @@ impl<G: ArchGeometry> Walker<'_, G> {
         s.vertices
             .iter()
             .filter(|(k, v)| !known(k, v))
-            .find_map(|(k, v)| self.found_at(geom, s, k, v))
+            .filter_map(|(k, v)| self.found_at(geom, s, k, v))
+            .find(|f| accept(geom, f))
     }
 
-    /// True when the slice at p has a complete vertex.
-    fn has_complete(&self, p: f64) -> Option<Found> {
+    /// A complete vertex of the slice at p that `accept` takes.
+    fn has_complete(&self, p: f64, accept: &dyn Fn(&G, &Found) -> bool) -> Option<Found> {
         let (geom, s) = self.slice(p)?;
-        self.complete_in(&geom, &s, None)
+        self.complete_in(&geom, &s, None, accept)
     }
 
     /// The onset of a family of complete states between `from` (none) and `to` (one), by
-    /// bisection.
+    /// bisection: states of the same family (the same moving rows), whose driving work may
+    /// grow from zero at the onset, and driven states of any other.
     fn onset(&self, mut from: f64, mut to: Found) -> Found {
+        let family = to.support.clone();
+        let accept = |g: &G, f: &Found| f.support == family || self.drives(g, f);
         let tol = self.settings.tol_path * (1.0 + to.p.abs());
         for _ in 0..200 {
             if (to.p - from).abs() <= tol {
                 break;
             }
             let mid = 0.5 * (from + to.p);
-            match self.has_complete(mid) {
+            match self.has_complete(mid, &accept) {
                 Some(f) => to = f,
                 None => from = mid,
             }
@@ -301,73 +339,15 @@ impl<G: ArchGeometry> Walker<'_, G> {
         // A complete vertex at a step: a family of complete states (its moving rows are fewer
         // than four, so they stay tight over an interval of p) began somewhere in the step,
         // and its onset is bisected; four or more moving rows meet at this p alone.
-        self.complete_in(&cur.0, &cur.1, Some(prev)).map(|f| {
-            if f.support.len() < 4 {
-                self.onset(prev.p, f)
-            } else {
-                f
-            }
-        })
-    }
-
-    /// The index of the last step of a friction path (steps `start` to `end` in `n`) whose
-    /// polytope is still `cur`'s: above the steepest resultant of `cur`'s vertices, no Coulomb
-    /// row can be tight, so smaller μ leave the polytope as it is and no complete solution
-    /// appears. Resultants are taken on the joints walked, as the walk takes them.
-    fn skip_to(&self, cur: &(G, Slice), start: f64, end: f64, n: usize) -> usize {
-        let (geom, s) = cur;
-        if s.vertices.is_empty() {
-            // Nothing stands, or the programme failed: nothing to go on from.
-            return 0;
-        }
-        // Each slip row once: its sense, the joint's directions and the force the loads put
-        // on it at the path's λ (every vertex of a slice has that λ).
-        let slips: Vec<_> = s
-            .rows
-            .kind
-            .iter()
-            .filter_map(|kind| {
-                let RowKind::Joint {
-                    joint, condition, ..
-                } = *kind
-                else {
-                    return None;
-                };
-                let sign = match condition {
-                    Condition::SlideOutward => 1.0,
-                    Condition::SlideInward => -1.0,
-                    Condition::Intrados | Condition::Extrados => return None,
-                };
-                let theta = s.rows.thetas[joint];
-                let c = geom
-                    .dead_load(theta)
-                    .plus(geom.live_load(theta).scale(self.lambda));
-                let j = geom.joint(theta);
-                Some((sign, j.along(), j.normal(), [c.fx, c.fy]))
-            })
-            .collect();
-        let mut steepest = f64::NEG_INFINITY;
-        for v in s.vertices.values() {
-            let tol =
-                self.settings.tol_tight * (1.0 + v.y.iter().fold(0.0_f64, |m, c| m.max(c.abs())));
-            for (sign, tau, nu, c) in &slips {
-                let force = [v.y[0] + c[0], v.y[1] + c[1]];
-                let t = sign * (tau[0] * force[0] + tau[1] * force[1]);
-                let normal = nu[0] * force[0] + nu[1] * force[1];
-                if normal <= tol {
-                    // A joint that carries (almost) no normal force slides at any μ.
-                    return 0;
+        let drives = |g: &G, f: &Found| self.drives(g, f);
+        self.complete_in(&cur.0, &cur.1, Some(prev), &drives)
+            .map(|f| {
+                if f.support.len() < 4 {
+                    self.onset(prev.p, f)
+                } else {
+                    f
                 }
-                steepest = steepest.max((t / normal).atan());
-            }
-        }
-        let floor = steepest + self.settings.friction_skip_margin;
-        if !(floor < start) || end >= start {
-            return 0;
-        }
-        // p_i = start + (end − start)·i/n decreases with i; the last i with p_i ≥ floor.
-        let last = ((start - floor) / (start - end) * n as f64).floor();
-        (last.max(0.0) as usize).min(n - 1)
+            })
     }
 
     /// One scan of the path on fixed joints, from `start` past `end` until the polytope is
@@ -396,7 +376,7 @@ impl<G: ArchGeometry> Walker<'_, G> {
             // path whose K_c lies near 1): the slice is then taken inside it,
             // halfway to the domain's edge, so that the events at the static limit are still seen.
             let p = match &prev {
-                Some(pr) if beyond && (self.at)(p).is_none() => self.last_inside(pr.p, p),
+                Some(pr) if beyond && (self.at)(p).is_none() => self.halfway_to_edge(pr.p, p),
                 _ => p,
             };
             let Some(cur) = self.slice(p) else {
@@ -413,7 +393,7 @@ impl<G: ArchGeometry> Walker<'_, G> {
             let fresh = prev.is_none();
             let found = match &prev {
                 Some(pr) => self.advance(pr, &cur),
-                None => self.complete_in(&cur.0, &cur.1, None),
+                None => self.complete_in(&cur.0, &cur.1, None, &|g, f| self.drives(g, f)),
             };
             if found.is_some() {
                 return Scan {
@@ -485,6 +465,7 @@ fn first_complete_counted<G: ArchGeometry + Copy>(
             lambda,
             settings,
             path,
+            end,
             frames: std::cell::OnceCell::new(),
         };
         let scan = walker.scan(start, end, step);

@@ -41,7 +41,7 @@ impl<G: ArchGeometry> Walker<'_, G> {
         ))
     }
 
-    /// The complete vertex at p nearest to `near`.
+    /// The complete vertex at p nearest to `near` whose mechanism the loads drive.
     fn complete_at(&self, p: f64, near: &[f64; 4]) -> Option<Found> {
         let (geom, s) = self.slice(p)?;
         let dist = |v: &Vertex| (0..3).map(|c| (v.y[c] - near[c]).abs()).fold(0.0, f64::max);
@@ -49,7 +49,8 @@ impl<G: ArchGeometry> Walker<'_, G> {
         vs.sort_by(|a, b| dist(a.1).total_cmp(&dist(b.1)));
         vs.into_iter()
             .take(4)
-            .find_map(|(k, v)| self.found_at(&geom, &s, k, v))
+            .filter_map(|(k, v)| self.found_at(&geom, &s, k, v))
+            .find(|f| self.drives(&geom, f))
     }
 
     /// Where three rows of slice `s` meet, at the path's λ.

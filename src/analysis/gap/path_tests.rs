@@ -58,14 +58,15 @@ fn a_friction_step_that_skips_known_vertices_finds_what_testing_every_vertex_fin
             lambda,
             settings: &settings,
             path: Path::Friction,
+            end: f64::NEG_INFINITY,
             frames: std::cell::OnceCell::new(),
         };
         let mut prev: Option<Slice> = None;
         for deg in (10..=89).rev() {
             let (geom, cur) = walker.slice((deg as f64).to_radians()).unwrap();
-            let every = outcome(walker.complete_in(&geom, &cur, None));
+            let every = outcome(walker.complete_in(&geom, &cur, None, &|_, _| true));
             if let Some(pr) = &prev {
-                let known = outcome(walker.complete_in(&geom, &cur, Some(pr)));
+                let known = outcome(walker.complete_in(&geom, &cur, Some(pr), &|_, _| true));
                 assert_eq!(known, every, "{deg}°");
                 compared += 1;
                 complete += usize::from(every.is_some());
