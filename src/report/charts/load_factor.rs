@@ -3,7 +3,7 @@
 //! positions, the influence line λ against the load's position (angle and x/L).
 
 use super::regime_map::ArchKey;
-use super::{Chart, FigureSpec, LoadCaseFigure, mu_text};
+use super::{Chart, FigureSpec, LoadCaseFigure};
 use crate::plot::lines::{Line, LinePanel, LinePoint, LinesChart};
 use crate::report::data::{ArchView, RunData, given_position};
 use crate::report::format::{given, position_deg, short};
@@ -15,16 +15,7 @@ const BARS: &str = "Green bars, from the collapse up to λ_max";
 /// At most this many lines per panel.
 const MAX_LINES: usize = 4;
 
-/// A grid value for a label: as given when short (1.25, 0.4, ∞), else to four decimals
-/// (a range axis of 191 steps gives K = 1.436842105263158).
-pub fn compact(v: f64) -> String {
-    let g = mu_text(v);
-    if g.len() <= 7 {
-        g
-    } else {
-        crate::report::format::short(v)
-    }
-}
+pub use super::compact;
 
 /// Distinct finite-or-infinite values, sorted.
 pub(super) fn distinct(vals: impl Iterator<Item = f64>) -> Vec<f64> {

@@ -2,7 +2,7 @@
 //! joints.
 
 use super::arch_axis::ArchAxes;
-use super::{Chart, FigureSpec, mu_text, safe};
+use super::{Chart, FigureSpec, compact, mu_text, safe};
 use crate::figdata;
 use crate::plot::state::{StateDrawing, Xy};
 use crate::report::data::RunData;
@@ -157,15 +157,13 @@ impl StateTexts {
     /// The words of state `s`; `moving` when the study moves its point load over positions.
     fn of(s: &StateRow, moving: bool) -> Self {
         let mech = s.mechanism.clone().unwrap_or_else(|| "none".into());
+        // K and μ as given when they are a study's values (1.35, 0.4), to four decimals when
+        // computed (a bifurcation's); t/R_c and the thrust are always computed.
         let values = format!(
             "K = {} (t/R_c = {}), μ = {}, H/W_half = {}",
-            short(s.k),
+            compact(s.k),
             short(s.t_over_r),
-            if s.mu.is_infinite() {
-                "∞".into()
-            } else {
-                short(s.mu)
-            },
+            compact(s.mu),
             s.thrust_over_half_weight.map_or("—".into(), short)
         );
         match s.state.as_str() {
@@ -428,7 +426,7 @@ impl StateTexts {
 /// names the vertical joint, not the load's point.
 fn load_position(s: &StateRow) -> String {
     match (s.at_x, s.at_deg) {
-        (Some(x), _) => format!(", load at x/L = {}", short(x)),
+        (Some(x), _) => format!(", load at x/L = {}", compact(x)),
         (None, Some(a)) => format!(", load at {}°", position_deg(a)),
         (None, None) => String::new(),
     }
