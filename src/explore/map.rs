@@ -74,7 +74,10 @@ pub fn regime_map(
         .bifurcations
         .iter()
         .flatten()
-        .map(|b| (b.mu, b.k, format!("{} / {}", b.mechanism_a, b.mechanism_b)))
+        .map(|b| {
+            let name = crate::figdata::bifurcation_name(&b.mechanism_a, &b.mechanism_b);
+            (b.mu, b.k, name.replace('/', " / "))
+        })
         .collect();
     Ok((
         MapView {
