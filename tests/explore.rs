@@ -274,7 +274,9 @@ fn the_map_around_the_papers_scene_locates_both_bifurcations() {
     for c in collapse {
         let (mu, k) = (c[0].as_f64().unwrap(), c[1].as_f64().unwrap());
         let kc = solved("thickness", None, mu).k_crit.unwrap();
-        let muc = solved("friction", Some(k), f64::INFINITY).mu_crit.unwrap_or(f64::NAN);
+        let muc = solved("friction", Some(k), f64::INFINITY)
+            .mu_crit
+            .unwrap_or(f64::NAN);
         assert!(
             (k - kc).abs() < 1e-6 || (mu - muc).abs() < 1e-6,
             "({mu}, {k}): K_c(μ) = {kc}, μ_c(K) = {muc}"

@@ -306,8 +306,10 @@ def solve(
 
     Args:
         k: Thickness ratio K = R/r (> 1); 1.35 when neither ``k`` nor ``t_over_r`` is given.
+            A ``thickness`` or ``thresholds`` find computes K and refuses it.
         t_over_r: Thickness over centreline radius t/R_c, in (0, 2), instead of ``k``.
         mu: Friction coefficient μ ≥ 0; ``math.inf`` for infinite friction (default).
+            A ``friction`` or ``thresholds`` find computes μ and refuses a finite one.
         find: ``"state"``, ``"thickness"``, ``"friction"``, ``"thrust"``, ``"thresholds"``
             or ``"load_factor"``.
         half_angle: Half-embrace angle α in degrees, in (0, 180).

@@ -27,9 +27,6 @@ pub(super) fn record(scene: &Scene, out: &mut Solution) {
             };
             let search = gap::first_complete_load_factor(&m, scene.friction.angle(), &settings);
             out.set_gap(&search, static_value, 1.0);
-            if let Some(v) = static_value {
-                out.complete_at_static_limit(v, tol_work);
-            }
         }
         Find::Friction => {
             let (Some(mu_c), Some(m)) = (out.mu_crit, model(scene.arch.k)) else {
@@ -37,7 +34,7 @@ pub(super) fn record(scene: &Scene, out: &mut Solution) {
             };
             let search = gap::first_complete_friction(&m, scene.lambda, mu_c, &settings);
             out.set_gap(&search, Some(mu_c), -1.0);
-            out.complete_at_static_limit(mu_c, tol_work);
+            out.complete_at_static_limit(&search, mu_c, tol_work);
             if let Some(mu) = out.collapse_value {
                 let phi = Friction::new(mu).map_or(FRAC_PI_2, Friction::angle);
                 out.collapse_on_loading = on_loading(scene, &m, phi, &settings);
@@ -62,7 +59,7 @@ pub(super) fn record(scene: &Scene, out: &mut Solution) {
                 &settings,
             );
             out.set_gap(&search, Some(k_c), -1.0);
-            out.complete_at_static_limit(k_c, tol_work);
+            out.complete_at_static_limit(&search, k_c, tol_work);
             if let Some(m) = out.collapse_value.and_then(model) {
                 out.collapse_on_loading = on_loading(scene, &m, scene.friction.angle(), &settings);
             }
@@ -85,4 +82,53 @@ fn on_loading(scene: &Scene, m: &ArchModel, phi: f64, settings: &Settings) -> Op
     let first = search.first?.value;
     let first = if first < settings.tol_gap { 0.0 } else { first };
     (first < scene.lambda - settings.tol_gap * (1.0 + scene.lambda)).then_some(first)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::gap::{GapSearch, GapStatus};
+    use crate::manifest::SceneOptions;
+
+    /// A thickness find whose static limit carries an admissible mechanism, and a search that
+    /// found no complete state: `met_nothing` says whether it walked through the limit.
+    fn after(met_nothing: bool) -> Solution {
+        let scene = SceneOptions {
+            find: "thickness".into(),
+            mu: 0.35,
+            ..SceneOptions::default()
+        }
+        .scene()
+        .unwrap();
+        let mut out = crate::scene::solve_static(&scene);
+        assert_eq!(out.mechanism_admissible, Some(true));
+        let k_c = out.k_crit.unwrap();
+        let search = GapSearch {
+            status: GapStatus::NoCompleteSolution,
+            first: None,
+            static_limit: Some(k_c),
+            range: [k_c, 1.5],
+            vertices: 10,
+            met_nothing,
+        };
+        out.set_gap(&search, Some(k_c), -1.0);
+        out.complete_at_static_limit(&search, k_c, 1e-6);
+        out
+    }
+
+    #[test]
+    fn a_static_limit_is_the_collapse_only_when_the_walk_went_through_it_meeting_nothing() {
+        let through = after(true);
+        assert_eq!(through.gap, Some(GapStatus::NoGap));
+        assert_eq!(through.collapse_value, through.k_crit);
+        assert_eq!(through.gap_width, Some(0.0));
+        assert_eq!(through.collapse_hinges, through.hinges);
+        assert_eq!(through.collapse_work_loads, through.work_loads);
+        assert_eq!(through.collapse_flow_violation, None);
+        // A walk that met a complete state it could not finish says so, whatever the static
+        // route's mechanism: a gap may lie before the limit.
+        let stopped = after(false);
+        assert_eq!(stopped.gap, Some(GapStatus::NoCompleteSolution));
+        assert_eq!(stopped.collapse_value, None);
+    }
 }

@@ -146,6 +146,7 @@ pub fn first_complete_load_factor<G: ArchGeometry + Copy>(
                 static_limit: None,
                 range,
                 vertices: visited,
+                met_nothing: false,
             };
         }
     };
@@ -191,6 +192,7 @@ pub fn first_complete_load_factor<G: ArchGeometry + Copy>(
         static_limit,
         range,
         vertices: walked.vertices,
+        met_nothing: false,
     }
 }
 

@@ -98,6 +98,10 @@ pub struct GapSearch {
     pub range: [f64; 2],
     /// Vertices visited.
     pub vertices: usize,
+    /// True when a thickness or friction path was walked from its start through its static
+    /// limit without meeting any complete state (false when one was met but could not be
+    /// finished, when the search failed, and on the λ search).
+    pub met_nothing: bool,
 }
 
 impl GapSearch {
@@ -108,6 +112,7 @@ impl GapSearch {
             static_limit: None,
             range,
             vertices: 0,
+            met_nothing: false,
         }
     }
 }
@@ -269,14 +274,14 @@ pub fn first_complete_friction<G: ArchGeometry + Copy>(
     let at = move |phi: f64| Some((g, phi));
     let start = settings.mu_start.max(mu_static).atan();
     let end = mu_static.atan();
-    let (found, visited) = path::first_complete(
+    let walked = path::first_complete(
         &at,
         (start, end, settings.phi_step_deg.to_radians()),
         lambda,
         path::Path::Friction,
         settings,
     );
-    path::search_result(found, f64::tan, mu_static, start, visited, settings)
+    path::search_result(walked, f64::tan, mu_static, start, settings)
 }
 
 /// The first complete solution along decreasing K, from `k_start` down to the static limit
@@ -291,14 +296,14 @@ pub fn first_complete_thickness<G: ArchGeometry + Copy>(
     settings: &Settings,
 ) -> GapSearch {
     let at = |k: f64| make(k).map(|g| (g, phi));
-    let (found, visited) = path::first_complete(
+    let walked = path::first_complete(
         &at,
         (k_start.max(k_static), k_static, settings.k_step),
         lambda,
         path::Path::Thickness,
         settings,
     );
-    path::search_result(found, |k| k, k_static, k_start, visited, settings)
+    path::search_result(walked, |k| k, k_static, k_start, settings)
 }
 
 #[cfg(test)]

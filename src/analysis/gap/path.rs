@@ -254,11 +254,15 @@ impl<G: ArchGeometry> Walker<'_, G> {
     fn drives(&self, geom: &G, f: &Found) -> bool {
         // Both paths run down to their static limit; a state at it, or past it on sampled
         // joints (which stand a little further than the arch), is a limit state.
-        if f.p - self.end <= self.settings.tol_gap * (1.0 + self.end.abs()) {
-            return true;
-        }
+        f.p - self.end <= self.settings.tol_gap * (1.0 + self.end.abs())
+            || self.work_of(geom, f) > self.settings.tol_driving_work
+    }
+
+    /// The work of the loads on the mechanism of `f` (largest block-corner speed 1); +∞ when
+    /// it cannot be checked, so that such a state is left to the other tests.
+    fn work_of(&self, geom: &G, f: &Found) -> f64 {
         let Some((_, phi)) = (self.at)(f.p) else {
-            return true;
+            return f64::INFINITY;
         };
         let state = StateY {
             y: f.y,
@@ -266,7 +270,7 @@ impl<G: ArchGeometry> Walker<'_, G> {
         };
         let angle = |t: f64| geom.angle_deg(t);
         mechanism::check(geom, &f.moves, &state, &angle)
-            .is_none_or(|m| m.work.work_loads > self.settings.tol_driving_work)
+            .map_or(f64::INFINITY, |m| m.work.work_loads)
     }
 
     /// The first complete vertex of a slice that `accept` takes. On a friction path, a vertex whose rows were
@@ -302,7 +306,17 @@ impl<G: ArchGeometry> Walker<'_, G> {
             .iter()
             .filter(|(k, v)| !known(k, v))
             .filter_map(|(k, v)| self.found_at(geom, s, k, v))
-            .find(|f| accept(geom, f))
+            .filter(|f| accept(geom, f))
+            .try_fold(None, |neutral: Option<Found>, f| {
+                // A state the loads drive comes before one they do no work on (accepted at
+                // the static limit, where a neutral mechanism may sit beside the limit's own).
+                if self.work_of(geom, &f) > self.settings.tol_driving_work {
+                    Err(f)
+                } else {
+                    Ok(neutral.or(Some(f)))
+                }
+            })
+            .unwrap_or_else(Some)
     }
 
     /// A complete vertex of the slice at p that `accept` takes.
@@ -427,19 +441,20 @@ impl<G: ArchGeometry> Walker<'_, G> {
 
 /// The first complete solution along the path from `start` to `end` (the static limit), at
 /// load factor `lambda`, scanned at steps no longer than `step`: the path parameter and the
-/// solution, and the vertices visited.
+/// solution, the vertices visited, and whether the walk went through the static limit
+/// without meeting any complete state (false when it met one it could not finish).
 pub(super) fn first_complete<G: ArchGeometry + Copy>(
     at: SceneAt<'_, G>,
     (start, end, step): (f64, f64, f64),
     lambda: f64,
     path: Path,
     settings: &Settings,
-) -> (Option<(f64, Complete)>, usize) {
+) -> (Option<(f64, Complete)>, usize, bool) {
     let slices = std::cell::Cell::new(0);
     let out = first_complete_counted(at, (start, end, step), (lambda, path), settings, &slices);
     if slices.get() > settings.max_slices {
         // Out of budget: no answer rather than a partial one.
-        return (None, usize::MAX);
+        return (None, usize::MAX, false);
     }
     out
 }
@@ -450,9 +465,9 @@ fn first_complete_counted<G: ArchGeometry + Copy>(
     (lambda, path): (f64, Path),
     settings: &Settings,
     slices: &std::cell::Cell<usize>,
-) -> (Option<(f64, Complete)>, usize) {
+) -> (Option<(f64, Complete)>, usize, bool) {
     let Some((g0, _)) = at(start).or_else(|| at(end)) else {
-        return (None, 0);
+        return (None, 0, false);
     };
     let continuum = g0.discrete_joints().is_none();
     let mut thetas = joints::initial(&g0, settings);
@@ -474,20 +489,20 @@ fn first_complete_counted<G: ArchGeometry + Copy>(
             // Sampled joints stand further than the arch: the joints that the last standing
             // state of the walk violates are added, and the path walked again.
             let Some((t, (p, y))) = thetas.as_mut().zip(scan.last) else {
-                return (None, visited);
+                return (None, visited, true);
             };
             let Some((geom, phi)) = at(p) else {
-                return (None, visited);
+                return (None, visited, false);
             };
             let before = t.len();
             t.extend(joints::violated_elsewhere(&geom, phi, &y, t));
             t.sort_by(f64::total_cmp);
             t.dedup();
             if joints::too_many(t, settings) {
-                return (None, usize::MAX);
+                return (None, usize::MAX, false);
             }
             if t.len() == before {
-                return (None, visited);
+                return (None, visited, true);
             }
             continue;
         };
@@ -498,34 +513,34 @@ fn first_complete_counted<G: ArchGeometry + Copy>(
             f.p = end;
         }
         let Some(t) = thetas.as_mut() else {
-            return (finish(at, f, settings), visited);
+            return (finish(at, f, settings), visited, false);
         };
         let Some((geom, phi)) = at(f.p) else {
-            return (None, visited);
+            return (None, visited, false);
         };
         // On a continuum the sampled state is solved on the continuum's own joints first.
         if continuum {
             let pattern = Pattern::of(&geom, &f.tight, t);
             if let Some(r) = refine::on_continuum(at, &pattern, f.p, &f.y, Some(lambda), settings) {
-                return (finish(at, r, settings), visited);
+                return (finish(at, r, settings), visited, false);
             }
         }
         let cuts = joints::violated_elsewhere(&geom, phi, &f.y, t);
         if cuts.is_empty() {
-            return (finish(at, f, settings), visited);
+            return (finish(at, f, settings), visited, false);
         }
         let before = t.len();
         t.extend(cuts);
         t.sort_by(f64::total_cmp);
         t.dedup();
         if joints::too_many(t, settings) {
-            return (None, usize::MAX);
+            return (None, usize::MAX, false);
         }
         if t.len() == before {
-            return (None, visited);
+            return (None, visited, false);
         }
     }
-    (None, visited)
+    (None, visited, false)
 }
 
 fn finish<G: ArchGeometry>(
@@ -604,14 +619,14 @@ fn polish<G: ArchGeometry>(
 /// path parameter p, `value` turns p into the find's value (μ from φ, K from K),
 /// `static_value` is the static limit and `start` the far end of the path.
 pub(super) fn search_result(
-    found: Option<(f64, Complete)>,
+    (found, visited, met_nothing): (Option<(f64, Complete)>, usize, bool),
     value: impl Fn(f64) -> f64,
     static_value: f64,
     start: f64,
-    visited: usize,
     settings: &Settings,
 ) -> GapSearch {
     let range = [static_value, value(start)];
+    let met_nothing = met_nothing && found.is_none();
     // A complete state beyond the static limit (past it no state is admissible) can only be
     // an artefact of sampled joints or of a failed refinement: the search failed.
     let tol = settings.tol_gap * (1.0 + static_value.abs());
@@ -647,6 +662,7 @@ pub(super) fn search_result(
         static_limit: Some(static_value),
         range,
         vertices: visited,
+        met_nothing,
     }
 }
 
