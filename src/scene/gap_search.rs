@@ -88,18 +88,19 @@ fn on_loading(scene: &Scene, m: &ArchModel, phi: f64, settings: &Settings) -> Op
 mod tests {
     use super::*;
     use crate::analysis::gap::{GapSearch, GapStatus};
-    use crate::manifest::SceneOptions;
+    use crate::model::{Arch, ArchForm, Discretisation, WeightModel};
 
     /// A thickness find whose static limit carries an admissible mechanism, and a search that
     /// found no complete state: `met_nothing` says whether it walked through the limit.
     fn after(met_nothing: bool) -> Solution {
-        let scene = SceneOptions {
-            find: "thickness".into(),
-            mu: 0.35,
-            ..SceneOptions::default()
-        }
-        .scene()
-        .unwrap();
+        let scene = Scene {
+            arch: Arch::new(1.35, 90.0, WeightModel::Annular, Discretisation::Continuum).unwrap(),
+            friction: Friction::new(0.35).unwrap(),
+            find: Find::Thickness,
+            form: ArchForm::default(),
+            load: Load::SelfWeight,
+            lambda: 0.0,
+        };
         let mut out = crate::scene::solve_static(&scene);
         assert_eq!(out.mechanism_admissible, Some(true));
         let k_c = out.k_crit.unwrap();
