@@ -688,9 +688,17 @@ grid:
   mu: {values: [0.2, 0.6]}
 load_cases:
   - {name: seismic, kind: horizontal, lambda: 0.02}
+scenes:
+  - {k: 1.06, mu: 0.6}
 ";
     let o = run_study(&dir, "st", text);
     assert!(o.status.success(), "{}", stderr(&o));
+    // The scene's caption gives λ and e as the study gave them.
+    let md = std::fs::read_to_string(dir.join("out/st/report.md")).unwrap();
+    assert!(
+        md.contains("pointed, e = 0.5, horizontal load, λ = 0.02") && !md.contains("λ = 0.0200"),
+        "{md}"
+    );
     let info: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("out/st/run.json")).unwrap()).unwrap();
     assert_eq!(info["separable"], false);

@@ -126,7 +126,7 @@ pub fn arch_text(s: &StateRow, varied: ArchAxes) -> String {
         };
         let lambda = s
             .load_factor
-            .map_or(String::new(), |l| format!(", λ = {}", short(l)));
+            .map_or(String::new(), |l| format!(", λ = {}", compact(l)));
         let spread = s
             .load_width
             .filter(|&w| w > 0.0)
