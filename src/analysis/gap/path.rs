@@ -247,7 +247,8 @@ impl<G: ArchGeometry> Walker<'_, G> {
 
     /// True when the loads drive the mechanism of `f` (they do more work on it than
     /// [`Settings::tol_driving_work`]), or when `f` lies at or past the path's static limit,
-    /// where the mechanism of a limit state does no work by definition. Before the limit, a
+    /// where a limit state counts whatever that work (none on a mechanism of hinges alone,
+    /// as the four- and five-hinge mechanisms at K_c). Before the limit, a
     /// mechanism that the loads do no work on (and which dissipates nothing) is a neutral
     /// configuration that nothing starts: thick pointed arches have such complete states
     /// near their largest K.
@@ -273,12 +274,14 @@ impl<G: ArchGeometry> Walker<'_, G> {
             .map_or(f64::INFINITY, |m| m.work.work_loads)
     }
 
-    /// The first complete vertex of a slice that `accept` takes. On a friction path, a vertex whose rows were
-    /// tight together at the `checked` slice is skipped: a row's twist does not move with μ
-    /// (a hinge turns about its face point, a slip runs along the joint), so those rows were
-    /// found not positively dependent there and are not here. Vertices on a bound of the walk
-    /// (never complete, whatever their joint rows) and rows that allow a slip only without
-    /// force (μ = ∞, which depends on the state) are checked again.
+    /// The first complete vertex of a slice that `accept` takes, one the loads drive before
+    /// one they do no work on. On a friction path, a vertex whose rows were tight together at
+    /// the `checked` slice is skipped: a row's twist does not move with μ (a hinge turns about
+    /// its face point, a slip runs along the joint), so those rows were found not positively
+    /// dependent there and are not here (or were complete with the same work of the loads,
+    /// which does not move with μ either). Vertices on a bound of the walk (never complete,
+    /// whatever their joint rows) and rows that allow a slip only without force (μ = ∞,
+    /// which depends on the state) are checked again.
     fn complete_in(
         &self,
         geom: &G,
