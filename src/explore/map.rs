@@ -75,8 +75,8 @@ pub fn regime_map(
         .iter()
         .flatten()
         .map(|b| {
-            let name = crate::figdata::bifurcation_name(&b.mechanism_a, &b.mechanism_b);
-            (b.mu, b.k, name.replace('/', " / "))
+            let label = crate::figdata::bifurcation_label(&b.mechanism_a, &b.mechanism_b);
+            (b.mu, b.k, label)
         })
         .collect();
     Ok((

@@ -694,18 +694,18 @@ pub fn single_model(manifest: &Manifest) -> bool {
 /// regimes (rotational, mixed, sliding): "rotational/mixed", "mixed/sliding", whichever
 /// mechanism the boundary search names first.
 pub fn bifurcation_name(a: &str, b: &str) -> String {
-    let rank = |m: &str| match m {
-        "rotational" => 0,
-        "mixed" => 1,
-        "sliding" => 2,
-        _ => 3,
-    };
-    let (first, second) = if (rank(a), a) <= (rank(b), b) {
-        (a, b)
-    } else {
-        (b, a)
-    };
+    // MechanismKind is ordered as the regimes; a name it does not know comes last.
+    fn key(m: &str) -> (bool, Option<crate::analysis::MechanismKind>, &str) {
+        let kind = crate::analysis::MechanismKind::parse(m);
+        (kind.is_none(), kind, m)
+    }
+    let (first, second) = if key(a) <= key(b) { (a, b) } else { (b, a) };
     format!("{first}/{second}")
+}
+
+/// [`bifurcation_name`] spaced for a label or a table: "rotational / mixed".
+pub fn bifurcation_label(a: &str, b: &str) -> String {
+    bifurcation_name(a, b).replace('/', " / ")
 }
 
 #[cfg(test)]

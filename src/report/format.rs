@@ -80,6 +80,13 @@ pub fn given(v: f64) -> String {
     }
 }
 
+/// A grid value for a label: as given when short (1.25, 0.4, ∞), else to four decimals
+/// (a range axis of 191 steps gives K = 1.436842105263158; a bifurcation's K is computed).
+pub fn compact(v: f64) -> String {
+    let g = given(v);
+    if g.len() <= 7 { g } else { short(v) }
+}
+
 /// A signed difference in scientific notation, e.g. `+2.63e-4`.
 pub fn diff(v: f64) -> String {
     if v == 0.0 {

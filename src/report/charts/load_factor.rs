@@ -6,7 +6,7 @@ use super::regime_map::ArchKey;
 use super::{Chart, FigureSpec, LoadCaseFigure};
 use crate::plot::lines::{Line, LinePanel, LinePoint, LinesChart};
 use crate::report::data::{ArchView, RunData, given_position};
-use crate::report::format::{given, position_deg, short};
+use crate::report::format::{compact, given, position_deg, short};
 use crate::store::LoadFactorCase;
 
 /// How the line figures mark the gap.
@@ -14,8 +14,6 @@ const BARS: &str = "Green bars, from the collapse up to λ_max";
 
 /// At most this many lines per panel.
 const MAX_LINES: usize = 4;
-
-pub use super::compact;
 
 /// Distinct finite-or-infinite values, sorted.
 pub(super) fn distinct(vals: impl Iterator<Item = f64>) -> Vec<f64> {

@@ -113,17 +113,6 @@ pub(super) fn mu_text(mu: f64) -> String {
     }
 }
 
-/// A grid value for a label: as given when short (1.25, 0.4, ∞), else to four decimals
-/// (a range axis of 191 steps gives K = 1.436842105263158; a bifurcation's K is computed).
-pub fn compact(v: f64) -> String {
-    let g = mu_text(v);
-    if g.len() <= 7 {
-        g
-    } else {
-        crate::report::format::short(v)
-    }
-}
-
 /// The load case a figure is drawn for: the suffix of its file stem and of its title (both
 /// empty when the study has one load case).
 #[derive(Debug, Clone)]

@@ -207,8 +207,7 @@ pub fn regime_map_of(
             mu: b.mu,
             k: b.k,
             lines: vec![
-                crate::figdata::bifurcation_name(&b.mechanism_a, &b.mechanism_b)
-                    .replace('/', " / "),
+                crate::figdata::bifurcation_label(&b.mechanism_a, &b.mechanism_b),
                 format!("μ = {}", short(b.mu)),
                 format!("K = {}  (t/R_c = {})", short(b.k), short(b.t_over_r)),
             ],

@@ -2,11 +2,11 @@
 //! joints.
 
 use super::arch_axis::ArchAxes;
-use super::{Chart, FigureSpec, compact, mu_text, safe};
+use super::{Chart, FigureSpec, mu_text, safe};
 use crate::figdata;
 use crate::plot::state::{StateDrawing, Xy};
 use crate::report::data::RunData;
-use crate::report::format::{given, position_deg, short};
+use crate::report::format::{compact, given, position_deg, short};
 use crate::store::StateRow;
 
 pub mod geometry;

@@ -3,8 +3,8 @@
 //! is unbounded, slivers punched by a point load, and sliding on the edges of a pointed
 //! arch's crown wedge. Each note names the counts and the values behind it, from the stored data.
 
-use crate::report::charts::load_factor::compact;
 use crate::report::data::{RunData, given_position};
+use crate::report::format::compact;
 use crate::report::format::{given, position_deg};
 use crate::store::ResultRow;
 

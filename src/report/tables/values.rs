@@ -52,8 +52,7 @@ fn bifurcations_by_arch(data: &RunData) -> Option<ValueTable> {
                 }
                 row.extend([
                     arch_label(data, arch),
-                    crate::figdata::bifurcation_name(&b.mechanism_a, &b.mechanism_b)
-                        .replace('/', " / "),
+                    crate::figdata::bifurcation_label(&b.mechanism_a, &b.mechanism_b),
                     short(b.mu),
                     short(b.k),
                     short(b.t_over_r),

@@ -4,8 +4,9 @@
 //! results.parquet and bifurcations.parquet.
 
 use super::{Rows, group_text};
-use crate::report::charts::load_factor::{compact, spread, x_over_l};
+use crate::report::charts::load_factor::{spread, x_over_l};
 use crate::report::data::{RunData, given_position};
+use crate::report::format::compact;
 use crate::report::format::{given, position_deg, short};
 use crate::store::LoadFactorCase;
 
