@@ -198,7 +198,7 @@ fn main() {
         writeln!(
             out,
             "find,form_and_load,k,mu,half_angle_deg,lambda,voussoirs,status,static_limit,collapse,\
-             eccentricity,collapse_work_loads"
+             eccentricity,collapse_work_loads,at_deg"
         )
         .expect("writable");
         out
@@ -222,7 +222,7 @@ fn main() {
         if let Some(out) = csv.as_mut() {
             writeln!(
                 out,
-                "{},\"{}\",{:?},{:?},{:?},{:?},{},{},{:?},{:?},{:?},{:?}",
+                "{},\"{}\",{:?},{:?},{:?},{:?},{},{},{:?},{:?},{:?},{:?},{}",
                 scene.find.as_str(),
                 class(&scene),
                 scene.arch.k,
@@ -235,6 +235,10 @@ fn main() {
                 s.collapse_value.unwrap_or(f64::NAN),
                 scene.form.shape.eccentricity(),
                 s.collapse_work_loads.unwrap_or(f64::NAN),
+                match scene.load {
+                    Load::Point { at_deg, .. } => format!("{at_deg:?}"),
+                    _ => String::new(),
+                },
             )
             .expect("writable");
         }

@@ -782,9 +782,11 @@ fn a_thick_pointed_arch_has_no_zero_work_collapse_at_the_top_of_its_form() {
 #[test]
 fn a_symmetric_static_limit_whose_mechanism_obeys_the_flow_rules_is_the_collapse() {
     // e = 0.2: at μ = 0.26 the limit state at K_c has four hinges and both springings
-    // sliding outward; at μ = 0.15 it slides on four joints. The walk stops short of the limit
-    // and steps past it; the limit state's own mechanism obeys the flow rules, so it is the
-    // first complete solution. Zero-work states at the top of the form (K = 9) are none.
+    // sliding outward; at μ = 0.15 it slides on four joints. The limit state's own mechanism
+    // obeys the flow rules, so it is the first complete solution. Six rows meet there at once,
+    // and a one-sided part of them can be complete too (at μ = 0.26 the left springing
+    // sliding with three of the hinges): the collapse reports one complete mechanism among
+    // the limit state's joints. Zero-work states at the top of the form (K = 9) are none.
     for (mu, k_c, hinges, slides) in [(0.26, 1.146780521170, 4, 2), (0.15, 8.402701247036, 0, 4)] {
         let s = solve(Case {
             find: Find::Thickness,
@@ -804,9 +806,25 @@ fn a_symmetric_static_limit_whose_mechanism_obeys_the_flow_rules_is_the_collapse
         assert_eq!(s.collapse_value, s.k_crit);
         assert_eq!(s.gap_width, Some(0.0));
         assert_eq!(
-            (s.collapse_hinges.len(), s.collapse_sliding_joints.len()),
+            (s.hinges.len(), s.sliding_joints.len()),
             (hinges, slides),
             "μ {mu}"
+        );
+        // Hinges on the continuum are located to about 1e-7°.
+        let near = |a: f64, b: f64| (a - b).abs() < 1e-6;
+        assert!(
+            s.collapse_hinges.iter().all(|h| s
+                .hinges
+                .iter()
+                .any(|g| g.face == h.face && near(g.angle_deg, h.angle_deg)))
+                && s.collapse_sliding_joints.iter().all(|j| s
+                    .sliding_joints
+                    .iter()
+                    .any(|i| i.sense == j.sense && near(i.angle_deg, j.angle_deg)))
+                && s.collapse_hinges.len() + s.collapse_sliding_joints.len() >= 4,
+            "μ {mu}: {:?} {:?}",
+            s.collapse_hinges,
+            s.collapse_sliding_joints
         );
         // Its work equation: the loads' work is dissipated by friction.
         let (a, f) = (
@@ -1220,4 +1238,103 @@ fn a_friction_path_that_skips_the_steps_where_nothing_slides_finds_what_every_st
     assert_eq!(compared, 16, "too few scenes drawn");
     assert!(found >= 8, "only {found} scenes with a complete solution");
     assert!(fewer >= 8, "only {fewer} scenes skipped any step");
+}
+
+#[test]
+fn a_large_pointed_arch_walks_its_own_joints_at_every_thickness() {
+    // A pointed arch's voussoir joints divide the arcs beyond its crown joint ψ₁(K), so they
+    // move with K. Past 65 voussoirs the thickness walk starts on some of them and adds the
+    // rest by exchange; it once kept their angles at the starting K and walked joints the arch
+    // does not have (a collapse at K = 1.0660 for 80 voussoirs, 1.0699 for 160). Walked on
+    // their indices, the exchange agrees with a walk over every joint.
+    let case = |n| Case {
+        find: Find::Thickness,
+        k: 1.4,
+        half: 54.83601626911512,
+        joints: Discretisation::Voussoirs(n),
+        form: form(true, false, 0.32900895976822686),
+        mu: 0.4028803781449533,
+        load: Load::point(30.984213136473542),
+    };
+    let phi = 0.4028803781449533_f64.atan();
+    for (n, k_c, collapse) in [
+        (80, 1.065029310172, 1.065091798285),
+        (160, 1.068067769089, 1.068548674371),
+    ] {
+        let s = solve_at(case(n), 0.27609029768193744);
+        assert!(
+            (s.k_crit.unwrap() - k_c).abs() < 1e-9,
+            "{n}: {:?}",
+            s.k_crit
+        );
+        assert_eq!(s.gap, Some(GapStatus::Gap), "{n}");
+        let v = s.collapse_value.unwrap();
+        assert!((v - collapse).abs() < 1e-9, "{n}: {v}");
+        assert_checked(&s);
+        // Every joint walked from the start, at a tenth of the step (a walk over all 81 or
+        // 161 joints meets many events per step): the same first complete solution.
+        let every = Settings {
+            exchange_above: 1000,
+            k_step: 0.005,
+            ..Settings::DEFAULT
+        };
+        let make = |k: f64| {
+            let c = case(n);
+            let arch = Arch::new(k, c.half, WeightModel::Annular, c.joints).ok()?;
+            ArchModel::new(arch, c.form, c.load).ok()
+        };
+        let all = gap::first_complete_thickness(
+            &make,
+            phi,
+            0.27609029768193744,
+            k_c,
+            2.1294094719,
+            &every,
+        );
+        let w = all.first.expect("a complete solution").value;
+        assert!(
+            (w - v).abs() < 1e-9 * v,
+            "{n}: every joint {w}, exchange {v}"
+        );
+    }
+}
+
+#[test]
+fn a_crown_part_that_drops_between_vertical_joints_is_found_on_the_continuum() {
+    // Under a horizontal load the part between the outermost vertical joints can drop from
+    // μ = 1.3604 down; a vertex made and cut off again within one step of the friction path
+    // hid it, and the continuum reported no complete solution. Voussoirs approach it from
+    // below as their outermost joints near the springings.
+    let case = |joints| Case {
+        find: Find::Friction,
+        k: 1.167301430209363,
+        half: 53.881456114110414,
+        joints,
+        form: form(false, true, 0.0),
+        mu: 0.8649163709911811,
+        load: Load::Horizontal,
+    };
+    let lambda = 0.05490430183651088;
+    let s = solve_at(case(Discretisation::Continuum), lambda);
+    assert!(
+        (s.mu_crit.unwrap() - 0.606508073141).abs() < 1e-9,
+        "{:?}",
+        s.mu_crit
+    );
+    assert_eq!(s.gap, Some(GapStatus::Gap));
+    let v = s.collapse_value.unwrap();
+    assert!((v - 1.360411506938).abs() < 1e-7, "{v}");
+    assert_checked(&s);
+    let mut last = 0.0;
+    for (n, expect) in [
+        (50, 1.325474221600),
+        (100, 1.342795553227),
+        (200, 1.351646344869),
+    ] {
+        let d = solve_at(case(Discretisation::Voussoirs(n)), lambda);
+        let w = d.collapse_value.unwrap();
+        assert!((w - expect).abs() < 1e-7, "{n}: {w}");
+        assert!(w > last && w < v, "{n}: {w}");
+        last = w;
+    }
 }

@@ -529,16 +529,41 @@ fn critical_curves(
                 .collect();
             out.push(&fig, series[1], &at_start);
         };
+        // At a bifurcation two limit states meet and one of them is marginal over a range of
+        // the other parameter (K_c(μ) jumps there): which complete state the search meets
+        // first is a matter of rounding, so the collapse is not sampled there (its curve is
+        // broken where the critical curve jumps).
+        let none = (f64::NAN, false, None);
         push(
             [K_COLLAPSE_OF_MU, K_COLLAPSE_AT_START],
             (mus.par_iter())
-                .map(|&mu| (mu, collapse(Find::Thickness, k_hi, mu)))
+                .map(|&mu| {
+                    let at_bifurcation = bif_mu.contains(&mu);
+                    (
+                        mu,
+                        if at_bifurcation {
+                            none
+                        } else {
+                            collapse(Find::Thickness, k_hi, mu)
+                        },
+                    )
+                })
                 .collect(),
         );
         push(
             [MU_COLLAPSE_OF_K, MU_COLLAPSE_AT_START],
             (ks.par_iter())
-                .map(|&k| (k, collapse(Find::Friction, k, 0.0)))
+                .map(|&k| {
+                    let at_bifurcation = bif_k.contains(&k);
+                    (
+                        k,
+                        if at_bifurcation {
+                            none
+                        } else {
+                            collapse(Find::Friction, k, 0.0)
+                        },
+                    )
+                })
                 .collect(),
         );
     }

@@ -83,12 +83,93 @@ struct Scan {
 pub(super) type SceneAt<'a, G> = &'a dyn Fn(f64) -> Option<(G, f64)>;
 
 /// The joints of the walk: a discrete arch's own (`None`) or sampled joints of a continuum.
-type Joints<'a> = Option<&'a [f64]>;
+/// The joints a path walks.
+#[derive(Debug, Clone, Copy)]
+pub(super) enum Joints<'a> {
+    /// Every joint of a discrete arch.
+    Every,
+    /// Joints of a continuum by parameter: sampled, then added by the exchange.
+    Sampled(&'a [f64]),
+    /// Joints of a large discrete arch by index into its joints, which on a thickness path
+    /// move with K (a pointed arch's joints divide the arc beyond its crown joint ψ₁(K)).
+    Picked(&'a [usize]),
+}
 
+/// The joints `thetas` of `geom`, increasing; `None` when an index lies past its last joint.
 fn joints_at<G: ArchGeometry>(geom: &G, thetas: Joints<'_>) -> Option<Vec<f64>> {
     match thetas {
-        Some(t) => Some(t.to_vec()),
-        None => geom.discrete_joints(),
+        Joints::Every => geom.discrete_joints(),
+        Joints::Sampled(t) => Some(t.to_vec()),
+        Joints::Picked(ix) => {
+            let all = geom.discrete_joints()?;
+            ix.iter().map(|&i| all.get(i).copied()).collect()
+        }
+    }
+}
+
+/// The joints of a search, owned: what [`Joints`] borrows, grown by the exchange.
+enum Walked {
+    Every,
+    Sampled(Vec<f64>),
+    Picked(Vec<usize>),
+}
+
+impl Walked {
+    /// The first joints walked on the arch `g0`.
+    fn initial<G: ArchGeometry>(g0: &G, settings: &Settings) -> Self {
+        match (joints::initial(g0, settings), g0.discrete_joints()) {
+            (None, _) => Walked::Every,
+            (Some(t), None) => Walked::Sampled(t),
+            (Some(t), Some(all)) => Walked::Picked(
+                t.iter()
+                    .filter_map(|x| all.iter().position(|a| a == x))
+                    .collect(),
+            ),
+        }
+    }
+
+    fn borrow(&self) -> Joints<'_> {
+        match self {
+            Walked::Every => Joints::Every,
+            Walked::Sampled(t) => Joints::Sampled(t),
+            Walked::Picked(ix) => Joints::Picked(ix),
+        }
+    }
+
+    /// The joints of `geom` that the state y violates and the walk does not hold, added to
+    /// it: `Ok(true)` when some were, `Err(())` when the walk would grow too large.
+    fn add_violated<G: ArchGeometry>(
+        &mut self,
+        geom: &G,
+        phi: f64,
+        y: &[f64; 4],
+        settings: &Settings,
+    ) -> Result<bool, ()> {
+        let Some(walked) = joints_at(geom, self.borrow()) else {
+            return Ok(false);
+        };
+        let cuts = joints::violated_elsewhere(geom, phi, y, &walked);
+        let before = walked.len();
+        let len = match self {
+            Walked::Every => return Ok(false),
+            Walked::Sampled(t) => {
+                t.extend(cuts);
+                t.sort_by(f64::total_cmp);
+                t.dedup();
+                t.len()
+            }
+            Walked::Picked(ix) => {
+                let all = geom.discrete_joints().unwrap_or_default();
+                ix.extend(cuts.iter().filter_map(|c| all.iter().position(|a| a == c)));
+                ix.sort_unstable();
+                ix.dedup();
+                ix.len()
+            }
+        };
+        if len > settings.max_walk_joints {
+            return Err(());
+        }
+        Ok(len > before)
     }
 }
 
@@ -348,23 +429,29 @@ impl<G: ArchGeometry> Walker<'_, G> {
         to
     }
 
-    /// The first complete solution from slice `prev` (none there) to slice `cur`.
+    /// The first complete solution from slice `prev` (none there) to slice `cur`: an event
+    /// between them, or the onset of a family of complete states found at `cur`, whichever
+    /// comes first along the path.
     fn advance(&self, prev: &Slice, cur: &(G, Slice)) -> Option<Found> {
-        if let Some(f) = self.events(prev, &cur.1) {
-            return Some(f);
-        }
+        let event = self.events(prev, &cur.1);
         // A complete vertex at a step: a family of complete states (its moving rows are fewer
         // than four, so they stay tight over an interval of p) began somewhere in the step,
         // and its onset is bisected; four or more moving rows meet at this p alone.
         let drives = |g: &G, f: &Found| self.drives(g, f);
-        self.complete_in(&cur.0, &cur.1, Some(prev), &drives)
+        let family = self
+            .complete_in(&cur.0, &cur.1, Some(prev), &drives)
             .map(|f| {
                 if f.support.len() < 4 {
                     self.onset(prev.p, f)
                 } else {
                     f
                 }
-            })
+            });
+        let forward = (cur.1.p - prev.p).signum();
+        match (event, family) {
+            (Some(e), Some(f)) => Some(if forward * (f.p - e.p) < 0.0 { f } else { e }),
+            (e, f) => e.or(f),
+        }
     }
 
     /// One scan of the path on fixed joints, from `start` past `end` until the polytope is
@@ -472,14 +559,13 @@ fn first_complete_counted<G: ArchGeometry + Copy>(
     let Some((g0, _)) = at(start).or_else(|| at(end)) else {
         return (None, 0, false);
     };
-    let continuum = g0.discrete_joints().is_none();
-    let mut thetas = joints::initial(&g0, settings);
+    let mut walked = Walked::initial(&g0, settings);
     let mut visited = 0;
     for _ in 0..settings.max_exchange_rounds {
         let walker = Walker {
             slices,
             at,
-            thetas: thetas.as_deref(),
+            thetas: walked.borrow(),
             lambda,
             settings,
             path,
@@ -491,23 +577,17 @@ fn first_complete_counted<G: ArchGeometry + Copy>(
         let Some(mut f) = scan.found else {
             // Sampled joints stand further than the arch: the joints that the last standing
             // state of the walk violates are added, and the path walked again.
-            let Some((t, (p, y))) = thetas.as_mut().zip(scan.last) else {
+            let Some((p, y)) = scan.last.filter(|_| !matches!(walked, Walked::Every)) else {
                 return (None, visited, true);
             };
             let Some((geom, phi)) = at(p) else {
                 return (None, visited, false);
             };
-            let before = t.len();
-            t.extend(joints::violated_elsewhere(&geom, phi, &y, t));
-            t.sort_by(f64::total_cmp);
-            t.dedup();
-            if joints::too_many(t, settings) {
-                return (None, usize::MAX, false);
+            match walked.add_violated(&geom, phi, &y, settings) {
+                Err(()) => return (None, usize::MAX, false),
+                Ok(false) => return (None, visited, true),
+                Ok(true) => continue,
             }
-            if t.len() == before {
-                return (None, visited, true);
-            }
-            continue;
         };
         // A complete state found within the gap's tolerance of the static limit is the static
         // limit's own (the step there stops just short of it, and tightness holds to the walk's
@@ -515,32 +595,23 @@ fn first_complete_counted<G: ArchGeometry + Copy>(
         if (f.p - end).abs() <= settings.tol_gap * (1.0 + end.abs()) {
             f.p = end;
         }
-        let Some(t) = thetas.as_mut() else {
+        if matches!(walked, Walked::Every) {
             return (finish(at, f, settings), visited, false);
-        };
+        }
         let Some((geom, phi)) = at(f.p) else {
             return (None, visited, false);
         };
         // On a continuum the sampled state is solved on the continuum's own joints first.
-        if continuum {
+        if let Walked::Sampled(t) = &walked {
             let pattern = Pattern::of(&geom, &f.tight, t);
             if let Some(r) = refine::on_continuum(at, &pattern, f.p, &f.y, Some(lambda), settings) {
                 return (finish(at, r, settings), visited, false);
             }
         }
-        let cuts = joints::violated_elsewhere(&geom, phi, &f.y, t);
-        if cuts.is_empty() {
-            return (finish(at, f, settings), visited, false);
-        }
-        let before = t.len();
-        t.extend(cuts);
-        t.sort_by(f64::total_cmp);
-        t.dedup();
-        if joints::too_many(t, settings) {
-            return (None, usize::MAX, false);
-        }
-        if t.len() == before {
-            return (None, visited, false);
+        match walked.add_violated(&geom, phi, &f.y, settings) {
+            Err(()) => return (None, usize::MAX, false),
+            Ok(false) => return (finish(at, f, settings), visited, false),
+            Ok(true) => {}
         }
     }
     (None, visited, false)

@@ -67,15 +67,29 @@ impl<G: ArchGeometry> Walker<'_, G> {
         Some([x[0], x[1], x[2], self.lambda])
     }
 
-    /// The first complete event between two slices: a vertex of `prev` cut off before `cur`
-    /// where its three rows meet a fourth whose twists with theirs are positively dependent.
+    /// The first complete event between two slices: three rows of a vertex of one slice that
+    /// is not a vertex of the other meet a fourth between them, and the four twists are
+    /// positively dependent there. Vertices of `prev` cut off on the way and vertices of `cur`
+    /// made on the way are both followed, so that two events chained within the step (a vertex
+    /// made by one and cut off by the next) are both seen.
     pub(super) fn events(&self, prev: &Slice, cur: &Slice) -> Option<Found> {
-        let mut found: Option<Found> = None;
         let forward = (cur.p - prev.p).signum();
-        let tol_p = self.settings.tol_path * (1.0 + prev.p.abs());
-        // The rows of the later slice by name, with their twists there.
+        let mut candidates = self.event_candidates(prev, cur);
+        candidates.extend(self.event_candidates(cur, prev));
+        candidates.sort_by(|a, b| (forward * a.0).total_cmp(&(forward * b.0)));
+        candidates
+            .into_iter()
+            .find_map(|(p_star, near)| self.complete_at(p_star, &near))
+    }
+
+    /// Where a vertex of slice `from` that is not one of `to` has its three rows meet a fourth
+    /// between the two slices, with positively dependent twists: p and the vertex at `from`.
+    fn event_candidates(&self, from: &Slice, to: &Slice) -> Vec<(f64, [f64; 4])> {
+        let mut out = Vec::new();
+        let tol_p = self.settings.tol_path * (1.0 + from.p.abs());
+        // The rows of `to` by name, with their twists there.
         let mut by_name: BTreeMap<(usize, u8), usize> = BTreeMap::new();
-        for (r, kind) in cur.rows.kind.iter().enumerate() {
+        for (r, kind) in to.rows.kind.iter().enumerate() {
             if let RowKind::Joint {
                 joint, condition, ..
             } = kind
@@ -83,41 +97,51 @@ impl<G: ArchGeometry> Walker<'_, G> {
                 by_name.insert((*joint, order(*condition)), r);
             }
         }
-        let twist = |r: usize| match cur.rows.kind[r] {
+        let twist = |r: usize| match to.rows.kind[r] {
             RowKind::Joint { twist, .. } => twist,
             RowKind::Bound => None,
         };
-        for (k, v) in &prev.vertices {
-            if cur.vertices.contains_key(k) || k.len() != 3 {
+        for (k, v) in &from.vertices {
+            if to.vertices.contains_key(k) || k.len() < 3 {
                 continue;
             }
-            let Some(key_rows) = k
+            let Some(all) = k
                 .iter()
-                .map(|n| by_name.get(n).copied())
-                .collect::<Option<Vec<usize>>>()
-            else {
-                continue;
-            };
-            let Some(key_twists) = key_rows
-                .iter()
-                .map(|&r| twist(r))
+                .map(|n| {
+                    let r = *by_name.get(n)?;
+                    Some((*n, r, twist(r)?))
+                })
                 .collect::<Option<Vec<_>>>()
             else {
                 continue;
             };
-            let three: [RowName; 3] = std::array::from_fn(|i| (k[i].0, condition_of(k[i].1)));
-            let Some(y_end) = self.meet(cur, &key_rows) else {
+            // Rows with one twist are tight together (a hinge at the point where a point
+            // load acts, on either side of it): one of them stands for both.
+            let mut named: Vec<((usize, u8), usize, [f64; 3])> = Vec::with_capacity(all.len());
+            for n in all {
+                if !named.iter().any(|m| same_twist(&m.2, &n.2)) {
+                    named.push(n);
+                }
+            }
+            if named.len() != 3 {
+                continue;
+            }
+            let key_rows: Vec<usize> = named.iter().map(|n| n.1).collect();
+            let key_twists: Vec<[f64; 3]> = named.iter().map(|n| n.2).collect();
+            let three: [RowName; 3] =
+                std::array::from_fn(|i| (named[i].0.0, condition_of(named[i].0.1)));
+            let Some(y_end) = self.meet(to, &key_rows) else {
                 continue;
             };
             let scale = 1.0 + y_end.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
             let tol = self.settings.tol_tight * scale;
-            for (r, a) in cur.rows.a.iter().enumerate() {
+            for (r, a) in to.rows.a.iter().enumerate() {
                 let RowKind::Joint {
                     joint,
                     condition,
                     twist: Some(t),
                     ..
-                } = cur.rows.kind[r]
+                } = to.rows.kind[r]
                 else {
                     continue;
                 };
@@ -125,12 +149,12 @@ impl<G: ArchGeometry> Walker<'_, G> {
                 if three.contains(&name) {
                     continue;
                 }
-                let s_end = cur.rows.b[r] - (0..4).map(|c| a[c] * y_end[c]).sum::<f64>();
+                let s_end = to.rows.b[r] - (0..4).map(|c| a[c] * y_end[c]).sum::<f64>();
                 if s_end >= -tol {
                     continue;
                 }
                 // The four twists must be positively dependent where the rows meet; they move
-                // with p on a thickness path, so a loose test at the later step first.
+                // with p on a thickness path, so a loose test at the other slice first.
                 let four = [key_twists[0], key_twists[1], key_twists[2], t];
                 if hull::farther_than(&four, self.settings.tol_event)
                     || hull::min_norm_point(&four, self.settings.tol_hull)
@@ -139,23 +163,19 @@ impl<G: ArchGeometry> Walker<'_, G> {
                     continue;
                 }
                 let slack = |p: f64| self.slack(p, &three, name).map_or(f64::NAN, |v| v.1);
-                if !(slack(prev.p) >= -tol) {
+                if !(slack(from.p) >= -tol) {
                     continue;
                 }
-                let Some(p_star) = roots::brent(slack, prev.p, cur.p, tol_p) else {
-                    continue;
-                };
-                if found
-                    .as_ref()
-                    .is_some_and(|f| forward * (p_star - f.p) >= 0.0)
-                {
-                    continue;
-                }
-                if let Some(f) = self.complete_at(p_star, &v.y) {
-                    found = Some(f);
+                if let Some(p_star) = roots::brent(slack, from.p, to.p, tol_p) {
+                    out.push((p_star, v.y));
                 }
             }
         }
-        found
+        out
     }
+}
+
+/// True when two unit twists are one within rounding.
+fn same_twist(a: &[f64; 3], b: &[f64; 3]) -> bool {
+    (0..3).all(|c| (a[c] - b[c]).abs() <= 1e-12)
 }
