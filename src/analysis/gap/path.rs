@@ -215,6 +215,8 @@ struct Found {
     tight: Vec<(f64, Condition)>,
     /// The rows whose twists move the joints.
     support: Vec<(f64, Condition)>,
+    /// The work of the loads on the mechanism, once computed ([`Walker::work_of`]).
+    work: std::cell::OnceCell<f64>,
 }
 
 impl<G: ArchGeometry> Walker<'_, G> {
@@ -323,6 +325,7 @@ impl<G: ArchGeometry> Walker<'_, G> {
                 .map(|(j, c)| (joints[*j], condition_of(*c)))
                 .collect(),
             support: names(&s.rows, &joints, &support),
+            work: std::cell::OnceCell::new(),
         })
     }
 
@@ -343,16 +346,18 @@ impl<G: ArchGeometry> Walker<'_, G> {
     /// The work of the loads on the mechanism of `f` (largest block-corner speed 1); +∞ when
     /// it cannot be checked, so that such a state is left to the other tests.
     fn work_of(&self, geom: &G, f: &Found) -> f64 {
-        let Some((_, phi)) = (self.at)(f.p) else {
-            return f64::INFINITY;
-        };
-        let state = StateY {
-            y: f.y,
-            mu: phi.tan(),
-        };
-        let angle = |t: f64| geom.angle_deg(t);
-        mechanism::check(geom, &f.moves, &state, &angle)
-            .map_or(f64::INFINITY, |m| m.work.work_loads)
+        *f.work.get_or_init(|| {
+            let Some((_, phi)) = (self.at)(f.p) else {
+                return f64::INFINITY;
+            };
+            let state = StateY {
+                y: f.y,
+                mu: phi.tan(),
+            };
+            let angle = |t: f64| geom.angle_deg(t);
+            mechanism::check(geom, &f.moves, &state, &angle)
+                .map_or(f64::INFINITY, |m| m.work.work_loads)
+        })
     }
 
     /// The first complete vertex of a slice that `accept` takes, one the loads drive before
