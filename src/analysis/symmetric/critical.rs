@@ -210,7 +210,24 @@ pub fn friction_with(arch: &Arch, settings: &Settings) -> Critical {
     if margin(0.0) >= -settings.tol_margin {
         return Critical::AlwaysStands;
     }
-    let Some(phi) = limit_root(margin, 0.0, FRAC_PI_2, settings) else {
+    // H^r does not move with μ and H^s grows with it: the limit is where they first meet,
+    // found on the width of their overlap without solving the rotational margin at each step.
+    let hr = rotational_domain_with(&sym, settings).interval;
+    let overlap = |phi: f64| {
+        let sd = sliding_domain_with(&sym, phi, settings).interval;
+        let w = sd.hi.min(hr.hi) - sd.lo.max(hr.lo);
+        if w.is_nan() {
+            f64::NEG_INFINITY
+        } else {
+            w.clamp(-1e300, 1e300)
+        }
+    };
+    let root = if hr.is_empty() {
+        limit_root(margin, 0.0, FRAC_PI_2, settings)
+    } else {
+        limit_root(overlap, 0.0, FRAC_PI_2, settings)
+    };
+    let Some(phi) = root else {
         return Critical::NeverStands;
     };
     let sd = sliding_domain_with(&sym, phi, settings);
