@@ -534,11 +534,16 @@ fn critical_curves(
         // first is a matter of rounding, so the collapse is not sampled there (its curve is
         // broken where the critical curve jumps).
         let none = (f64::NAN, false, None);
+        // Within the tolerance `linspace_with` merges samples by.
+        let at = |bifs: &[f64], x: f64| {
+            bifs.iter()
+                .any(|b| (b - x).abs() <= 1e-12 * (1.0 + x.abs()))
+        };
         push(
             [K_COLLAPSE_OF_MU, K_COLLAPSE_AT_START],
             (mus.par_iter())
                 .map(|&mu| {
-                    let at_bifurcation = bif_mu.contains(&mu);
+                    let at_bifurcation = at(&bif_mu, mu);
                     (
                         mu,
                         if at_bifurcation {
@@ -554,7 +559,7 @@ fn critical_curves(
             [MU_COLLAPSE_OF_K, MU_COLLAPSE_AT_START],
             (ks.par_iter())
                 .map(|&k| {
-                    let at_bifurcation = bif_k.contains(&k);
+                    let at_bifurcation = at(&bif_k, k);
                     (
                         k,
                         if at_bifurcation {

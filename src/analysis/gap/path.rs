@@ -82,7 +82,6 @@ struct Scan {
 /// A scene along the path: the geometry and friction angle at parameter p.
 pub(super) type SceneAt<'a, G> = &'a dyn Fn(f64) -> Option<(G, f64)>;
 
-/// The joints of the walk: a discrete arch's own (`None`) or sampled joints of a continuum.
 /// The joints a path walks.
 #[derive(Debug, Clone, Copy)]
 pub(super) enum Joints<'a> {
@@ -137,7 +136,9 @@ impl Walked {
     }
 
     /// The joints of `geom` that the state y violates and the walk does not hold, added to
-    /// it: `Ok(true)` when some were, `Err(())` when the walk would grow too large.
+    /// it: `Ok(true)` when some were, `Err(())` when the walk would grow too large or its
+    /// joints cannot be named on `geom` (then no answer is given rather than one checked on
+    /// fewer joints).
     fn add_violated<G: ArchGeometry>(
         &mut self,
         geom: &G,
@@ -145,9 +146,7 @@ impl Walked {
         y: &[f64; 4],
         settings: &Settings,
     ) -> Result<bool, ()> {
-        let Some(walked) = joints_at(geom, self.borrow()) else {
-            return Ok(false);
-        };
+        let walked = joints_at(geom, self.borrow()).ok_or(())?;
         let cuts = joints::violated_elsewhere(geom, phi, y, &walked);
         let before = walked.len();
         let len = match self {
@@ -159,8 +158,10 @@ impl Walked {
                 t.len()
             }
             Walked::Picked(ix) => {
-                let all = geom.discrete_joints().unwrap_or_default();
-                ix.extend(cuts.iter().filter_map(|c| all.iter().position(|a| a == c)));
+                let all = geom.discrete_joints().ok_or(())?;
+                for c in &cuts {
+                    ix.push(all.iter().position(|a| a == c).ok_or(())?);
+                }
                 ix.sort_unstable();
                 ix.dedup();
                 ix.len()

@@ -1,6 +1,7 @@
-//! The events of a path between two of its steps: a vertex of the earlier step cut off
-//! before the later one where its three rows meet a fourth, located by Brent's method on the
-//! fourth row's slack and kept when the four rows' twists are positively dependent there.
+//! The events of a path between two of its steps: a vertex of one step that the other lacks
+//! (cut off on the way, or made on the way) where its three rows meet a fourth, located by
+//! Brent's method on the fourth row's slack and kept when the four rows' twists are
+//! positively dependent there.
 
 use super::{Found, RowName, Slice, Walker, condition_of, joints_at, order};
 use crate::analysis::gap::hull;
@@ -115,8 +116,9 @@ impl<G: ArchGeometry> Walker<'_, G> {
             else {
                 continue;
             };
-            // Rows with one twist are tight together (a hinge at the point where a point
-            // load acts, on either side of it): one of them stands for both.
+            // Two tight rows with one twist are one plane at the path's λ (the extrados hinge
+            // rows on the two sides of a point load, which acts at that point): one of them
+            // stands for both.
             let mut named: Vec<((usize, u8), usize, [f64; 3])> = Vec::with_capacity(all.len());
             for n in all {
                 if !named.iter().any(|m| same_twist(&m.2, &n.2)) {
