@@ -455,6 +455,38 @@ fn mu_range(manifest: &Manifest) -> Option<(f64, f64)> {
     (lo < hi).then_some((lo, hi))
 }
 
+/// The collapse value of a self-weight find at one sample of a critical curve (NaN where none
+/// was found), whether it comes before the static limit, and the start of the path when it
+/// is met there.
+fn collapse_sample(
+    arch: &Arch,
+    form: crate::model::ArchForm,
+    find: Find,
+    k: f64,
+    mu: f64,
+) -> (f64, bool, Option<f64>) {
+    let Some(friction) = Friction::new(mu) else {
+        return (f64::NAN, false, None);
+    };
+    let sol = crate::scene::solve(&crate::scene::Scene {
+        arch: arch.with_k(k),
+        friction,
+        find,
+        form,
+        load: crate::model::Load::SelfWeight,
+        lambda: 0.0,
+    });
+    let value = sol.collapse_value.unwrap_or(f64::NAN);
+    let start = sol
+        .gap_searched_to
+        .filter(|&s| (value - s).abs() <= 1e-9 * s.abs().max(1.0));
+    (
+        value,
+        sol.gap == Some(crate::analysis::gap::GapStatus::Gap),
+        start,
+    )
+}
+
 /// The critical curves K_c(μ) and μ_c(K) of a state grid, over the ranges of its axes.
 fn critical_curves(
     manifest: &Manifest,
@@ -491,30 +523,7 @@ fn critical_curves(
     // The circular arch with radial joints has no gap under self-weight (the paper's
     // scenes); the other forms may: their collapse beside the static limit.
     if !form.is_circular_radial() {
-        // The collapse value at one sample (NaN where none was found), whether it comes
-        // before the static limit, and the start of the path when it is met there.
-        let collapse = |find: Find, k: f64, mu: f64| {
-            let Some(friction) = Friction::new(mu) else {
-                return (f64::NAN, false, None);
-            };
-            let sol = crate::scene::solve(&crate::scene::Scene {
-                arch: arch.with_k(k),
-                friction,
-                find,
-                form,
-                load: crate::model::Load::SelfWeight,
-                lambda: 0.0,
-            });
-            let value = sol.collapse_value.unwrap_or(f64::NAN);
-            let start = sol
-                .gap_searched_to
-                .filter(|&s| (value - s).abs() <= 1e-9 * s.abs().max(1.0));
-            (
-                value,
-                sol.gap == Some(crate::analysis::gap::GapStatus::Gap),
-                start,
-            )
-        };
+        let collapse = |find: Find, k: f64, mu: f64| collapse_sample(&arch, form, find, k, mu);
         type Sample = (f64, (f64, bool, Option<f64>));
         let mut push = |series: [&str; 2], samples: Vec<Sample>| {
             if !samples.iter().any(|s| s.1.1) {

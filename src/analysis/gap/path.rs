@@ -392,21 +392,22 @@ impl<G: ArchGeometry> Walker<'_, G> {
                 && plain(&s.rows, v)
                 && checked.is_some_and(|c| c.vertices.get(k).is_some_and(|w| plain(&c.rows, w)))
         };
-        s.vertices
+        let mut neutral: Option<Found> = None;
+        let complete = s
+            .vertices
             .iter()
             .filter(|(k, v)| !known(k, v))
             .filter_map(|(k, v)| self.found_at(geom, s, k, v))
-            .filter(|f| accept(geom, f))
-            .try_fold(None, |neutral: Option<Found>, f| {
-                // A state the loads drive comes before one they do no work on (accepted at
-                // the static limit, where a neutral mechanism may sit beside the limit's own).
-                if self.work_of(geom, &f) > self.settings.tol_driving_work {
-                    Err(f)
-                } else {
-                    Ok(neutral.or(Some(f)))
-                }
-            })
-            .unwrap_or_else(Some)
+            .filter(|f| accept(geom, f));
+        for f in complete {
+            // A state the loads drive comes before one they do no work on (accepted at the
+            // static limit, where a neutral mechanism may sit beside the limit's own).
+            if self.work_of(geom, &f) > self.settings.tol_driving_work {
+                return Some(f);
+            }
+            neutral = neutral.or(Some(f));
+        }
+        neutral
     }
 
     /// A complete vertex of the slice at p that `accept` takes.
