@@ -235,10 +235,10 @@ fn main() {
                 s.collapse_value.unwrap_or(f64::NAN),
                 scene.form.shape.eccentricity(),
                 s.collapse_work_loads.unwrap_or(f64::NAN),
-                match scene.load {
-                    Load::Point { at_deg, .. } => format!("{at_deg:?}"),
-                    _ => String::new(),
-                },
+                scene
+                    .load
+                    .at_deg()
+                    .map_or(String::new(), |a| format!("{a:?}")),
             )
             .expect("writable");
         }

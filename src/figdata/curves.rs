@@ -142,8 +142,13 @@ pub fn linspace_with(lo: f64, hi: f64, n: usize, extra: &[f64]) -> Vec<f64> {
         .collect();
     v.extend(extra.iter().copied().filter(|x| *x > lo && *x < hi));
     v.sort_by(f64::total_cmp);
-    v.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * (1.0 + b.abs()));
+    v.dedup_by(|a, b| merged(*a, *b));
     v
+}
+
+/// True when [`linspace_with`] takes two samples for one: within 1e-12 relative.
+pub fn merged(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-12 * (1.0 + b.abs())
 }
 
 #[cfg(test)]

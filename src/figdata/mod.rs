@@ -543,11 +543,7 @@ fn critical_curves(
         // first is a matter of rounding, so the collapse is not sampled there (its curve is
         // broken where the critical curve jumps).
         let none = (f64::NAN, false, None);
-        // Within the tolerance `linspace_with` merges samples by.
-        let at = |bifs: &[f64], x: f64| {
-            bifs.iter()
-                .any(|b| (b - x).abs() <= 1e-12 * (1.0 + x.abs()))
-        };
+        let at = |bifs: &[f64], x: f64| bifs.iter().any(|&b| curves::merged(b, x));
         push(
             [K_COLLAPSE_OF_MU, K_COLLAPSE_AT_START],
             (mus.par_iter())

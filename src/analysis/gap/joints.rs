@@ -12,21 +12,26 @@ use crate::analysis::statics::{ArchGeometry, joint_rows};
 pub(super) fn initial<G: ArchGeometry + ?Sized>(geom: &G, settings: &Settings) -> Option<Vec<f64>> {
     match geom.discrete_joints() {
         None => Some(initial_joints(geom, settings)),
-        Some(all) if all.len() > settings.exchange_above => {
-            Some(evenly_spaced(&all, settings.discrete_joints))
+        Some(all) => {
+            initial_picks(all.len(), settings).map(|ix| ix.iter().map(|&i| all[i]).collect())
         }
-        Some(_) => None,
     }
 }
 
-/// `n` of the joints `all` (increasing), evenly spaced by index, the first and last among them.
-fn evenly_spaced(all: &[f64], n: usize) -> Vec<f64> {
-    if all.len() <= n.max(2) {
-        return all.to_vec();
+/// The indices of the first walk's joints among a discrete arch's `len` joints: `None` for
+/// all of them (a small arch).
+pub(super) fn initial_picks(len: usize, settings: &Settings) -> Option<Vec<usize>> {
+    (len > settings.exchange_above).then(|| evenly_spaced(len, settings.discrete_joints))
+}
+
+/// `n` of `len` joints, evenly spaced by index, the first and last among them.
+fn evenly_spaced(len: usize, n: usize) -> Vec<usize> {
+    if len <= n.max(2) {
+        return (0..len).collect();
     }
     // At most one pick per joint: the indices k·last/(n − 1) increase strictly when n ≤ len.
-    let (n, last) = (n.max(2), all.len() - 1);
-    (0..n).map(|k| all[k * last / (n - 1)]).collect()
+    let (n, last) = (n.max(2), len - 1);
+    (0..n).map(|k| k * last / (n - 1)).collect()
 }
 
 /// True when an exchange has grown the walked joints beyond [`Settings::max_walk_joints`].

@@ -82,23 +82,23 @@ struct Scan {
 /// A scene along the path: the geometry and friction angle at parameter p.
 pub(super) type SceneAt<'a, G> = &'a dyn Fn(f64) -> Option<(G, f64)>;
 
-/// The joints a path walks.
-#[derive(Debug, Clone, Copy)]
-pub(super) enum Joints<'a> {
+/// The joints a path walks, grown by the exchange.
+#[derive(Debug)]
+pub(super) enum Joints {
     /// Every joint of a discrete arch.
     Every,
     /// Joints of a continuum by parameter: sampled, then added by the exchange.
-    Sampled(&'a [f64]),
+    Sampled(Vec<f64>),
     /// Joints of a large discrete arch by index into its joints, which on a thickness path
     /// move with K (a pointed arch's joints divide the arc beyond its crown joint ψ₁(K)).
-    Picked(&'a [usize]),
+    Picked(Vec<usize>),
 }
 
 /// The joints `thetas` of `geom`, increasing; `None` when an index lies past its last joint.
-fn joints_at<G: ArchGeometry>(geom: &G, thetas: Joints<'_>) -> Option<Vec<f64>> {
+fn joints_at<G: ArchGeometry>(geom: &G, thetas: &Joints) -> Option<Vec<f64>> {
     match thetas {
         Joints::Every => geom.discrete_joints(),
-        Joints::Sampled(t) => Some(t.to_vec()),
+        Joints::Sampled(t) => Some(t.clone()),
         Joints::Picked(ix) => {
             let all = geom.discrete_joints()?;
             ix.iter().map(|&i| all.get(i).copied()).collect()
@@ -106,32 +106,15 @@ fn joints_at<G: ArchGeometry>(geom: &G, thetas: Joints<'_>) -> Option<Vec<f64>> 
     }
 }
 
-/// The joints of a search, owned: what [`Joints`] borrows, grown by the exchange.
-enum Walked {
-    Every,
-    Sampled(Vec<f64>),
-    Picked(Vec<usize>),
-}
-
-impl Walked {
+impl Joints {
     /// The first joints walked on the arch `g0`.
     fn initial<G: ArchGeometry>(g0: &G, settings: &Settings) -> Self {
-        match (joints::initial(g0, settings), g0.discrete_joints()) {
-            (None, _) => Walked::Every,
-            (Some(t), None) => Walked::Sampled(t),
-            (Some(t), Some(all)) => Walked::Picked(
-                t.iter()
-                    .filter_map(|x| all.iter().position(|a| a == x))
-                    .collect(),
-            ),
-        }
-    }
-
-    fn borrow(&self) -> Joints<'_> {
-        match self {
-            Walked::Every => Joints::Every,
-            Walked::Sampled(t) => Joints::Sampled(t),
-            Walked::Picked(ix) => Joints::Picked(ix),
+        match g0.discrete_joints() {
+            None => Joints::Sampled(joints::initial(g0, settings).unwrap_or_default()),
+            Some(all) => match joints::initial_picks(all.len(), settings) {
+                None => Joints::Every,
+                Some(ix) => Joints::Picked(ix),
+            },
         }
     }
 
@@ -146,21 +129,24 @@ impl Walked {
         y: &[f64; 4],
         settings: &Settings,
     ) -> Result<bool, ()> {
-        let walked = joints_at(geom, self.borrow()).ok_or(())?;
+        if matches!(self, Joints::Every) {
+            return Ok(false);
+        }
+        let walked = joints_at(geom, self).ok_or(())?;
         let cuts = joints::violated_elsewhere(geom, phi, y, &walked);
         let before = walked.len();
         let len = match self {
-            Walked::Every => return Ok(false),
-            Walked::Sampled(t) => {
+            Joints::Every => before,
+            Joints::Sampled(t) => {
                 t.extend(cuts);
                 t.sort_by(f64::total_cmp);
                 t.dedup();
                 t.len()
             }
-            Walked::Picked(ix) => {
+            Joints::Picked(ix) => {
                 let all = geom.discrete_joints().ok_or(())?;
                 for c in &cuts {
-                    ix.push(all.iter().position(|a| a == c).ok_or(())?);
+                    ix.push(all.binary_search_by(|a| a.total_cmp(c)).map_err(|_| ())?);
                 }
                 ix.sort_unstable();
                 ix.dedup();
@@ -186,7 +172,7 @@ pub(super) struct Walker<'a, G> {
     /// Slices walked so far, over every scan of one search.
     pub(super) slices: &'a std::cell::Cell<usize>,
     pub(super) at: SceneAt<'a, G>,
-    pub(super) thetas: Joints<'a>,
+    pub(super) thetas: &'a Joints,
     pub(super) lambda: f64,
     pub(super) settings: &'a Settings,
     /// What the path's parameter is.
@@ -315,7 +301,7 @@ impl<G: ArchGeometry> Walker<'_, G> {
 
     /// The complete solution at vertex `v` (key `k`) of slice `s`, if it is one.
     fn found_at(&self, geom: &G, s: &Slice, k: &[(usize, u8)], v: &Vertex) -> Option<Found> {
-        let joints = joints_at(geom, self.thetas)?;
+        let joints = &s.rows.thetas;
         let (moves, support) = complete_moves(geom, &s.rows, v, self.settings)?;
         Some(Found {
             p: s.p,
@@ -325,7 +311,7 @@ impl<G: ArchGeometry> Walker<'_, G> {
                 .iter()
                 .map(|(j, c)| (joints[*j], condition_of(*c)))
                 .collect(),
-            support: names(&s.rows, &joints, &support),
+            support: names(&s.rows, joints, &support),
             work: std::cell::OnceCell::new(),
         })
     }
@@ -566,13 +552,13 @@ fn first_complete_counted<G: ArchGeometry + Copy>(
     let Some((g0, _)) = at(start).or_else(|| at(end)) else {
         return (None, 0, false);
     };
-    let mut walked = Walked::initial(&g0, settings);
+    let mut walked = Joints::initial(&g0, settings);
     let mut visited = 0;
     for _ in 0..settings.max_exchange_rounds {
         let walker = Walker {
             slices,
             at,
-            thetas: walked.borrow(),
+            thetas: &walked,
             lambda,
             settings,
             path,
@@ -584,7 +570,7 @@ fn first_complete_counted<G: ArchGeometry + Copy>(
         let Some(mut f) = scan.found else {
             // Sampled joints stand further than the arch: the joints that the last standing
             // state of the walk violates are added, and the path walked again.
-            let Some((p, y)) = scan.last.filter(|_| !matches!(walked, Walked::Every)) else {
+            let Some((p, y)) = scan.last.filter(|_| !matches!(walked, Joints::Every)) else {
                 return (None, visited, true);
             };
             let Some((geom, phi)) = at(p) else {
@@ -602,14 +588,14 @@ fn first_complete_counted<G: ArchGeometry + Copy>(
         if (f.p - end).abs() <= settings.tol_gap * (1.0 + end.abs()) {
             f.p = end;
         }
-        if matches!(walked, Walked::Every) {
+        if matches!(walked, Joints::Every) {
             return (finish(at, f, settings), visited, false);
         }
         let Some((geom, phi)) = at(f.p) else {
             return (None, visited, false);
         };
         // On a continuum the sampled state is solved on the continuum's own joints first.
-        if let Walked::Sampled(t) = &walked {
+        if let Joints::Sampled(t) = &walked {
             let pattern = Pattern::of(&geom, &f.tight, t);
             if let Some(r) = refine::on_continuum(at, &pattern, f.p, &f.y, Some(lambda), settings) {
                 return (finish(at, r, settings), visited, false);

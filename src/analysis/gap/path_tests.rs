@@ -54,7 +54,7 @@ fn a_friction_step_that_skips_known_vertices_finds_what_testing_every_vertex_fin
         let walker = Walker {
             slices: &slices,
             at: &at,
-            thetas: Joints::Every,
+            thetas: &Joints::Every,
             lambda,
             settings: &settings,
             path: Path::Friction,

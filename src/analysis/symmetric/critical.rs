@@ -214,8 +214,10 @@ pub fn friction_with(arch: &Arch, settings: &Settings) -> Critical {
     // found on the width of their overlap without solving the rotational margin at each step.
     let hr = rotational_domain_with(&sym, settings).interval;
     let overlap = |phi: f64| {
-        let sd = sliding_domain_with(&sym, phi, settings).interval;
-        let w = sd.hi.min(hr.hi) - sd.lo.max(hr.lo);
+        let both = sliding_domain_with(&sym, phi, settings)
+            .interval
+            .intersect(&hr);
+        let w = both.hi - both.lo;
         if w.is_nan() {
             f64::NEG_INFINITY
         } else {
