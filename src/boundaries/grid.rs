@@ -9,7 +9,7 @@ use crate::manifest::Manifest;
 use crate::model::Arch;
 use crate::plan;
 use crate::scene::Scene;
-use std::collections::{HashMap, HashSet};
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 /// One K × μ grid of answers.
 #[derive(Debug, Clone)]
@@ -97,7 +97,7 @@ fn for_each_case(m: &Manifest, mut each: impl FnMut(&plan::Case)) {
 /// Splits the cases of a manifest's plan into grids, in order of first appearance;
 /// `codes[n]` is the cell code of case n ([`NO_CELL`] past the end of `codes`).
 pub(crate) fn groups(m: &Manifest, codes: &[u8]) -> Vec<Grid> {
-    let mut index: HashMap<Key, usize> = HashMap::new();
+    let mut index: HashMap<Key, usize> = HashMap::default();
     let mut grids: Vec<Grid> = Vec::new();
     let mut values: Vec<(HashSet<u64>, HashSet<u64>)> = Vec::new();
     let mut last: Option<(Key, usize)> = None;
@@ -122,13 +122,24 @@ pub(crate) fn groups(m: &Manifest, codes: &[u8]) -> Vec<Grid> {
         last = Some((key, g));
         g
     };
+    // The value of an axis often repeats from one case to the next: a repeat is not hashed.
+    let mut previous: Option<(usize, u64, u64)> = None;
     for_each_case(m, |case| {
         let g = group_of(case, &mut grids);
         if values.len() <= g {
             values.resize_with(g + 1, Default::default);
         }
-        values[g].0.insert(case.scene.arch.k.to_bits());
-        values[g].1.insert(case.scene.friction.mu().to_bits());
+        let (k, mu) = (
+            case.scene.arch.k.to_bits(),
+            case.scene.friction.mu().to_bits(),
+        );
+        let before = previous.replace((g, k, mu));
+        if before.is_none_or(|(bg, bk, _)| (bg, bk) != (g, k)) {
+            values[g].0.insert(k);
+        }
+        if before.is_none_or(|(bg, _, bm)| (bg, bm) != (g, mu)) {
+            values[g].1.insert(mu);
+        }
     });
     for (grid, (ks, mus)) in grids.iter_mut().zip(&values) {
         grid.ks = sorted_distinct(ks);

@@ -7,8 +7,10 @@ use crate::plot::regime_map::{
 };
 use crate::report::data::RunData;
 use crate::report::format::short;
-use crate::store::{BoundaryRow, ResultRow};
-use std::collections::{BTreeMap, HashMap};
+use crate::store::BoundaryRow;
+use rayon::prelude::*;
+use rustc_hash::{FxHashMap, FxHashSet};
+use std::collections::BTreeMap;
 use std::sync::Arc;
 
 const REGIME_CAPTION: &str = "Regimes over the friction coefficient μ (horizontal) and the thickness ratio K = R/r (left axis; t/R_c on the right axis). Stable: an admissible state exists (Hʳ ∩ Hˢ ≠ ∅). Rotational: no line of thrust fits in the arch whatever the friction (Hʳ = ∅). Sliding: no thrust satisfies Coulomb's law at every joint (Hˢ = ∅; on a circular arch with radial joints whatever the thickness). Mixed: both domains exist but are disjoint. The thick line is the collapse curve through the located boundary points, coloured and labelled by the collapse mechanism (hinges only, hinges and sliding joints, sliding joints only); dots mark the bifurcations where two mechanisms coexist, with their values. Dashed lines are the other regime boundaries.";
@@ -16,9 +18,16 @@ const REGIME_CAPTION: &str = "Regimes over the friction coefficient μ (horizont
 const REGIONS_NOTE: &str = " Between grid points the regions are bounded by straight lines between the located boundary points.";
 
 fn sorted_distinct(v: impl Iterator<Item = f64>) -> Vec<f64> {
-    // A map's million rows hold a thousand distinct values: gather them before sorting.
-    let distinct: std::collections::HashSet<u64> =
-        v.filter(|x| x.is_finite()).map(f64::to_bits).collect();
+    // A map's million rows hold a thousand distinct values: gather them before sorting
+    // (the rows of an axis's value often follow one another: a repeat is not hashed).
+    let mut distinct: FxHashSet<u64> = FxHashSet::default();
+    let mut last = None;
+    for x in v.filter(|x| x.is_finite()).map(f64::to_bits) {
+        if last != Some(x) {
+            distinct.insert(x);
+            last = Some(x);
+        }
+    }
     let mut v: Vec<f64> = distinct.into_iter().map(f64::from_bits).collect();
     v.sort_by(f64::total_cmp);
     v.dedup();
@@ -93,21 +102,40 @@ fn group_matches(g: &crate::store::BifurcationGroup, a: ArchKey) -> bool {
         && g.joints.as_deref().is_none_or(|j| j == a.joints.as_str())
 }
 
+/// What the map reads of a state case: μ, K and the regime.
+#[derive(Clone, Copy)]
+struct MapCell<'a> {
+    mu: Option<f64>,
+    k: Option<f64>,
+    regime: Option<&'a str>,
+}
+
 /// The regime of every grid point, K-major (None where no case gives one).
-fn regimes_on_grid(rows: &[&ResultRow], mu: &[f64], k: &[f64]) -> Vec<Option<Arc<str>>> {
-    let index = |v: &[f64]| -> HashMap<u64, usize> {
+fn regimes_on_grid(cells: &[MapCell<'_>], mu: &[f64], k: &[f64]) -> Vec<Option<Arc<str>>> {
+    let index = |v: &[f64]| -> FxHashMap<u64, usize> {
         v.iter()
             .enumerate()
             .map(|(i, x)| (x.to_bits(), i))
             .collect()
     };
     let (mi, ki) = (index(mu), index(k));
+    // A map holds a few regimes: one shared name each.
+    let mut names: Vec<Arc<str>> = Vec::new();
+    let mut name_of = |g: &str| -> Arc<str> {
+        match names.iter().find(|n| &***n == g) {
+            Some(n) => n.clone(),
+            None => {
+                names.push(Arc::from(g));
+                Arc::from(g)
+            }
+        }
+    };
     let mut regimes = vec![None; mu.len() * k.len()];
-    for r in rows {
-        if let (Some(m), Some(kk)) = (r.mu, r.k)
+    for c in cells {
+        if let (Some(m), Some(kk)) = (c.mu, c.k)
             && let (Some(&i), Some(&j)) = (mi.get(&m.to_bits()), ki.get(&kk.to_bits()))
         {
-            regimes[j * mu.len() + i] = r.regime.clone();
+            regimes[j * mu.len() + i] = c.regime.map(&mut name_of);
         }
     }
     regimes
@@ -144,23 +172,26 @@ pub fn regime_map_of(
     title: String,
     arch: Option<ArchKey>,
 ) -> Option<RegimeMap> {
-    let rows: Vec<&ResultRow> = data
-        .results
-        .iter()
-        .enumerate()
+    // The rows are read once, in parallel, into what the map needs of them: a million rows
+    // do not fit in cache, their cells do.
+    let cells: Vec<MapCell<'_>> = (data.results.par_iter().enumerate())
         .filter(|(i, r)| {
             &*r.load_case == lc
                 && &*r.find == "state"
                 && arch_matches(arch, data.result_arches.get(*i))
         })
-        .map(|(_, r)| r)
+        .map(|(_, r)| MapCell {
+            mu: r.mu,
+            k: r.k,
+            regime: r.regime.as_deref(),
+        })
         .collect();
-    let mu = sorted_distinct(rows.iter().filter_map(|r| r.mu));
-    let k = sorted_distinct(rows.iter().filter_map(|r| r.k));
+    let mu = sorted_distinct(cells.iter().filter_map(|c| c.mu));
+    let k = sorted_distinct(cells.iter().filter_map(|c| c.k));
     if mu.len() < 2 || k.len() < 2 {
         return None;
     }
-    let regimes = regimes_on_grid(&rows, &mu, &k);
+    let regimes = regimes_on_grid(&cells, &mu, &k);
     let all_bounds: Vec<&BoundaryRow> = data
         .boundaries
         .iter()
@@ -169,7 +200,7 @@ pub fn regime_map_of(
         .filter(|(i, b)| b.load_case == lc && arch_matches(arch, data.boundary_arches.get(*i)))
         .map(|(_, b)| b)
         .collect();
-    let infinite = infinite_strip(&rows, &k, &all_bounds);
+    let infinite = infinite_strip(&cells, &k, &all_bounds);
     let bounds: Vec<&BoundaryRow> = all_bounds
         .into_iter()
         .filter(|b| b.mu.is_finite() && b.k.is_finite())
@@ -307,21 +338,21 @@ fn parted(collapse: &[(f64, f64)], critical: &[(f64, f64)]) -> Vec<(f64, f64)> {
 /// The μ = ∞ column of the grid, when it has one: its regimes at the grid K values, the
 /// located changes along K there and its collapse points.
 fn infinite_strip(
-    rows: &[&ResultRow],
+    cells: &[MapCell<'_>],
     k: &[f64],
     bounds: &[&BoundaryRow],
 ) -> Option<InfiniteStrip> {
-    let at_inf: Vec<_> = rows
+    let at_inf: Vec<_> = cells
         .iter()
-        .filter(|r| r.mu.is_some_and(f64::is_infinite))
+        .filter(|c| c.mu.is_some_and(f64::is_infinite))
         .collect();
     if at_inf.is_empty() {
         return None;
     }
     let mut regimes: Vec<Option<Arc<str>>> = vec![None; k.len()];
-    for r in at_inf {
-        if let Some(j) = r.k.and_then(|kk| k.iter().position(|&g| g == kk)) {
-            regimes[j] = r.regime.clone();
+    for c in at_inf {
+        if let Some(j) = c.k.and_then(|kk| k.iter().position(|&g| g == kk)) {
+            regimes[j] = c.regime.map(Arc::from);
         }
     }
     let inf = bounds
