@@ -34,7 +34,7 @@ pub(super) fn record(scene: &Scene, out: &mut Solution) {
             };
             let search = gap::first_complete_friction(&m, scene.lambda, mu_c, &settings);
             out.set_gap(&search, Some(mu_c), -1.0);
-            out.complete_at_static_limit(&search, mu_c, tol_work);
+            out.complete_at_static_limit(&search, tol_work);
             if let Some(mu) = out.collapse_value {
                 let phi = Friction::new(mu).map_or(FRAC_PI_2, Friction::angle);
                 out.collapse_on_loading = on_loading(scene, &m, phi, &settings);
@@ -59,7 +59,7 @@ pub(super) fn record(scene: &Scene, out: &mut Solution) {
                 &settings,
             );
             out.set_gap(&search, Some(k_c), -1.0);
-            out.complete_at_static_limit(&search, k_c, tol_work);
+            out.complete_at_static_limit(&search, tol_work);
             if let Some(m) = out.collapse_value.and_then(model) {
                 out.collapse_on_loading = on_loading(scene, &m, scene.friction.angle(), &settings);
             }
@@ -113,7 +113,7 @@ mod tests {
             met_nothing,
         };
         out.set_gap(&search, Some(k_c), -1.0);
-        out.complete_at_static_limit(&search, k_c, 1e-6);
+        out.complete_at_static_limit(&search, 1e-6);
         out
     }
 

@@ -504,20 +504,18 @@ impl Solution {
         self.collapse_flow_violation = finite(m.work.flow_violation);
     }
 
-    /// A thickness or friction `search` that met no complete state on its way through the
-    /// static limit `value`, whose own mechanism obeys every flow rule there
+    /// A thickness or friction `search` that met no complete state on its way through its
+    /// static limit, whose own mechanism obeys every flow rule there
     /// (`mechanism_admissible`, with its work equation): the static limit is itself a
     /// complete solution, and the first. The walk stops just short of the limit and steps
     /// past it, and a symmetric limit state, where more rows than a vertex holds meet at
     /// once, can be missed by both steps. `collapse_flow_violation` stays null: the static
     /// route checks that mechanism with its own tolerance.
-    pub(super) fn complete_at_static_limit(
-        &mut self,
-        search: &GapSearch,
-        value: f64,
-        tol_work: f64,
-    ) {
+    pub(super) fn complete_at_static_limit(&mut self, search: &GapSearch, tol_work: f64) {
         let balanced = self.work_residual.is_some_and(|r| r <= tol_work);
+        let Some(value) = search.static_limit else {
+            return;
+        };
         if !search.met_nothing
             || self.gap != Some(GapStatus::NoCompleteSolution)
             || self.mechanism_admissible != Some(true)

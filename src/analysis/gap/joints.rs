@@ -34,6 +34,15 @@ fn evenly_spaced(len: usize, n: usize) -> Vec<usize> {
     (0..n).map(|k| k * last / (n - 1)).collect()
 }
 
+/// Adds the joint angles `cuts` to `walked` (increasing, each once): the exchange's step on
+/// joints named by angle. Returns how many joints `walked` then holds.
+pub(super) fn add_angles(walked: &mut Vec<f64>, cuts: Vec<f64>) -> usize {
+    walked.extend(cuts);
+    walked.sort_by(f64::total_cmp);
+    walked.dedup();
+    walked.len()
+}
+
 /// True when an exchange has grown the walked joints beyond [`Settings::max_walk_joints`].
 pub(super) fn too_many(walked: &[f64], settings: &Settings) -> bool {
     walked.len() > settings.max_walk_joints

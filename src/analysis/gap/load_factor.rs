@@ -251,10 +251,7 @@ fn walk_and_exchange<G: ArchGeometry + Copy>(
             return Ok(done(p.best.map(|l| (l.moves, l.y))));
         }
         let before = t.len();
-        t.extend(cuts);
-        t.sort_by(f64::total_cmp);
-        t.dedup();
-        if t.len() == before || joints::too_many(t, settings) {
+        if joints::add_angles(t, cuts) == before || joints::too_many(t, settings) {
             return Err(None);
         }
     }

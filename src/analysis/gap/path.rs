@@ -137,12 +137,7 @@ impl Joints {
         let before = walked.len();
         let len = match self {
             Joints::Every => before,
-            Joints::Sampled(t) => {
-                t.extend(cuts);
-                t.sort_by(f64::total_cmp);
-                t.dedup();
-                t.len()
-            }
+            Joints::Sampled(t) => joints::add_angles(t, cuts),
             Joints::Picked(ix) => {
                 let all = geom.discrete_joints().ok_or(())?;
                 for c in &cuts {
