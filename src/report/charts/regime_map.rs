@@ -125,8 +125,9 @@ fn regimes_on_grid(cells: &[MapCell<'_>], mu: &[f64], k: &[f64]) -> Vec<Option<A
         match names.iter().find(|n| &***n == g) {
             Some(n) => n.clone(),
             None => {
-                names.push(Arc::from(g));
-                Arc::from(g)
+                let n: Arc<str> = Arc::from(g);
+                names.push(n.clone());
+                n
             }
         }
     };
@@ -172,8 +173,8 @@ pub fn regime_map_of(
     title: String,
     arch: Option<ArchKey>,
 ) -> Option<RegimeMap> {
-    // The rows are read once, in parallel, into what the map needs of them: a million rows
-    // do not fit in cache, their cells do.
+    // The rows are read once, in parallel, into what the map needs of them: each row of about
+    // 400 bytes is a cache miss, and the later passes read cells of 48 bytes in order.
     let cells: Vec<MapCell<'_>> = (data.results.par_iter().enumerate())
         .filter(|(i, r)| {
             &*r.load_case == lc
