@@ -221,6 +221,12 @@ impl Interval {
         !(self.lo <= self.hi)
     }
 
+    /// hi − lo: negative when the interval is empty, +∞ when an end is infinite, NaN when an
+    /// end is.
+    pub fn width(&self) -> f64 {
+        self.hi - self.lo
+    }
+
     /// Intersection of two intervals.
     pub fn intersect(&self, other: &Interval) -> Interval {
         Interval {

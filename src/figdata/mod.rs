@@ -523,7 +523,6 @@ fn critical_curves(
     // The circular arch with radial joints has no gap under self-weight (the paper's
     // scenes); the other forms may: their collapse beside the static limit.
     if !form.is_circular_radial() {
-        let collapse = |find: Find, k: f64, mu: f64| collapse_sample(&arch, form, find, k, mu);
         type Sample = (f64, (f64, bool, Option<f64>));
         let mut push = |series: [&str; 2], samples: Vec<Sample>| {
             if !samples.iter().any(|s| s.1.1) {
@@ -542,38 +541,23 @@ fn critical_curves(
         // the other parameter (K_c(μ) jumps there): which complete state the search meets
         // first is a matter of rounding, so the collapse is not sampled there (its curve is
         // broken where the critical curve jumps).
-        let none = (f64::NAN, false, None);
-        let at = |bifs: &[f64], x: f64| bifs.iter().any(|&b| curves::merged(b, x));
+        let sample = |find: Find, x: f64, bifs: &[f64], (k, mu): (f64, f64)| -> Sample {
+            if bifs.iter().any(|&b| curves::merged(b, x)) {
+                (x, (f64::NAN, false, None))
+            } else {
+                (x, collapse_sample(&arch, form, find, k, mu))
+            }
+        };
         push(
             [K_COLLAPSE_OF_MU, K_COLLAPSE_AT_START],
             (mus.par_iter())
-                .map(|&mu| {
-                    let at_bifurcation = at(&bif_mu, mu);
-                    (
-                        mu,
-                        if at_bifurcation {
-                            none
-                        } else {
-                            collapse(Find::Thickness, k_hi, mu)
-                        },
-                    )
-                })
+                .map(|&mu| sample(Find::Thickness, mu, &bif_mu, (k_hi, mu)))
                 .collect(),
         );
         push(
             [MU_COLLAPSE_OF_K, MU_COLLAPSE_AT_START],
             (ks.par_iter())
-                .map(|&k| {
-                    let at_bifurcation = at(&bif_k, k);
-                    (
-                        k,
-                        if at_bifurcation {
-                            none
-                        } else {
-                            collapse(Find::Friction, k, 0.0)
-                        },
-                    )
-                })
+                .map(|&k| sample(Find::Friction, k, &bif_k, (k, 0.0)))
                 .collect(),
         );
     }

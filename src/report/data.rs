@@ -440,6 +440,7 @@ pub fn read_results(
     let block_rows = super::reduce::READ_BLOCK_ROWS;
     let mut results = Vec::with_capacity(lattice.kept().min(stored) + stored.min(block_rows));
     let mut totals = super::reduce::ResultTotals::default();
+    let every = lattice.keeps_every();
     store::append_results_in_blocks(&file, block_rows, &mut results, |offset, read, start| {
         if stop() {
             return Err(crate::progress::Stopped.into());
@@ -450,7 +451,7 @@ pub fn read_results(
             || totals.add(block),
         );
         checked?;
-        if !lattice.keeps_every() {
+        if !every {
             keep_from(read, start, |r| lattice.keeps(r.case_id));
         }
         Ok(())
@@ -555,9 +556,7 @@ fn keep_from<T>(rows: &mut Vec<T>, start: usize, keep: impl Fn(&T) -> bool) {
     let mut kept = start;
     for i in start..rows.len() {
         if keep(&rows[i]) {
-            if kept != i {
-                rows.swap(kept, i);
-            }
+            rows.swap(kept, i);
             kept += 1;
         }
     }

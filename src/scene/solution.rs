@@ -512,14 +512,13 @@ impl Solution {
     /// once, can be missed by both steps. `collapse_flow_violation` stays null: the static
     /// route checks that mechanism with its own tolerance.
     pub(super) fn complete_at_static_limit(&mut self, search: &GapSearch, tol_work: f64) {
-        let balanced = self.work_residual.is_some_and(|r| r <= tol_work);
         let Some(value) = search.static_limit else {
             return;
         };
         if !search.met_nothing
             || self.gap != Some(GapStatus::NoCompleteSolution)
             || self.mechanism_admissible != Some(true)
-            || !balanced
+            || !self.work_residual.is_some_and(|r| r <= tol_work)
             || !value.is_finite()
         {
             return;

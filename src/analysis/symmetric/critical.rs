@@ -217,7 +217,7 @@ pub fn friction_with(arch: &Arch, settings: &Settings) -> Critical {
         let both = sliding_domain_with(&sym, phi, settings)
             .interval
             .intersect(&hr);
-        let w = both.hi - both.lo;
+        let w = both.width();
         if w.is_nan() {
             f64::NEG_INFINITY
         } else {
@@ -253,7 +253,7 @@ pub fn sliding_threshold_with(arch: &Arch, settings: &Settings) -> Critical {
         if i.hi.is_infinite() || i.lo.is_infinite() {
             1.0
         } else {
-            i.hi - i.lo
+            i.width()
         }
     };
     if width(0.0) >= 0.0 {

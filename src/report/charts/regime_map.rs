@@ -110,6 +110,21 @@ struct MapCell<'a> {
     regime: Option<&'a str>,
 }
 
+/// The few regime names of a map, one shared name each.
+#[derive(Default)]
+struct RegimeNames(Vec<Arc<str>>);
+
+impl RegimeNames {
+    fn of(&mut self, g: &str) -> Arc<str> {
+        if let Some(n) = self.0.iter().find(|n| &***n == g) {
+            return n.clone();
+        }
+        let n: Arc<str> = Arc::from(g);
+        self.0.push(n.clone());
+        n
+    }
+}
+
 /// The regime of every grid point, K-major (None where no case gives one).
 fn regimes_on_grid(cells: &[MapCell<'_>], mu: &[f64], k: &[f64]) -> Vec<Option<Arc<str>>> {
     let index = |v: &[f64]| -> FxHashMap<u64, usize> {
@@ -119,24 +134,13 @@ fn regimes_on_grid(cells: &[MapCell<'_>], mu: &[f64], k: &[f64]) -> Vec<Option<A
             .collect()
     };
     let (mi, ki) = (index(mu), index(k));
-    // A map holds a few regimes: one shared name each.
-    let mut names: Vec<Arc<str>> = Vec::new();
-    let mut name_of = |g: &str| -> Arc<str> {
-        match names.iter().find(|n| &***n == g) {
-            Some(n) => n.clone(),
-            None => {
-                let n: Arc<str> = Arc::from(g);
-                names.push(n.clone());
-                n
-            }
-        }
-    };
+    let mut names = RegimeNames::default();
     let mut regimes = vec![None; mu.len() * k.len()];
     for c in cells {
         if let (Some(m), Some(kk)) = (c.mu, c.k)
             && let (Some(&i), Some(&j)) = (mi.get(&m.to_bits()), ki.get(&kk.to_bits()))
         {
-            regimes[j * mu.len() + i] = c.regime.map(&mut name_of);
+            regimes[j * mu.len() + i] = c.regime.map(|g| names.of(g));
         }
     }
     regimes
@@ -350,10 +354,11 @@ fn infinite_strip(
     if at_inf.is_empty() {
         return None;
     }
+    let mut names = RegimeNames::default();
     let mut regimes: Vec<Option<Arc<str>>> = vec![None; k.len()];
     for c in at_inf {
         if let Some(j) = c.k.and_then(|kk| k.iter().position(|&g| g == kk)) {
-            regimes[j] = c.regime.map(Arc::from);
+            regimes[j] = c.regime.map(|g| names.of(g));
         }
     }
     let inf = bounds
