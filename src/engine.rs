@@ -21,11 +21,14 @@ use crate::analysis::symmetric::{self, RotationalDomain, SlidingDomain};
 use crate::model::{Discretisation, JointOrientation};
 use crate::plan::{Case, Plan};
 use crate::progress::{Progress, Stage};
-use crate::scene::{self, Find, Scene, Solution};
+use crate::scene::{self, Find, Inputs, Scene, Solution, StateAnswer};
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::time::Instant;
+
+mod states;
+pub use states::{Rows, StateCase};
 
 /// Whether a case produced an answer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -154,23 +157,39 @@ pub fn analyse(plan: &Plan, progress: &dyn Progress) -> Vec<CaseResult> {
     out
 }
 
-/// [`analyse`] into `out`, whose rows are replaced: a run analysing chunk after chunk keeps
-/// one buffer, so that each chunk's rows are written into memory already in use rather than
-/// into fresh pages the kernel must clear (a chunk of a state map is some 150 MB of rows).
+/// [`analyse`] into `out`, whose rows are replaced.
 pub fn analyse_into(plan: &Plan, progress: &dyn Progress, out: &mut Vec<CaseResult>) {
-    out.clear();
+    let mut rows = Rows::Cases(std::mem::take(out));
+    analyse_rows(plan, progress, &mut rows);
+    *out = rows.into_results();
+}
+
+/// Analyses every case of a plan into `out`, whose rows are replaced: compact rows on the
+/// separable `state` path, full rows otherwise. A run analysing chunk after chunk keeps one
+/// `out`, so that each chunk's rows are written into memory already in use rather than into
+/// fresh pages the kernel must clear.
+pub fn analyse_rows(plan: &Plan, progress: &dyn Progress, out: &mut Rows) {
     match GridPath::of(plan) {
-        GridPath::Separable => run_separable(&plan.cases, plan.manifest.arch.weight, progress, out),
-        GridPath::KLines => run_lines(plan, progress, out),
-        GridPath::CaseByCase => {
-            // A sample asks whether the arch stands, or for its static limit: the search for
-            // the first complete solution beyond it (the gap) is not made.
-            let solve = if plan.manifest.sampling.is_some() {
-                scene::solve_static
+        GridPath::Separable => {
+            let mut rows = out.take_states();
+            run_separable(&plan.cases, plan.manifest.arch.weight, progress, &mut rows);
+            *out = Rows::States(rows);
+        }
+        path => {
+            let mut rows = out.take_cases();
+            if path == GridPath::KLines {
+                run_lines(plan, progress, &mut rows);
             } else {
-                scene::solve
-            };
-            out.par_extend(plan.cases.par_iter().map(|c| case_row(c, progress, solve)));
+                // A sample asks whether the arch stands, or for its static limit: the search
+                // for the first complete solution beyond it (the gap) is not made.
+                let solve = if plan.manifest.sampling.is_some() {
+                    scene::solve_static
+                } else {
+                    scene::solve
+                };
+                rows.par_extend(plan.cases.par_iter().map(|c| case_row(c, progress, solve)));
+            }
+            *out = Rows::Cases(rows);
         }
     }
 }
@@ -241,17 +260,19 @@ pub fn solve_scenes_in_blocks<T: Send>(
         .enumerate()
         .map(|(b, block)| {
             let first = b * SCENE_BLOCK_ROWS;
-            let rows = block
-                .par_iter()
-                .enumerate()
-                .map(|(j, s)| {
-                    let c = case(first + j, s);
-                    match &domains {
-                        Some(d) => d.row(&c, first + j, progress),
-                        None => case_row(&c, progress, scene::solve),
-                    }
-                })
-                .collect();
+            let rows = match &domains {
+                Some(d) => {
+                    let cases: Vec<Case> = (block.iter().enumerate())
+                        .map(|(j, s)| case(first + j, s))
+                        .collect();
+                    let mut rows = Vec::new();
+                    d.write_states(&cases, first, progress, &mut rows);
+                    rows.into_iter().map(StateCase::into_result).collect()
+                }
+                None => (block.par_iter().enumerate())
+                    .map(|(j, s)| case_row(&case(first + j, s), progress, scene::solve))
+                    .collect(),
+            };
             each(rows)
         })
         .collect();
@@ -395,50 +416,90 @@ impl SeparableDomains {
         }
     }
 
-    /// The row of case number `n` (in the order the domains were keyed): a comparison of its
-    /// two domains. Its solve time is its own comparison plus its share of both domain solves.
-    fn row(&self, c: &Case, n: usize, progress: &dyn Progress) -> CaseResult {
+    /// The compact rows of consecutive cases, the first of them case number `first` in the
+    /// order the domains were keyed, written over `out` in parallel blocks (its buffer reused:
+    /// a run's chunks write into memory already in use).
+    fn write_states(
+        &self,
+        cases: &[Case],
+        first: usize,
+        progress: &dyn Progress,
+        out: &mut Vec<StateCase>,
+    ) {
+        out.clear();
+        out.resize_with(cases.len(), StateCase::default);
+        (out.par_chunks_mut(STATE_BLOCK_ROWS))
+            .zip(cases.par_chunks(STATE_BLOCK_ROWS))
+            .enumerate()
+            .for_each(|(b, (rows, block))| {
+                self.states(block, first + b * STATE_BLOCK_ROWS, progress, rows)
+            });
+    }
+
+    /// The compact rows of consecutive cases, written over `out` (as many), the first of them
+    /// case number `first` in the order the domains were keyed: a comparison of each case's
+    /// two domains. A case's solve time is its share of the block's comparisons (one clock
+    /// reading per block: a comparison takes about as long as reading the clock) plus its
+    /// share of both domain solves. Progress advances once per block; a stop asked for
+    /// before a block skips it.
+    fn states(&self, cases: &[Case], first: usize, progress: &dyn Progress, out: &mut [StateCase]) {
         if progress.stopped() {
-            return skipped(c);
-        }
-        let (ri, si) = self.keys.cases[n];
-        let r = match (&self.rot[ri], &self.sld[si]) {
-            (Ok((rd, rt)), Ok((sd, st))) => {
-                let start = Instant::now();
-                let mut res = checked(c, || scene::state_from_domains(&c.scene, rd, sd));
-                let own = start.elapsed().as_secs_f64() * 1e6;
-                res.solution.solve_time_us =
-                    own + rt / self.rot_uses[ri] as f64 + st / self.sld_uses[si] as f64;
-                res
+            let why = crate::progress::Stopped.to_string();
+            for (o, c) in out.iter_mut().zip(cases) {
+                *o = StateCase::failed(c, why.clone());
             }
-            (Err(m), _) | (_, Err(m)) => CaseResult {
-                case_id: c.id,
-                load_case: c.load_case,
-                solution: scene::solve_inputs_only(&c.scene),
-                status: Status::Error,
-                message: Some(m.clone()),
-            },
-        };
-        progress.advance(1);
-        r
+            return;
+        }
+        let start = Instant::now();
+        for (j, (o, c)) in out.iter_mut().zip(cases).enumerate() {
+            *o = self.state(c, first + j);
+        }
+        let own = start.elapsed().as_secs_f64() * 1e6 / cases.len().max(1) as f64;
+        for r in out.iter_mut().filter(|r| r.answer.is_some()) {
+            r.solve_time_us += own;
+        }
+        progress.advance(cases.len() as u64);
+    }
+
+    /// The compact row of case number `n`, its solve time its share of both domain solves.
+    fn state(&self, c: &Case, n: usize) -> StateCase {
+        let (ri, si) = self.keys.cases[n];
+        match (&self.rot[ri], &self.sld[si]) {
+            (Ok((rd, rt)), Ok((sd, st))) => {
+                let answer = catch_unwind(AssertUnwindSafe(|| StateAnswer::of(rd, sd)));
+                let (answer, message) = match answer {
+                    Ok(a) => (Some(a), None),
+                    Err(p) => (None, Some(panic_message(p))),
+                };
+                StateCase {
+                    case_id: c.id,
+                    load_case: c.load_case,
+                    inputs: Inputs::of(&c.scene),
+                    answer,
+                    solve_time_us: rt / self.rot_uses[ri] as f64 + st / self.sld_uses[si] as f64,
+                    message,
+                }
+            }
+            (Err(m), _) | (_, Err(m)) => StateCase::failed(c, m.clone()),
+        }
     }
 }
+
+/// Cases compared by one task of a separable grid: enough that reading the clock and
+/// advancing the progress once per block cost nothing next to the comparisons, few enough
+/// that the blocks spread over every thread.
+const STATE_BLOCK_ROWS: usize = 1 << 12;
 
 /// A symmetric self-weight `state` grid: each domain solved once, then a comparison per case.
 fn run_separable(
     cases: &[Case],
     weight: crate::model::WeightModel,
     progress: &dyn Progress,
-    out: &mut Vec<CaseResult>,
+    out: &mut Vec<StateCase>,
 ) {
     let domains = SeparableDomains::solve(cases.iter().map(|c| &c.scene), weight);
-    out.par_extend(
-        cases
-            .par_iter()
-            .enumerate()
-            .map(|(n, c)| domains.row(c, n, progress)),
-    );
-    debug_assert!(out.iter().all(|r| r.solution.find == Find::State));
+    domains.write_states(cases, 0, progress, out);
+    debug_assert!(out.iter().all(|r| r.inputs.find == Find::State));
 }
 
 /// True when every case is a symmetric self-weight `state` query on a form other than the

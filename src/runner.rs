@@ -317,6 +317,10 @@ fn publish(
         report::write_reports(&data, &figs, layout)
     })?;
     info.stages.report_ms = report_ms;
+    // A million rows take tens of milliseconds to free, and nothing waits for them: they are
+    // freed on a thread of their own while the run is finished (or the process ends).
+    let rows = std::mem::take(&mut data.results);
+    std::thread::spawn(move || drop(rows));
     info.finished_at = now_rfc3339();
     write_run_json(layout, info)?;
     citation::write_crate_metadata(layout, m, info)
@@ -389,9 +393,35 @@ impl ResultsWriter {
     ) -> Result<DataFrame> {
         let df = pool.install(|| store::results_frame(plan, rows))?;
         self.codes.extend(rows.iter().map(boundaries::cell_code));
-        self.ok += rows.iter().filter(|r| r.status == Status::Ok).count() as u64;
-        self.total += rows.len() as u64;
+        self.count(
+            rows.len(),
+            rows.iter().filter(|r| r.status == Status::Ok).count(),
+        );
         Ok(df)
+    }
+
+    /// [`table`](Self::table) of the rows of a chunk, compact or full.
+    fn table_of(
+        &mut self,
+        plan: &Plan,
+        rows: &engine::Rows,
+        pool: &rayon::ThreadPool,
+    ) -> Result<DataFrame> {
+        match rows {
+            engine::Rows::Cases(rows) => self.table(plan, rows, pool),
+            engine::Rows::States(states) => {
+                let df = pool.install(|| store::state_results_frame(plan, states))?;
+                self.codes
+                    .extend(states.iter().map(boundaries::state_cell_code));
+                self.count(states.len(), rows.ok());
+                Ok(df)
+            }
+        }
+    }
+
+    fn count(&mut self, rows: usize, ok: usize) {
+        self.ok += ok as u64;
+        self.total += rows as u64;
     }
 
     /// Writes the footer and moves the file into place.
@@ -447,7 +477,7 @@ pub(crate) fn analyse_in_chunks(
     // One buffer of rows for every chunk: its pages are cleared by the kernel once. A chunk's
     // table is written on its own thread while the next chunk is analysed (one at a time,
     // so that at most two chunks' tables are held).
-    let mut rows: Vec<CaseResult> = Vec::new();
+    let mut rows = engine::Rows::default();
     let path = results.to_path_buf();
     std::thread::scope(|scope| -> Result<()> {
         let mut writing: Option<Writing<'_>> = None;
@@ -455,13 +485,13 @@ pub(crate) fn analyse_in_chunks(
             for &start in &starts {
                 let plan = plan::build_slice(m.clone(), start..(start + chunk).min(ids.end));
                 let t = Instant::now();
-                pool.install(|| engine::analyse_into(&plan, progress, &mut rows));
+                pool.install(|| engine::analyse_rows(&plan, progress, &mut rows));
                 if progress.stopped() {
                     return Err(crate::progress::Stopped.into());
                 }
                 out.engine_ms += ms(t);
                 let t = Instant::now();
-                let mut df = out.written.table(&plan, &rows, pool)?;
+                let mut df = out.written.table_of(&plan, &rows, pool)?;
                 // The rows' own allocations (hinges, messages) are freed; the buffer is kept.
                 rows.clear();
                 memory::release_freed_memory();

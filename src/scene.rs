@@ -12,9 +12,11 @@ use std::time::Instant;
 mod confirm;
 mod gap_search;
 mod general_route;
+mod inputs;
 mod solution;
 mod summary;
 
+pub use inputs::{Inputs, StateAnswer};
 use solution::finite;
 pub use solution::{Outcome, Solution};
 pub use summary::summary;
@@ -146,16 +148,7 @@ pub fn solve_inputs_only(scene: &Scene) -> Solution {
 /// The `state` answer from already computed domains (the separable grid path).
 pub fn state_from_domains(scene: &Scene, rot: &RotationalDomain, sld: &SlidingDomain) -> Solution {
     let mut out = Solution::empty(scene);
-    out.regime = Some(symmetric::regime_of(rot, sld));
-    let (hr, hs) = (rot.interval, sld.interval);
-    if !hr.is_empty() {
-        out.thrust_r_min = finite(hr.lo);
-        out.thrust_r_max = finite(hr.hi);
-    }
-    if !hs.is_empty() {
-        out.thrust_s_min = finite(hs.lo);
-        out.thrust_s_max = finite(hs.hi);
-    }
+    StateAnswer::of(rot, sld).fill(&mut out);
     out
 }
 

@@ -4,7 +4,7 @@
 //! themselves go to results.parquet chunk by chunk and are never all held.
 
 use crate::analysis::{MechanismKind, Regime};
-use crate::engine::{CaseResult, Status};
+use crate::engine::{CaseResult, StateCase, Status};
 use crate::scene::{Find, Outcome};
 
 /// The code of a failed case, or of a case with nothing to compare.
@@ -42,15 +42,23 @@ pub fn cell_code(r: &CaseResult) -> u8 {
     }
     let s = &r.solution;
     if s.find == Find::State {
-        return s
-            .regime()
-            .map_or(NO_CELL, |g| REGIME + index(&Regime::ALL, &g));
+        return s.regime().map_or(NO_CELL, regime_code);
     }
     match s.outcome {
         None => NO_CELL,
         Some(Outcome::Found) => FOUND + s.mechanism.map_or(0, |m| 1 + index(&KINDS, &m)),
         Some(o) => OTHER + index(&Outcome::ALL, &o),
     }
+}
+
+/// The code of a `state` case of this regime.
+fn regime_code(g: Regime) -> u8 {
+    REGIME + index(&Regime::ALL, &g)
+}
+
+/// The code of one compact row of a separable `state` grid: that of its full row.
+pub fn state_cell_code(r: &StateCase) -> u8 {
+    r.answer.map_or(NO_CELL, |a| regime_code(a.regime))
 }
 
 /// The cell a code stands for (`None` for [`NO_CELL`]).
@@ -81,6 +89,39 @@ pub(crate) fn regime(code: u8) -> Option<Regime> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A compact row of a separable `state` grid has the code of its full row, whether its
+    /// analysis ran or failed.
+    #[test]
+    fn a_compact_state_row_has_the_code_of_its_full_row() {
+        let m = crate::manifest::parse(
+            "name: a\ngrid:\n  k: {from: 1.05, to: 1.4, steps: 15}\n  mu: {values: [0.2, 0.3, 0.4, 0.6, inf]}\n",
+            std::path::Path::new("a.yaml"),
+        )
+        .unwrap();
+        let plan = crate::plan::build(m).unwrap();
+        let mut rows = crate::engine::Rows::default();
+        crate::engine::analyse_rows(&plan, &crate::progress::Silent, &mut rows);
+        let crate::engine::Rows::States(states) = &rows else {
+            panic!("a separable grid gives compact rows");
+        };
+        let mut codes: Vec<u8> = states.iter().map(state_cell_code).collect();
+        let failed = StateCase {
+            message: Some("stopped".into()),
+            answer: None,
+            ..states[0].clone()
+        };
+        codes.push(state_cell_code(&failed));
+        let mut full = rows.into_results();
+        full.push(failed.into_result());
+        assert_eq!(codes, full.iter().map(cell_code).collect::<Vec<_>>());
+        // Several regimes are met, and the failed row has no cell.
+        let mut distinct = codes.clone();
+        distinct.sort_unstable();
+        distinct.dedup();
+        assert!(distinct.len() >= 4, "{distinct:?}");
+        assert_eq!(codes.last(), Some(&NO_CELL));
+    }
 
     #[test]
     fn every_cell_reads_back_from_its_code() {

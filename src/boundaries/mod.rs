@@ -43,7 +43,7 @@ mod state_grid;
 mod sweep;
 
 pub use crate::records::{Bifurcation, BoundaryPoint, EdgeAxis, Located};
-pub use cells::{NO_CELL, cell_code};
+pub use cells::{NO_CELL, cell_code, state_cell_code};
 
 use crate::engine::CaseResult;
 use crate::manifest::Manifest;

@@ -335,42 +335,29 @@ impl Solution {
 
     /// The inputs of a scene with every output null.
     pub fn empty(scene: &Scene) -> Self {
-        let a = &scene.arch;
-        let (k, t) = if scene.find.needs_k() {
-            (Some(a.k), Some(a.t_over_r()))
-        } else {
-            (None, None)
-        };
-        let mu = if scene.find.needs_mu() {
-            finite(scene.friction.mu())
-        } else {
-            None
-        };
+        Self::of_inputs(super::Inputs::of(scene))
+    }
+
+    /// The row of a scene with these inputs and every output null.
+    pub fn of_inputs(i: super::Inputs) -> Self {
         Solution {
-            find: scene.find,
-            k,
-            t_over_r: t,
-            mu,
-            mu_infinite: scene.find.needs_mu() && scene.friction.is_infinite(),
-            half_angle_deg: a.half_angle_deg(),
-            weight: a.weight,
-            voussoirs: a.joints.voussoirs(),
-            shape: scene.form.shape.as_str(),
-            eccentricity: match scene.form.shape {
-                crate::model::Shape::Pointed { eccentricity } => Some(eccentricity),
-                crate::model::Shape::Circular => None,
-            },
-            joints: scene.form.joints.as_str(),
-            keystone: match a.joints {
-                crate::model::Discretisation::Voussoirs(n) => n % 2 == 1,
-                crate::model::Discretisation::Continuum => scene.form.keystone,
-            },
-            load: scene.load.as_str(),
-            at_deg: scene.load.at_deg(),
-            at_x: scene.load.at_x(),
-            load_width: scene.load.width(),
-            lambda: (scene.load.is_live() && scene.find != Find::LoadFactor)
-                .then_some(scene.lambda),
+            find: i.find,
+            k: i.k,
+            t_over_r: i.t_over_r,
+            mu: i.mu,
+            mu_infinite: i.mu_infinite,
+            half_angle_deg: i.half_angle_deg,
+            weight: i.weight,
+            voussoirs: i.voussoirs,
+            shape: i.shape,
+            eccentricity: i.eccentricity,
+            joints: i.joints,
+            keystone: i.keystone,
+            load: i.load,
+            at_deg: i.at_deg,
+            at_x: i.at_x,
+            load_width: i.load_width,
+            lambda: i.lambda,
             outcome: None,
             regime: None,
             thrust_r_min: None,

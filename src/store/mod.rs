@@ -22,7 +22,7 @@ pub use figures::{
     read_curves, read_load_factor_cases, read_load_factor_cases_in_blocks, read_mechanisms,
     read_reference, read_row_arches, read_states, reference_frame, states_frame,
 };
-pub use results::{BLOCK_ROWS, filled_by, results_frame, scenes_frame};
+pub use results::{BLOCK_ROWS, filled_by, results_frame, scenes_frame, state_results_frame};
 pub use rows::{
     BifurcationRow, BoundaryRow, JointLists, ResultRow, append_results_in_blocks,
     bifurcations_of_frame, boundaries_of_frame, extend_results_of_frame, read_bifurcations,

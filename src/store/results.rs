@@ -2,7 +2,7 @@
 
 use super::TableBuilder;
 use crate::analysis::{Hinge, SlidingJoint};
-use crate::engine::CaseResult;
+use crate::engine::{CaseResult, StateCase};
 use crate::manifest::LoadCase;
 use crate::plan::Plan;
 use crate::scene::Find;
@@ -31,26 +31,30 @@ fn window_ends(s: &crate::scene::Solution) -> Vec<f64> {
 }
 
 /// One column: its name, its values so far and how to read a value from a row.
-type Get<'a, T> = Box<dyn Fn(&'a CaseResult) -> T + Send + Sync + 'a>;
+type Get<'a, R, T> = Box<dyn Fn(&'a R) -> T + Send + Sync + 'a>;
 
-enum Spec<'a> {
-    U64(&'static str, Vec<u64>, Get<'a, u64>),
-    F64(&'static str, Vec<f64>, Get<'a, f64>),
-    OptF64(&'static str, Vec<Option<f64>>, Get<'a, Option<f64>>),
-    OptU32(&'static str, Vec<Option<u32>>, Get<'a, Option<u32>>),
-    Bool(&'static str, Vec<bool>, Get<'a, bool>),
-    OptBool(&'static str, Vec<Option<bool>>, Get<'a, Option<bool>>),
-    Str(&'static str, Vec<&'a str>, Get<'a, &'a str>),
-    OptStr(&'static str, Vec<Option<&'a str>>, Get<'a, Option<&'a str>>),
-    ListF64(&'static str, Vec<Vec<f64>>, Get<'a, Vec<f64>>),
+enum Spec<'a, R> {
+    U64(&'static str, Vec<u64>, Get<'a, R, u64>),
+    F64(&'static str, Vec<f64>, Get<'a, R, f64>),
+    OptF64(&'static str, Vec<Option<f64>>, Get<'a, R, Option<f64>>),
+    OptU32(&'static str, Vec<Option<u32>>, Get<'a, R, Option<u32>>),
+    Bool(&'static str, Vec<bool>, Get<'a, R, bool>),
+    OptBool(&'static str, Vec<Option<bool>>, Get<'a, R, Option<bool>>),
+    Str(&'static str, Vec<&'a str>, Get<'a, R, &'a str>),
+    OptStr(
+        &'static str,
+        Vec<Option<&'a str>>,
+        Get<'a, R, Option<&'a str>>,
+    ),
+    ListF64(&'static str, Vec<Vec<f64>>, Get<'a, R, Vec<f64>>),
     ListStr(
         &'static str,
         Vec<Vec<&'static str>>,
-        Get<'a, Vec<&'static str>>,
+        Get<'a, R, Vec<&'static str>>,
     ),
 }
 
-impl<'a> Spec<'a> {
+impl<'a, R> Spec<'a, R> {
     fn name(&self) -> &'static str {
         match self {
             Spec::U64(n, ..)
@@ -81,7 +85,7 @@ impl<'a> Spec<'a> {
         }
     }
 
-    fn push(&mut self, r: &'a CaseResult) {
+    fn push(&mut self, r: &'a R) {
         match self {
             Spec::U64(_, v, g) => v.push(g(r)),
             Spec::F64(_, v, g) => v.push(g(r)),
@@ -115,10 +119,10 @@ impl<'a> Spec<'a> {
 /// Constructors of the columns of one type: a name and how to read the value from a row.
 macro_rules! column {
     ($fn_name:ident, $variant:ident, $t:ty) => {
-        fn $fn_name<'a>(
+        fn $fn_name<'a, R>(
             name: &'static str,
-            get: impl Fn(&'a CaseResult) -> $t + Send + Sync + 'a,
-        ) -> Spec<'a> {
+            get: impl Fn(&'a R) -> $t + Send + Sync + 'a,
+        ) -> Spec<'a, R> {
             Spec::$variant(name, Vec::new(), Box::new(get))
         }
     };
@@ -155,6 +159,13 @@ pub fn results_frame(plan: &Plan, rows: &[CaseResult]) -> Result<DataFrame> {
         BLOCK_ROWS,
         Columns::OfStudy,
     )
+}
+
+/// [`results_frame`] of the compact rows of a separable `state` grid: the same table as that
+/// of their full rows ([`crate::engine::StateCase::into_result`]).
+pub fn state_results_frame(plan: &Plan, rows: &[StateCase]) -> Result<DataFrame> {
+    let load_cases = &plan.manifest.load_cases;
+    specs_in_blocks(rows, BLOCK_ROWS, || state_columns(load_cases))
 }
 
 /// The results table of rows that belong to no study (scenes solved one by one, or many at
@@ -245,12 +256,31 @@ fn frame_in_blocks(
     block_rows: usize,
     columns: Columns,
 ) -> Result<DataFrame> {
+    let finds = study_finds(load_cases);
+    let specs = || {
+        let mut specs = input_columns(load_cases);
+        specs.extend(answer_columns().into_iter().filter(|s| {
+            columns != Columns::OfStudy
+                || filled_by(s.name()).is_none_or(|by| by.iter().any(|f| finds.contains(f)))
+        }));
+        specs
+    };
+    specs_in_blocks(rows, block_rows, specs)
+}
+
+/// The table of rows of any type, in blocks of `block_rows` built in parallel, each with the
+/// columns `specs` gives.
+fn specs_in_blocks<'a, R: Sync>(
+    rows: &'a [R],
+    block_rows: usize,
+    specs: impl Fn() -> Vec<Spec<'a, R>> + Sync,
+) -> Result<DataFrame> {
     if rows.len() <= block_rows {
-        return block_frame(load_cases, rows, columns);
+        return block_frame(rows, specs());
     }
     let blocks = rows
         .par_chunks(block_rows)
-        .map(|b| block_frame(load_cases, b, columns))
+        .map(|b| block_frame(b, specs()))
         .collect::<Result<Vec<DataFrame>>>()?;
     stacked(blocks)
 }
@@ -267,40 +297,72 @@ fn stacked(blocks: Vec<DataFrame>) -> Result<DataFrame> {
     Ok(df)
 }
 
-/// The columns of results.parquet that echo the case's inputs, in order.
-fn input_columns<'a>(load_cases: &'a [LoadCase]) -> Vec<Spec<'a>> {
-    vec![
-        u64_col("case_id", |r| r.case_id),
-        str_col("load_case", |r| load_cases[r.load_case].name.as_str()),
-        str_col("load_kind", |r| load_cases[r.load_case].kind.as_str()),
-        str_col("find", |r| r.solution.find.as_str()),
-        opt_f64("k", |r| r.solution.k),
-        opt_f64("t_over_r", |r| r.solution.t_over_r),
-        opt_f64("mu", |r| {
-            if r.solution.mu_infinite {
-                Some(f64::INFINITY)
-            } else {
-                r.solution.mu
-            }
-        }),
-        f64_col("half_angle_deg", |r| r.solution.half_angle_deg),
-        str_col("weight", |r| r.solution.weight.as_str()),
-        opt_u32("voussoirs", |r| r.solution.voussoirs),
-        // Form and load case (docs/loads-and-geometries.md).
-        str_col("shape", |r| r.solution.shape),
-        opt_f64("eccentricity", |r| r.solution.eccentricity),
-        str_col("joints", |r| r.solution.joints),
-        bool_col("keystone", |r| r.solution.keystone),
-        str_col("load", |r| r.solution.load),
-        opt_f64("at_deg", |r| r.solution.at_deg),
-        opt_f64("at_x", |r| r.solution.at_x),
-        opt_f64("load_width", |r| r.solution.load_width),
-        opt_f64("lambda", |r| r.solution.lambda),
-    ]
+/// The columns of results.parquet that echo the case's inputs, in order, for rows of type
+/// `$row` whose field `$echo` holds the inputs' fields ([`crate::scene::Inputs`]).
+macro_rules! input_columns {
+    ($load_cases:expr, $row:ty, $echo:ident) => {{
+        let load_cases: &'a [LoadCase] = $load_cases;
+        vec![
+            u64_col("case_id", |r: &$row| r.case_id),
+            str_col("load_case", |r: &$row| {
+                load_cases[r.load_case].name.as_str()
+            }),
+            str_col("load_kind", |r: &$row| {
+                load_cases[r.load_case].kind.as_str()
+            }),
+            str_col("find", |r: &$row| r.$echo.find.as_str()),
+            opt_f64("k", |r: &$row| r.$echo.k),
+            opt_f64("t_over_r", |r: &$row| r.$echo.t_over_r),
+            opt_f64("mu", |r: &$row| {
+                if r.$echo.mu_infinite {
+                    Some(f64::INFINITY)
+                } else {
+                    r.$echo.mu
+                }
+            }),
+            f64_col("half_angle_deg", |r: &$row| r.$echo.half_angle_deg),
+            str_col("weight", |r: &$row| r.$echo.weight.as_str()),
+            opt_u32("voussoirs", |r: &$row| r.$echo.voussoirs),
+            // Form and load case (docs/loads-and-geometries.md).
+            str_col("shape", |r: &$row| r.$echo.shape),
+            opt_f64("eccentricity", |r: &$row| r.$echo.eccentricity),
+            str_col("joints", |r: &$row| r.$echo.joints),
+            bool_col("keystone", |r: &$row| r.$echo.keystone),
+            str_col("load", |r: &$row| r.$echo.load),
+            opt_f64("at_deg", |r: &$row| r.$echo.at_deg),
+            opt_f64("at_x", |r: &$row| r.$echo.at_x),
+            opt_f64("load_width", |r: &$row| r.$echo.load_width),
+            opt_f64("lambda", |r: &$row| r.$echo.lambda),
+        ]
+    }};
+}
+
+/// The input columns of full rows.
+fn input_columns<'a>(load_cases: &'a [LoadCase]) -> Vec<Spec<'a, CaseResult>> {
+    input_columns!(load_cases, CaseResult, solution)
+}
+
+/// Every column of compact `state` rows, in the order of [`input_columns`] followed by the
+/// answer columns a `state` study holds ([`answer_columns`] filtered by [`filled_by`]).
+fn state_columns<'a>(load_cases: &'a [LoadCase]) -> Vec<Spec<'a, StateCase>> {
+    let mut specs = input_columns!(load_cases, StateCase, inputs);
+    let a = |r: &'a StateCase| r.answer.as_ref();
+    specs.extend([
+        opt_str("outcome", |_: &StateCase| None),
+        opt_str("regime", move |r| a(r).map(|a| a.regime.as_str())),
+        opt_f64("thrust_r_min", move |r| a(r).and_then(|a| a.thrust_r_min)),
+        opt_f64("thrust_r_max", move |r| a(r).and_then(|a| a.thrust_r_max)),
+        opt_f64("thrust_s_min", move |r| a(r).and_then(|a| a.thrust_s_min)),
+        opt_f64("thrust_s_max", move |r| a(r).and_then(|a| a.thrust_s_max)),
+        str_col("status", |r: &StateCase| r.status().as_str()),
+        opt_str("message", |r: &'a StateCase| r.message.as_deref()),
+        f64_col("solve_time_us", |r: &StateCase| r.solve_time_us),
+    ]);
+    specs
 }
 
 /// The columns of results.parquet that hold the answer, in order.
-fn answer_columns<'a>() -> Vec<Spec<'a>> {
+fn answer_columns<'a>() -> Vec<Spec<'a, CaseResult>> {
     let s = |r: &'a CaseResult| &r.solution;
     vec![
         opt_str("outcome", move |r| s(r).outcome.map(|o| o.as_str())),
@@ -392,8 +454,8 @@ fn answer_columns<'a>() -> Vec<Spec<'a>> {
             hinge_angles(&s(r).hinges_max)
         }),
         list_str("hinges_max_faces", move |r| hinge_faces(&s(r).hinges_max)),
-        str_col("status", |r| r.status.as_str()),
-        opt_str("message", |r| r.message.as_deref()),
+        str_col("status", |r: &CaseResult| r.status.as_str()),
+        opt_str("message", |r: &'a CaseResult| r.message.as_deref()),
         f64_col("solve_time_us", move |r| s(r).solve_time_us),
     ]
 }
@@ -406,18 +468,9 @@ const COLUMN_GROUPS: usize = 4;
 /// One block of the results table: its columns dealt round-robin into [`COLUMN_GROUPS`]
 /// groups built in parallel, each group in one pass over the rows (every column of the
 /// group read while the row is in cache), then put back in order.
-fn block_frame<'a>(
-    load_cases: &'a [LoadCase],
-    rows: &'a [CaseResult],
-    columns: Columns,
-) -> Result<DataFrame> {
-    let finds = study_finds(load_cases);
-    let mut specs = input_columns(load_cases);
-    specs.extend(answer_columns().into_iter().filter(|s| {
-        columns != Columns::OfStudy
-            || filled_by(s.name()).is_none_or(|by| by.iter().any(|f| finds.contains(f)))
-    }));
-    let mut groups: Vec<Vec<(usize, Spec<'a>)>> = (0..COLUMN_GROUPS).map(|_| Vec::new()).collect();
+fn block_frame<'a, R: Sync>(rows: &'a [R], specs: Vec<Spec<'a, R>>) -> Result<DataFrame> {
+    let mut groups: Vec<Vec<(usize, Spec<'a, R>)>> =
+        (0..COLUMN_GROUPS).map(|_| Vec::new()).collect();
     for (i, s) in specs.into_iter().enumerate() {
         groups[i % COLUMN_GROUPS].push((i, s));
     }
@@ -476,6 +529,64 @@ mod tests {
         assert_eq!(whole.get_column_names(), blocks.get_column_names());
         // Solve times differ between runs of a case but not between two tables of one run.
         assert!(whole.equals_missing(&blocks));
+    }
+
+    /// The compact rows of separable `state` grids (several arches, two load cases, infinite
+    /// friction, centreline weights, and a run stopped before it began, whose every row is
+    /// an error) give the table of their full rows.
+    #[test]
+    fn compact_state_rows_give_the_table_of_their_full_rows() {
+        struct StopNow;
+        impl crate::progress::Progress for StopNow {
+            fn begin(&self, _: crate::progress::Stage, _: Option<u64>) {}
+            fn advance(&self, _: u64) {}
+            fn end(&self, _: crate::progress::Stage) {}
+            fn stopped(&self) -> bool {
+                true
+            }
+        }
+        let studies = [
+            "grid:\n  k: {from: 1.05, to: 1.4, steps: 9}\n  mu: {values: [0.2, 0.35, 0.6, inf]}\n  half_angle_deg: {values: [60, 90, 120]}\n",
+            "arch:\n  weight: centreline\ngrid:\n  k: {values: [1.1, 1.3]}\n  mu: {values: [0.3, 0.5]}\n  voussoirs: {values: [5, 8, continuum]}\nload_cases:\n  - {name: a, kind: self_weight}\n  - {name: b, kind: self_weight}\n",
+        ];
+        let silent: &dyn crate::progress::Progress = &crate::progress::Silent;
+        for text in studies {
+            let m =
+                crate::manifest::parse(&format!("name: a\n{text}"), Path::new("a.yaml")).unwrap();
+            let plan = crate::plan::build(m).unwrap();
+            assert_eq!(engine::GridPath::of(&plan), engine::GridPath::Separable);
+            for progress in [silent, &StopNow] {
+                let mut rows = engine::Rows::default();
+                engine::analyse_rows(&plan, progress, &mut rows);
+                let engine::Rows::States(states) = &rows else {
+                    panic!("a separable grid gives compact rows");
+                };
+                assert_eq!(states.len(), plan.cases.len());
+                let compact = state_results_frame(&plan, states).unwrap();
+                let full = rows.into_results();
+                let expected = results_frame(&plan, &full).unwrap();
+                assert_eq!(compact.schema(), expected.schema());
+                assert!(compact.equals_missing(&expected), "{compact}\n{expected}");
+                let ok = full
+                    .iter()
+                    .filter(|r| r.status == engine::Status::Ok)
+                    .count();
+                assert_eq!(
+                    ok,
+                    if progress.stopped() {
+                        0
+                    } else {
+                        plan.cases.len()
+                    }
+                );
+                // The regimes are those of the scenes solved one by one.
+                for r in full.iter().filter(|r| r.status == engine::Status::Ok) {
+                    let alone = crate::scene::solve(&plan.cases[r.case_id as usize].scene);
+                    assert_eq!(r.solution.regime, alone.regime);
+                    assert_eq!(r.solution.thrust_s_max, alone.thrust_s_max);
+                }
+            }
+        }
     }
 
     /// Every find of a small study: the columns a study leaves out are null in every row

@@ -5,6 +5,7 @@
 use crate::report::data::RunData;
 use crate::report::format::{self, diff, given, position_deg, value};
 use crate::report::paper::{self, Printed};
+use crate::scene::Find;
 use crate::store::{BoundaryRow, ResultRow};
 use serde::Serialize;
 
@@ -84,9 +85,21 @@ pub fn key_results(data: &RunData) -> (Vec<KeyResult>, String) {
         }
         rows.bifurcations(data, &lc.name, &on);
     }
-    rows.critical_values(data);
-    rows.thrust_ranges(data);
-    rows.continuum_values(data, multi);
+    // Each of these reads every row: a study without their finds (a million-case state map)
+    // skips them.
+    let finds: Vec<&str> = (data.manifest.load_cases.iter())
+        .map(|l| data.manifest.find_of(&l.name))
+        .collect();
+    let asks = |any: &[Find]| finds.is_empty() || any.iter().any(|f| finds.contains(&f.as_str()));
+    if asks(&[Find::Thickness, Find::Friction, Find::LoadFactor]) {
+        rows.critical_values(data);
+    }
+    if asks(&[Find::Thrust]) {
+        rows.thrust_ranges(data);
+    }
+    if asks(&[Find::Thresholds]) {
+        rows.continuum_values(data, multi);
+    }
     let out = rows.out;
     let note = if out.is_empty() {
         if data.boundaries.is_none() {
