@@ -5,8 +5,9 @@
 //! A symmetric self-weight `state` grid uses the separable structure of the problem
 //! (docs/mechanics.md §2): H^r depends on K only and H^s/W_half on μ only, so the grid costs one
 //! rotational domain per distinct K and one sliding domain per distinct μ, plus a comparison
-//! per point. The solve time of such a case is its share of both domain solves plus its
-//! comparison.
+//! per point. Its rows are compact ([`StateCase`]: the inputs, the regime and both domains'
+//! ends), written in place block by block. The solve time of such a case is its share of both
+//! domain solves plus its share of its block's comparisons.
 //!
 //! A symmetric self-weight `state` grid on any other form (pointed arches, vertical joints)
 //! is analysed per K line: at fixed K the regime along μ is monotone (H^r does not involve μ,

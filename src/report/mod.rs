@@ -45,26 +45,31 @@ pub struct DrawnFigures {
 pub fn draw_figures(data: &RunData, layout: &RunLayout) -> Result<DrawnFigures> {
     let dir = layout.plots();
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    let specs = charts::build(data);
     let width = data.manifest.figure_width();
-    // Figures are independent: render them (screen SVG, paper SVG, PDF, PNG) on all cores,
-    // in order.
-    let svgs = specs
+    // Figures are independent: each group is built, then its figures rendered (screen SVG,
+    // paper SVG, PDF, PNG), on all cores, in order.
+    let render = |f: &FigureSpec| -> Result<String> {
+        let context = || format!("figure {}", f.stem);
+        let paper = f.render(Format::Paper(width)).with_context(context)?;
+        write_atomic(&layout.plot(&f.stem, "svg"), &paper)?;
+        let paper =
+            plot::paper::PaperSvg::parse(&String::from_utf8_lossy(&paper)).with_context(context)?;
+        let pdf = paper.pdf().with_context(context)?;
+        write_atomic(&layout.plot(&f.stem, "pdf"), &pdf)?;
+        let png = paper.png().with_context(context)?;
+        write_atomic(&layout.plot(&f.stem, "png"), &png)?;
+        let screen = f.render(Format::Svg).with_context(context)?;
+        Ok(inline_svg(&String::from_utf8_lossy(&screen), &f.title))
+    };
+    let groups = charts::build_groups(data)
         .par_iter()
-        .map(|f| -> Result<String> {
-            let context = || format!("figure {}", f.stem);
-            let paper = f.render(Format::Paper(width)).with_context(context)?;
-            write_atomic(&layout.plot(&f.stem, "svg"), &paper)?;
-            let paper = plot::paper::PaperSvg::parse(&String::from_utf8_lossy(&paper))
-                .with_context(context)?;
-            let pdf = paper.pdf().with_context(context)?;
-            write_atomic(&layout.plot(&f.stem, "pdf"), &pdf)?;
-            let png = paper.png().with_context(context)?;
-            write_atomic(&layout.plot(&f.stem, "png"), &png)?;
-            let screen = f.render(Format::Svg).with_context(context)?;
-            Ok(inline_svg(&String::from_utf8_lossy(&screen), &f.title))
+        .map(|g| -> Result<Vec<(FigureSpec, String)>> {
+            let specs = g();
+            let svgs = specs.par_iter().map(render).collect::<Result<Vec<_>>>()?;
+            Ok(specs.into_iter().zip(svgs).collect())
         })
         .collect::<Result<Vec<_>>>()?;
+    let (specs, svgs) = groups.into_iter().flatten().unzip();
     Ok(DrawnFigures { specs, svgs })
 }
 

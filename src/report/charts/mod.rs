@@ -147,31 +147,58 @@ pub fn load_case_figures(data: &RunData) -> Vec<LoadCaseFigure<'_>> {
 
 /// All figures of a run, in report order.
 pub fn build(data: &RunData) -> Vec<FigureSpec> {
-    let mut out = Vec::new();
+    build_groups(data).iter().flat_map(|g| g()).collect()
+}
+
+/// Builds a group of figures of a run.
+pub type FigureGroup<'a> = Box<dyn Fn() -> Vec<FigureSpec> + Send + Sync + 'a>;
+
+/// The figures of [`build`] as groups in order, each built on its own: a million-case regime
+/// map takes a while to build, and the other figures can be drawn meanwhile.
+pub fn build_groups(data: &RunData) -> Vec<FigureGroup<'_>> {
+    let mut out: Vec<FigureGroup<'_>> = Vec::new();
     for lc in load_case_figures(data) {
         if data.manifest.sampling.is_some() {
-            out.extend(uncertainty::figures(data, &lc));
+            out.push(Box::new(move || uncertainty::figures(data, &lc)));
             continue;
         }
-        out.extend(regime_map::figure(data, &lc));
-        out.extend(arch_axis::figures(data, &lc));
-        out.extend(critical::figure(data, &lc));
-        out.extend(critical_arches::figure(data, &lc));
-        out.extend(load_factor::figures(data, &lc));
-        out.extend(lambda_map::figures(data, &lc));
+        let lc = std::sync::Arc::new(lc);
+        let group = |f: fn(&RunData, &LoadCaseFigure<'_>) -> Vec<FigureSpec>| -> FigureGroup<'_> {
+            let lc = std::sync::Arc::clone(&lc);
+            Box::new(move || f(data, &lc))
+        };
+        out.push(group(|d, lc| {
+            regime_map::figure(d, lc).into_iter().collect()
+        }));
+        out.push(group(|d, lc| {
+            arch_axis::figures(d, lc).into_iter().collect()
+        }));
+        out.push(group(|d, lc| critical::figure(d, lc).into_iter().collect()));
+        out.push(group(|d, lc| {
+            critical_arches::figure(d, lc).into_iter().collect()
+        }));
+        out.push(group(|d, lc| {
+            load_factor::figures(d, lc).into_iter().collect()
+        }));
+        out.push(group(|d, lc| {
+            lambda_map::figures(d, lc).into_iter().collect()
+        }));
     }
     for s in &data.states {
         // Fig. 2 exists for the symmetric closed forms only (its curves are stored then).
         let fig2 = crate::figdata::domains_figure(&s.state_id);
         if s.source == "scene" && data.curves.iter().any(|c| c.figure == fig2) {
-            out.push(domains::figure(data, s));
+            out.push(Box::new(move || vec![domains::figure(data, s)]));
         }
     }
     for s in &data.states {
-        out.push(state::figure(data, s));
-        out.extend(mechanisms::figure(data, s));
+        out.push(Box::new(move || {
+            let mut figs = vec![state::figure(data, s)];
+            figs.extend(mechanisms::figure(data, s));
+            figs
+        }));
     }
-    out.extend(accuracy::figure(data));
+    out.push(Box::new(|| accuracy::figure(data).into_iter().collect()));
     out
 }
 
