@@ -428,6 +428,10 @@ pub struct GapSettings {
     /// Steps a path goes on beyond its static limit until its polytope is empty (default 200:
     /// sampled joints of a continuum stand a little further than the continuum).
     pub max_steps_beyond: usize,
+    /// Two unit twists of tight rows are one plane when no component differs by more than
+    /// this (the extrados hinge rows on the two sides of a point load, which acts at that
+    /// point; default 1e-12: rounding of the same computation).
+    pub tol_same_twist: f64,
     /// Four twists of a vertex cut off between two steps are tried as a complete event when
     /// their hull lies within this of the origin at the later step (default 1e-2: they move
     /// with K).
@@ -467,6 +471,7 @@ impl GapSettings {
         phi_step_deg: 1.0,
         k_step: 0.05,
         max_steps_beyond: 200,
+        tol_same_twist: 1e-12,
         tol_event: 1e-2,
         tol_refine: 1e-13,
         end_offset: 1e-10,

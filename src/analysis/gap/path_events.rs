@@ -121,7 +121,8 @@ impl<G: ArchGeometry> Walker<'_, G> {
             // stands for both.
             let mut named: Vec<((usize, u8), usize, [f64; 3])> = Vec::with_capacity(all.len());
             for n in all {
-                if !named.iter().any(|m| same_twist(&m.2, &n.2)) {
+                let tol = self.settings.tol_same_twist;
+                if !named.iter().any(|m| same_twist(&m.2, &n.2, tol)) {
                     named.push(n);
                 }
             }
@@ -177,7 +178,7 @@ impl<G: ArchGeometry> Walker<'_, G> {
     }
 }
 
-/// True when two unit twists are one within rounding.
-fn same_twist(a: &[f64; 3], b: &[f64; 3]) -> bool {
-    (0..3).all(|c| (a[c] - b[c]).abs() <= 1e-12)
+/// True when two unit twists are one: no component differs by more than `tol`.
+fn same_twist(a: &[f64; 3], b: &[f64; 3], tol: f64) -> bool {
+    (0..3).all(|c| (a[c] - b[c]).abs() <= tol)
 }
