@@ -24,14 +24,19 @@ fn seed_plan(side: usize) -> plan::Plan {
     plan::build(m).expect("a plan of allowed size")
 }
 
-/// Engine time of a side × side state grid (separable path, all cores).
+/// Engine time of a side × side state grid (separable path, all cores), into compact rows
+/// written over one buffer, as a run's chunks are.
 #[divan::bench(args = [101, 201, 401, 1001], sample_count = 10)]
 fn state_grid_engine(bencher: Bencher, side: usize) {
     let plan = seed_plan(side);
+    let mut rows = engine::Rows::default();
     // Points per second in the output: constant when the cost is linear in the points.
     bencher
         .counter(ItemsCount::new(plan.cases.len()))
-        .bench(|| engine::run(black_box(&plan), &archstudy::progress::Silent).len());
+        .bench_local(|| {
+            engine::analyse_rows(black_box(&plan), &archstudy::progress::Silent, &mut rows);
+            matches!(rows, engine::Rows::States(_))
+        });
 }
 
 /// The seed ranges on another form (`arch` is the manifest's `arch:` block), side × side.
@@ -62,14 +67,19 @@ fn vertical_joints_state_grid_engine(bencher: Bencher, side: usize) {
         .bench(|| engine::run(black_box(&plan), &archstudy::progress::Silent).len());
 }
 
-/// Building the results table of a side × side state grid (no file I/O).
+/// Building the results table of a side × side state grid from its compact rows (no file
+/// I/O), as a run does.
 #[divan::bench(args = [101, 401, 1001], sample_count = 5)]
 fn state_grid_results_frame(bencher: Bencher, side: usize) {
     let plan = seed_plan(side);
-    let rows = engine::run(&plan, &archstudy::progress::Silent);
+    let mut rows = engine::Rows::default();
+    engine::analyse_rows(&plan, &archstudy::progress::Silent, &mut rows);
+    let engine::Rows::States(states) = rows else {
+        panic!("the seed grid takes the separable path");
+    };
     bencher
-        .counter(ItemsCount::new(rows.len()))
-        .bench(|| store::results_frame(black_box(&plan), &rows).map(|df| df.height()));
+        .counter(ItemsCount::new(states.len()))
+        .bench(|| store::state_results_frame(black_box(&plan), &states).map(|df| df.height()));
 }
 
 /// One whole run of a manifest into a scratch directory (replaced by every run).

@@ -319,8 +319,9 @@ fn publish(
     info.stages.report_ms = report_ms;
     // A million rows take tens of milliseconds to free, and nothing waits for them: they are
     // freed on a thread of their own while the run is finished (or the process ends).
+    // (Where no thread can be started, the closure and its rows are dropped here.)
     let rows = std::mem::take(&mut data.results);
-    std::thread::spawn(move || drop(rows));
+    let _ = std::thread::Builder::new().spawn(move || drop(rows));
     info.finished_at = now_rfc3339();
     write_run_json(layout, info)?;
     citation::write_crate_metadata(layout, m, info)
@@ -413,7 +414,8 @@ impl ResultsWriter {
                 let df = pool.install(|| store::state_results_frame(plan, states))?;
                 self.codes
                     .extend(states.iter().map(boundaries::state_cell_code));
-                self.count(states.len(), rows.ok());
+                let ok = states.iter().filter(|r| r.answer.is_some()).count();
+                self.count(states.len(), ok);
                 Ok(df)
             }
         }

@@ -1,11 +1,12 @@
 //! The rows of a separable `state` grid kept compact: a case's inputs and its regime with
-//! both thrust domains, about 200 bytes where a full row ([`CaseResult`]) holds every
-//! column of every find in over a kilobyte. A million-case map is analysed and stored from
+//! both thrust domains, 320 bytes where a full row ([`CaseResult`]) holds every column of
+//! every find in over a kilobyte. A million-case map is analysed and stored from
 //! these; [`StateCase::into_result`] gives the full row of the same case.
 
 use super::{CaseResult, Status};
 use crate::plan::Case;
 use crate::scene::{Inputs, Solution, StateAnswer};
+use rayon::prelude::*;
 
 /// The row of one case of a separable `state` grid (the default is no case's: a placeholder
 /// for a row about to be written).
@@ -82,27 +83,6 @@ impl Default for Rows {
 }
 
 impl Rows {
-    /// The number of rows.
-    pub fn len(&self) -> usize {
-        match self {
-            Rows::Cases(v) => v.len(),
-            Rows::States(v) => v.len(),
-        }
-    }
-
-    /// True when there are no rows.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
-    /// Rows whose analysis ran.
-    pub fn ok(&self) -> usize {
-        match self {
-            Rows::Cases(v) => v.iter().filter(|r| r.status == Status::Ok).count(),
-            Rows::States(v) => v.iter().filter(|r| r.answer.is_some()).count(),
-        }
-    }
-
     /// Removes the rows, keeping the buffer.
     pub fn clear(&mut self) {
         match self {
@@ -137,7 +117,7 @@ impl Rows {
     pub fn into_results(self) -> Vec<CaseResult> {
         match self {
             Rows::Cases(v) => v,
-            Rows::States(v) => v.into_iter().map(StateCase::into_result).collect(),
+            Rows::States(v) => v.into_par_iter().map(StateCase::into_result).collect(),
         }
     }
 }

@@ -170,19 +170,13 @@ pub fn build_groups(data: &RunData) -> Vec<FigureGroup<'_>> {
         out.push(group(|d, lc| {
             regime_map::figure(d, lc).into_iter().collect()
         }));
-        out.push(group(|d, lc| {
-            arch_axis::figures(d, lc).into_iter().collect()
-        }));
+        out.push(group(arch_axis::figures));
         out.push(group(|d, lc| critical::figure(d, lc).into_iter().collect()));
         out.push(group(|d, lc| {
             critical_arches::figure(d, lc).into_iter().collect()
         }));
-        out.push(group(|d, lc| {
-            load_factor::figures(d, lc).into_iter().collect()
-        }));
-        out.push(group(|d, lc| {
-            lambda_map::figures(d, lc).into_iter().collect()
-        }));
+        out.push(group(load_factor::figures));
+        out.push(group(lambda_map::figures));
     }
     for s in &data.states {
         // Fig. 2 exists for the symmetric closed forms only (its curves are stored then).
