@@ -414,7 +414,7 @@ fn run_lines(plan: &Plan, progress: &dyn Progress, out: &mut Vec<CaseResult>) {
 mod tests {
     use super::*;
     use crate::manifest::SceneOptions;
-    use crate::progress::{Silent, Stopped};
+    use crate::progress::{Silent, StopNow, Stopped};
 
     fn state(k: f64, mu: f64) -> scene::Scene {
         SceneOptions {
@@ -427,16 +427,6 @@ mod tests {
     }
 
     /// Progress that asks to stop from the start.
-    struct StopNow;
-    impl Progress for StopNow {
-        fn begin(&self, _: Stage, _: Option<u64>) {}
-        fn advance(&self, _: u64) {}
-        fn end(&self, _: Stage) {}
-        fn stopped(&self) -> bool {
-            true
-        }
-    }
-
     #[test]
     fn a_batch_of_state_scenes_answers_as_each_scene_alone() {
         let scenes = [state(1.1, 0.3), state(1.2, 0.5), state(1.35, f64::INFINITY)];

@@ -70,3 +70,18 @@ impl Progress for Silent {
     fn advance(&self, _n: u64) {}
     fn end(&self, _stage: Stage) {}
 }
+
+/// Progress whose caller asks to stop from the start (tests of stopped runs).
+#[cfg(test)]
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct StopNow;
+
+#[cfg(test)]
+impl Progress for StopNow {
+    fn begin(&self, _stage: Stage, _total: Option<u64>) {}
+    fn advance(&self, _n: u64) {}
+    fn end(&self, _stage: Stage) {}
+    fn stopped(&self) -> bool {
+        true
+    }
+}

@@ -536,15 +536,6 @@ mod tests {
     /// an error) give the table of their full rows.
     #[test]
     fn compact_state_rows_give_the_table_of_their_full_rows() {
-        struct StopNow;
-        impl crate::progress::Progress for StopNow {
-            fn begin(&self, _: crate::progress::Stage, _: Option<u64>) {}
-            fn advance(&self, _: u64) {}
-            fn end(&self, _: crate::progress::Stage) {}
-            fn stopped(&self) -> bool {
-                true
-            }
-        }
         let studies = [
             "grid:\n  k: {from: 1.05, to: 1.4, steps: 9}\n  mu: {values: [0.2, 0.35, 0.6, inf]}\n  half_angle_deg: {values: [60, 90, 120]}\n",
             "arch:\n  weight: centreline\ngrid:\n  k: {values: [1.1, 1.3]}\n  mu: {values: [0.3, 0.5]}\n  voussoirs: {values: [5, 8, continuum]}\nload_cases:\n  - {name: a, kind: self_weight}\n  - {name: b, kind: self_weight}\n",
@@ -555,7 +546,7 @@ mod tests {
                 crate::manifest::parse(&format!("name: a\n{text}"), Path::new("a.yaml")).unwrap();
             let plan = crate::plan::build(m).unwrap();
             assert_eq!(engine::GridPath::of(&plan), engine::GridPath::Separable);
-            for progress in [silent, &StopNow] {
+            for progress in [silent, &crate::progress::StopNow] {
                 let mut rows = engine::Rows::default();
                 engine::analyse_rows(&plan, progress, &mut rows);
                 let engine::Rows::States(states) = &rows else {
